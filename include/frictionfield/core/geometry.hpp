@@ -1,0 +1,34 @@
+#pragma once
+// Screen geometry and a minimal 2-D vector: everything in screen pixels
+// (800 x 480, origin top-left, y down; 1 px ~ 0.2 mm).
+#include <cmath>
+
+namespace ff {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kScreenWidthPx = 800.0f;
+constexpr float kScreenHeightPx = 480.0f;
+// The screen as a closed domain of pixel centres: max|G| and tables cover it.
+constexpr float kScreenMaxX = kScreenWidthPx - 1.0f;
+constexpr float kScreenMaxY = kScreenHeightPx - 1.0f;
+
+struct Vec2 {
+  float x = 0.0f;
+  float y = 0.0f;
+};
+
+constexpr Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+constexpr Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+constexpr Vec2 operator*(float s, Vec2 a) { return {s * a.x, s * a.y}; }
+constexpr float dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline float length(Vec2 a) { return std::sqrt(dot(a, a)); }
+inline bool is_finite(Vec2 a) { return std::isfinite(a.x) && std::isfinite(a.y); }
+
+constexpr float clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+// NaN-safe clamp to [lo, hi]: NaN maps to `fallback`.
+inline float clamp_finite(float v, float lo, float hi, float fallback) {
+  return std::isnan(v) ? fallback : clamp(v, lo, hi);
+}
+
+}  // namespace ff

@@ -1,0 +1,69 @@
+#pragma once
+// The 2 kHz tick: sample in, extrapolate, filter, evaluate the prepared
+// scene, amplitude, DAC code out. The firmware's interrupt and the replay
+// call the same tick().
+//
+// Threading: set_condition() and post_sample() belong to the main loop (one
+// producer); tick() to the interrupt (one consumer). A new condition is
+// prepared in the slot the tick is not reading and published with one atomic
+// store, so no tick sees half a scene.
+#include <atomic>
+#include <cstdint>
+
+#include "frictionfield/core/amplitude_map.hpp"
+#include "frictionfield/core/sample_mailbox.hpp"
+#include "frictionfield/core/scene_plan.hpp"
+#include "frictionfield/core/tracker.hpp"
+
+namespace ff {
+
+struct TickOutput {
+  uint32_t t_us = 0;
+  bool present = false;   // a finger was tracked at this tick
+  Vec2 position;          // filtered (or last sample's if the scene needs none)
+  Vec2 direction;         // what the scene was rendered with (0,0 if unused)
+  float amplitude = 0.0f; // A_s in [0, 1]; the idle amplitude without a finger
+  uint16_t dac = 0;       // the code sent
+};
+
+// Everything needed to render one experiment condition.
+struct Condition {
+  SceneDefinition scene;
+  AmplitudeSettings amplitude;
+};
+
+class HapticPipeline {
+ public:
+  explicit HapticPipeline(const TrackerConfig& tracker = TrackerConfig::recommended());
+
+  // Main loop side ---------------------------------------------------------
+  // Prepares and atomically switches to `condition`; on error nothing changes.
+  PrepareStatus set_condition(const Condition& condition);
+  bool post_sample(const SensorSample& s);  // false: mailbox full (counted)
+
+  // Interrupt side ---------------------------------------------------------
+  TickOutput tick(uint32_t now_us);
+
+  // Inspection (main loop) --------------------------------------------------
+  const ScenePlan& plan() const { return slots_[active_.load(std::memory_order_acquire)].plan; }
+  const AmplitudeMap& amplitude_map() const { return slots_[active_.load(std::memory_order_acquire)].map; }
+  const Tracker& tracker() const { return tracker_; }
+  FaultCounters faults() const;  // tick side and main-loop side together
+  uint32_t ticks() const { return ticks_; }
+
+ private:
+  struct Slot {
+    ScenePlan plan;
+    AmplitudeMap map;
+    alignas(4) unsigned char table[kTableSlotBytes];
+  };
+
+  Slot slots_[2];
+  std::atomic<uint8_t> active_{0};
+  SampleMailbox mailbox_;
+  Tracker tracker_;
+  FaultCounters main_faults_;  // counted on the main-loop side only
+  uint32_t ticks_ = 0;
+};
+
+}  // namespace ff

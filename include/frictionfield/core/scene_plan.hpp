@@ -1,0 +1,76 @@
+#pragma once
+// A scene prepared for the 2 kHz tick: zero-weight terms dropped, max|G|
+// found, a table built only if asked for. Evaluation never allocates and does
+// only what the scene needs.
+#include <cstddef>
+#include <cstdint>
+
+#include "frictionfield/core/grid_table.hpp"
+#include "frictionfield/core/scene.hpp"
+
+namespace ff {
+
+// Table memory for the Teensy: two slots (the live plan's and the next one's),
+// so a new scene is built while the old one is still rendered.
+#ifndef FF_TABLE_SLOT_BYTES
+#define FF_TABLE_SLOT_BYTES (96u * 1024u)
+#endif
+constexpr size_t kTableSlotBytes = FF_TABLE_SLOT_BYTES;
+
+enum class PrepareStatus : uint8_t {
+  Ok,
+  TooManyElements,
+  InvalidParameter,  // NaN / infinite / out-of-range parameter
+  TableTooLarge,     // over the slot budget: scene unchanged
+  InvalidSampledMap,
+};
+const char* to_string(PrepareStatus s);
+
+struct PlanStats {
+  float max_gradient = 0.0f;        // max|G| over the screen (Directional)
+  uint32_t gradient_evaluations = 0;  // work spent at preparation
+  uint32_t table_bytes = 0;
+  uint32_t plan_bytes = 0;          // sizeof(ScenePlan)
+  uint16_t table_cols = 0;
+  uint16_t table_rows = 0;
+};
+
+class ScenePlan {
+ public:
+  // Prepares `def` into this plan using `table_memory` for a table if one is
+  // needed. On failure the plan is left as it was.
+  PrepareStatus prepare(const SceneDefinition& def, void* table_memory, size_t table_capacity);
+
+  Needs needs() const { return needs_; }
+  const PlanStats& stats() const { return stats_; }
+
+  // Raw amplitude in [0, 1] (before strength and calibration). `direction` is
+  // the unit (or faded, shorter) direction of motion; ignored unless needed.
+  float amplitude(Vec2 position, Vec2 direction) const;
+
+  // G / (2 max|G|) at p, |result| <= 0.5 (Directional scenes; else 0).
+  Vec2 normalized_gradient(Vec2 position) const;
+  // Unnormalised field G at p (sum of weighted terms or the table).
+  Vec2 field(Vec2 position) const;
+  // Position-only amplitude at p (PositionOnly scenes).
+  float profile(Vec2 position) const;
+
+ private:
+  Vec2 closed_form_field(Vec2 p) const;
+  float closed_form_profile(Vec2 p) const;
+  float find_max_gradient();
+
+  Rendering rendering_ = Rendering::Constant;
+  Needs needs_ = Needs::Nothing;
+  float constant_ = 0.5f;
+  float bias_ = 0.0f;
+  float inv_two_max_ = 0.0f;  // 1 / (2 max|G|), 0 for a flat field
+  uint8_t count_ = 0;
+  FieldElement elements_[kMaxSceneElements] = {};
+  Evaluation evaluation_ = Evaluation::ClosedForm;
+  TableSource table_source_ = TableSource::TabulatedGradient;
+  GridTable table_;
+  PlanStats stats_;
+};
+
+}  // namespace ff

@@ -1,0 +1,112 @@
+#pragma once
+// Finger tracking at 2 kHz from a ~200 Hz sensor: where the finger is at the
+// tick and which way it is going. Every fault is decided here, counted, and
+// answered with a safe state.
+#include <cstdint>
+
+#include "frictionfield/core/fault_counters.hpp"
+#include "frictionfield/core/geometry.hpp"
+#include "frictionfield/core/one_euro_filter.hpp"
+#include "frictionfield/core/sensor_sample.hpp"
+
+namespace ff {
+
+constexpr uint32_t kTickPeriodUs = 500;  // 2 kHz
+
+enum class Estimator : uint8_t {
+  ThesisTicks,         // thesis alg. 3/4: p_k + v_raw * n * 500 us, then 1-euro
+  TimedExtrapolation,  // same, extrapolated to the tick's true time, then 1-euro
+  Kalman,              // constant-velocity Kalman at the sensor rate, predicted to the tick
+};
+const char* to_string(Estimator e);
+
+struct KalmanConfig {
+  float accel_noise_px_s2 = 6000.0f;   // white-acceleration spectral density sqrt(q)
+  float measurement_noise_px = 1.5f;   // sensor noise (1 sigma)
+};
+
+struct TrackerConfig {
+  Estimator estimator = Estimator::Kalman;
+  OneEuroConfig one_euro;              // ThesisTicks and TimedExtrapolation
+  KalmanConfig kalman;
+  // Direction fades to zero between these speeds (px/s) so that a resting
+  // finger renders 0.5 instead of chattering; both 0 disables the fade.
+  float rest_speed_px_s = 15.0f;
+  float moving_speed_px_s = 60.0f;
+  uint32_t max_extrapolation_us = 15000;  // then hold the position
+  uint32_t stale_timeout_us = 250000;     // no sample this long: lift-off
+  uint32_t lift_off_timeout_us = 20000;   // touch = 0 this long: lift-off
+  float max_speed_px_s = 5000.0f;         // 1 m/s: faster implies a second finger or a glitch
+  float jump_slack_px = 25.0f;            // noise allowance on top of max speed
+  float screen_margin_px = 40.0f;         // beyond the screen by more: dropped; within: clamped
+
+  static TrackerConfig thesis();       // exactly SPEC.md / the thesis (no fade)
+  static TrackerConfig recommended();  // the benchmarked default
+};
+
+struct TrackState {
+  bool present = false;  // a finger is being tracked
+  Vec2 position;         // filtered position at the tick
+  Vec2 velocity;         // px/s estimate
+  Vec2 direction;        // unit while moving, shorter while fading, 0 at rest
+};
+
+class Tracker {
+ public:
+  explicit Tracker(const TrackerConfig& config = TrackerConfig::recommended());
+  void configure(const TrackerConfig& config);
+  void reset();
+
+  // A sensor report (any order of calls with tick() is allowed).
+  void on_sample(const SensorSample& s);
+  // Advances to the tick at now_us and returns the state there.
+  // With need_filter = false only presence and the last sample are updated.
+  TrackState on_tick(uint32_t now_us, bool need_filter = true);
+
+  const TrackState& state() const { return state_; }
+  const FaultCounters& faults() const { return faults_; }
+  FaultCounters& faults() { return faults_; }
+  const TrackerConfig& config() const { return config_; }
+
+ private:
+  void restart_at(const SensorSample& s);
+  void accept(const SensorSample& s);
+  bool is_jump(const SensorSample& s) const;
+  void lose_finger();
+  Vec2 estimate(uint32_t now_us, Vec2& velocity);
+  uint32_t extrapolation_us(uint32_t now_us);
+  Vec2 faded_direction(Vec2 velocity) const;
+
+  TrackerConfig config_;
+  OneEuroFilter filter_x_;
+  OneEuroFilter filter_y_;
+  TrackState state_;
+  FaultCounters faults_;
+
+  // Newest accepted sample and the raw velocity to it.
+  SensorSample last_;
+  Vec2 raw_velocity_;            // px/us
+  bool have_last_ = false;
+  bool have_velocity_ = false;
+  uint32_t ticks_since_sample_ = 0;  // the thesis' idx_extrapol
+  // Jump candidate waiting for confirmation.
+  SensorSample pending_jump_;
+  bool have_pending_jump_ = false;
+  // Lift-off bookkeeping: touch = 0 seen at untouched_since_us_.
+  bool lifting_ = false;
+  uint32_t untouched_since_us_ = 0;
+  bool stale_reported_ = false;  // StaleSample counted once per gap
+  // Kalman state per axis: position, velocity (px/s), covariance.
+  struct KalmanAxis {
+    float p = 0.0f, v = 0.0f;             // px, px/s
+    float P00 = 0.0f, P01 = 0.0f, P11 = 0.0f;
+    void start(float z, float r);
+    void predict(float dt_s, float q);
+    void update(float z, float r);
+  } kx_, ky_;
+  bool filters_fresh_ = false;  // filters restarted from the last sample on next use
+  uint32_t last_tick_us_ = 0;
+  bool have_tick_ = false;
+};
+
+}  // namespace ff

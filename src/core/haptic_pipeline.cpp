@@ -1,0 +1,65 @@
+#include "frictionfield/core/haptic_pipeline.hpp"
+
+namespace ff {
+
+HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : tracker_(tracker) {
+  // Boot: neutral scene, plate resting until a finger and a condition arrive.
+  Condition boot;
+  slots_[0].plan.prepare(boot.scene, slots_[0].table, sizeof(slots_[0].table));
+  slots_[0].map.configure(boot.amplitude);
+}
+
+PrepareStatus HapticPipeline::set_condition(const Condition& condition) {
+  const uint8_t next = static_cast<uint8_t>(active_.load(std::memory_order_acquire) ^ 1u);
+  Slot& slot = slots_[next];
+  const PrepareStatus status = slot.plan.prepare(condition.scene, slot.table, sizeof(slot.table));
+  if (status != PrepareStatus::Ok) return status;
+  if (!slot.map.configure(condition.amplitude)) {
+    const AmplitudeSettings& in = condition.amplitude;
+    if (!(in.strength > 0.0f && in.strength <= 1.0f)) main_faults_.add(Fault::BadStrength);
+    if (!in.calibration.valid()) main_faults_.add(Fault::BadCalibration);
+  }
+  active_.store(next, std::memory_order_release);  // the next tick renders the new scene
+  return PrepareStatus::Ok;
+}
+
+bool HapticPipeline::post_sample(const SensorSample& s) {
+  if (mailbox_.post(s)) return true;
+  main_faults_.add(Fault::MailboxOverflow);
+  return false;
+}
+
+TickOutput HapticPipeline::tick(uint32_t now_us) {
+  ++ticks_;
+  SensorSample s;
+  while (mailbox_.take(s)) tracker_.on_sample(s);
+
+  const Slot& slot = slots_[active_.load(std::memory_order_acquire)];
+  const Needs needs = slot.plan.needs();
+  const TrackState track = tracker_.on_tick(now_us, needs != Needs::Nothing);
+
+  TickOutput out;
+  out.t_us = now_us;
+  out.present = track.present;
+  out.position = track.position;
+  if (!track.present) {
+    out.amplitude = slot.map.idle_amplitude();
+    out.dac = slot.map.idle_code();
+    return out;
+  }
+  if (needs == Needs::PositionAndDirection) out.direction = track.direction;
+  out.amplitude = slot.map.scale(slot.plan.amplitude(track.position, out.direction));
+  out.dac = slot.map.dac_code(out.amplitude);
+  return out;
+}
+
+FaultCounters HapticPipeline::faults() const {
+  FaultCounters all = tracker_.faults();
+  for (int i = 0; i < static_cast<int>(Fault::kCount); ++i) {
+    const uint64_t sum = static_cast<uint64_t>(all.count[i]) + main_faults_.count[i];
+    all.count[i] = sum > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(sum);
+  }
+  return all;
+}
+
+}  // namespace ff

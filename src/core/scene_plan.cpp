@@ -1,0 +1,278 @@
+#include "frictionfield/core/scene_plan.hpp"
+
+#include <cmath>
+
+namespace ff {
+
+const char* to_string(PrepareStatus s) {
+  switch (s) {
+    case PrepareStatus::Ok: return "ok";
+    case PrepareStatus::TooManyElements: return "too many elements";
+    case PrepareStatus::InvalidParameter: return "invalid parameter (NaN, infinite or out of range)";
+    case PrepareStatus::TableTooLarge: return "table larger than the RAM budget";
+    case PrepareStatus::InvalidSampledMap: return "invalid sampled height map";
+  }
+  return "?";
+}
+
+namespace {
+
+bool finite_positive(float v) { return std::isfinite(v) && v > 0.0f; }
+
+bool valid_curve(const PathCurve& c) {
+  switch (c.kind) {
+    case CurveKind::Cubic:
+      return std::isfinite(c.x0) && std::isfinite(c.y0) && std::isfinite(c.rise) &&
+             finite_positive(c.length);
+    case CurveKind::Sine:
+      return std::isfinite(c.x0) && std::isfinite(c.y0) && std::isfinite(c.amplitude) &&
+             finite_positive(c.wavelength);
+    case CurveKind::Polyline:
+      if (c.count < 2 || c.count > kMaxPolylinePoints) return false;
+      for (int i = 0; i < c.count; ++i) {
+        if (!is_finite(c.points[i]) || (i > 0 && !(c.points[i].x > c.points[i - 1].x))) return false;
+      }
+      return true;
+  }
+  return false;
+}
+
+bool valid_element(const FieldElement& e) {
+  if (!std::isfinite(e.weight)) return false;
+  switch (e.kind) {
+    case ElementKind::PointSink:
+      return is_finite(e.point.centre) && std::isfinite(e.point.radius) && e.point.radius >= 0.0f &&
+             finite_positive(e.point.feather);
+    case ElementKind::Vortex:
+    case ElementKind::Saddle:
+      return is_finite(e.point.centre);
+    case ElementKind::PathSink:
+      return valid_curve(e.valley.curve) && finite_positive(e.valley.a) &&
+             std::isfinite(e.valley.band_half_width) && e.valley.band_half_width >= 0.0f &&
+             finite_positive(e.valley.band_feather);
+    case ElementKind::Tunnel: {
+      const TunnelParams& t = e.tunnel;
+      return std::isfinite(t.x_start) && finite_positive(t.length) && finite_positive(t.width_start) &&
+             finite_positive(t.width_end) && finite_positive(t.scale) && std::isfinite(t.y_centre);
+    }
+    case ElementKind::Texture:
+      return finite_positive(e.texture.wavelength_x) && finite_positive(e.texture.wavelength_y) &&
+             std::isfinite(e.texture.height);
+  }
+  return false;
+}
+
+uint16_t nodes_for(float extent, float spacing) {
+  return static_cast<uint16_t>(std::ceil(extent / spacing) + 1.0f);
+}
+
+}  // namespace
+
+PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
+                                 size_t table_capacity) {
+  if (def.element_count > kMaxSceneElements) return PrepareStatus::TooManyElements;
+  if (def.rendering != Rendering::Constant && def.rendering != Rendering::PositionOnly &&
+      def.rendering != Rendering::Directional) {
+    return PrepareStatus::InvalidParameter;
+  }
+  if (!std::isfinite(def.constant) || !std::isfinite(def.bias)) return PrepareStatus::InvalidParameter;
+
+  ScenePlan next;
+  next.rendering_ = def.rendering;
+  next.needs_ = needs_of(def.rendering);
+  next.constant_ = clamp(def.constant, 0.0f, 1.0f);
+  next.bias_ = def.bias;
+  next.stats_.plan_bytes = sizeof(ScenePlan);
+
+  if (def.rendering == Rendering::Constant) {  // needs nothing: no terms kept
+    *this = next;
+    return PrepareStatus::Ok;
+  }
+
+  bool has_vortex = false;
+  for (int i = 0; i < def.element_count; ++i) {
+    const FieldElement& e = def.elements[i];
+    if (!valid_element(e)) return PrepareStatus::InvalidParameter;
+    if (e.weight == 0.0f) continue;  // contributes nothing: not evaluated
+    has_vortex |= e.kind == ElementKind::Vortex;
+    next.elements_[next.count_++] = e;
+  }
+
+  const SampledHeightMap& sm = def.sampled;
+  const bool sampled = sm.heights != nullptr;
+  if (sampled) {
+    if (def.rendering != Rendering::Directional || sm.cols < 2 || sm.rows < 2 ||
+        !finite_positive(sm.spacing_px)) {
+      return PrepareStatus::InvalidSampledMap;
+    }
+    for (uint32_t i = 0; i < static_cast<uint32_t>(sm.cols) * sm.rows; ++i) {
+      if (!std::isfinite(sm.heights[i])) return PrepareStatus::InvalidSampledMap;
+    }
+  }
+
+  next.evaluation_ = sampled ? Evaluation::Table : def.evaluation;
+  if (next.evaluation_ == Evaluation::Table) {
+    const TableConfig& tc = def.table;
+    const float spacing = sampled ? sm.spacing_px : tc.spacing_px;
+    if (!finite_positive(spacing) || spacing < 0.25f || spacing > kScreenMaxY) {
+      return PrepareStatus::InvalidParameter;
+    }
+    const bool directional = def.rendering == Rendering::Directional;
+    next.table_source_ = sampled ? TableSource::HeightCentralDifferences : tc.source;
+    const bool heights = directional && next.table_source_ == TableSource::HeightCentralDifferences;
+    if (heights && has_vortex) return PrepareStatus::InvalidParameter;  // a vortex has no height
+    const int channels = (directional && !heights) ? 2 : 1;
+    const uint16_t cols = sampled ? sm.cols : nodes_for(kScreenMaxX, spacing);
+    const uint16_t rows = sampled ? sm.rows : nodes_for(kScreenMaxY, spacing);
+    const TableStorage storage = tc.storage;
+    if (GridTable::bytes_needed(cols, rows, channels, storage) > table_capacity) {
+      return PrepareStatus::TableTooLarge;
+    }
+    if (!next.table_.init(table_memory, table_capacity, cols, rows, spacing, channels, storage)) {
+      return PrepareStatus::TableTooLarge;
+    }
+    uint32_t evaluations = 0;
+    next.table_.fill([&](Vec2 p, float* out) {
+      ++evaluations;
+      if (!directional) {
+        out[0] = next.closed_form_profile(p);
+      } else if (heights) {
+        float z = 0.0f;
+        for (int i = 0; i < next.count_; ++i) {
+          z += next.elements_[i].weight * element_height(next.elements_[i], p);
+        }
+        if (sampled) {
+          const int c = static_cast<int>(std::lround(p.x / spacing));
+          const int r = static_cast<int>(std::lround(p.y / spacing));
+          z += sm.heights[r * sm.cols + c];
+        }
+        out[0] = z;
+      } else {
+        const Vec2 g = next.closed_form_field(p);
+        out[0] = g.x;
+        out[1] = g.y;
+      }
+    });
+    next.stats_.gradient_evaluations += evaluations;
+    next.stats_.table_bytes = static_cast<uint32_t>(next.table_.bytes());
+    next.stats_.table_cols = cols;
+    next.stats_.table_rows = rows;
+  }
+
+  if (def.rendering == Rendering::Directional) {
+    const float max_g = next.find_max_gradient();
+    next.stats_.max_gradient = max_g;
+    // A field that is flat everywhere renders 0.5 (no direction to favour).
+    next.inv_two_max_ = (max_g > 0.0f && std::isfinite(max_g)) ? 0.5f / max_g : 0.0f;
+  }
+  *this = next;
+  return PrepareStatus::Ok;
+}
+
+Vec2 ScenePlan::closed_form_field(Vec2 p) const {
+  Vec2 g;
+  for (int i = 0; i < count_; ++i) g = g + elements_[i].weight * element_gradient(elements_[i], p);
+  return g;
+}
+
+float ScenePlan::closed_form_profile(Vec2 p) const {
+  float a = bias_;
+  for (int i = 0; i < count_; ++i) a += elements_[i].weight * element_profile(elements_[i], p);
+  return a;
+}
+
+Vec2 ScenePlan::field(Vec2 p) const {
+  if (evaluation_ == Evaluation::ClosedForm) return closed_form_field(p);
+  if (table_source_ == TableSource::TabulatedGradient) return table_.sample2(p);
+  // Central differences of the bilinear height, one node spacing either side.
+  const float h = table_.spacing();
+  const float inv = 0.5f / h;
+  return {(table_.sample({p.x + h, p.y}, 0) - table_.sample({p.x - h, p.y}, 0)) * inv,
+          (table_.sample({p.x, p.y + h}, 0) - table_.sample({p.x, p.y - h}, 0)) * inv};
+}
+
+float ScenePlan::profile(Vec2 p) const {
+  const float a = evaluation_ == Evaluation::Table ? table_.sample(p, 0) : closed_form_profile(p);
+  return clamp_finite(a, 0.0f, 1.0f, 0.0f);
+}
+
+Vec2 ScenePlan::normalized_gradient(Vec2 p) const {
+  if (rendering_ != Rendering::Directional) return {};
+  return inv_two_max_ * field(p);
+}
+
+float ScenePlan::amplitude(Vec2 position, Vec2 direction) const {
+  switch (rendering_) {
+    case Rendering::Constant:
+      return constant_;
+    case Rendering::PositionOnly:
+      return profile(position);
+    case Rendering::Directional: {
+      // friction mu = 0.5 + v . G_norm; amplitude A = 1 - mu.
+      const float a = 0.5f - dot(direction, normalized_gradient(position));
+      return clamp_finite(a, 0.0f, 1.0f, 0.5f);
+    }
+  }
+  return 0.5f;
+}
+
+float ScenePlan::find_max_gradient() {
+  // Coarse scan of the screen (edges included), then a compass search from
+  // the best few nodes: ~2k field evaluations instead of 384k pixels.
+  constexpr float kStep = 16.0f;
+  constexpr int kCandidates = 4;
+  Vec2 best_p[kCandidates];
+  float best_m[kCandidates];
+  for (int i = 0; i < kCandidates; ++i) best_m[i] = -1.0f;
+
+  auto magnitude2 = [&](Vec2 p) {
+    ++stats_.gradient_evaluations;
+    const Vec2 g = field(p);
+    const float m = dot(g, g);
+    return std::isfinite(m) ? m : 0.0f;
+  };
+  auto consider = [&](Vec2 p, float m) {
+    int worst = 0;
+    for (int i = 1; i < kCandidates; ++i) worst = best_m[i] < best_m[worst] ? i : worst;
+    if (m > best_m[worst]) {
+      best_m[worst] = m;
+      best_p[worst] = p;
+    }
+  };
+
+  const int nx = static_cast<int>(kScreenMaxX / kStep) + 2;
+  const int ny = static_cast<int>(kScreenMaxY / kStep) + 2;
+  for (int j = 0; j < ny; ++j) {
+    const float y = j == ny - 1 ? kScreenMaxY : static_cast<float>(j) * kStep;
+    for (int i = 0; i < nx; ++i) {
+      const float x = i == nx - 1 ? kScreenMaxX : static_cast<float>(i) * kStep;
+      consider({x, y}, magnitude2({x, y}));
+    }
+  }
+
+  float best = 0.0f;
+  for (int c = 0; c < kCandidates; ++c) {
+    if (best_m[c] < 0.0f) continue;
+    Vec2 p = best_p[c];
+    float m = best_m[c];
+    for (float step = 0.5f * kStep; step >= 1.0f / 64.0f;) {
+      const Vec2 moves[8] = {{step, 0}, {-step, 0}, {0, step}, {0, -step},
+                             {step, step}, {step, -step}, {-step, step}, {-step, -step}};
+      bool moved = false;
+      for (const Vec2& d : moves) {
+        const Vec2 q{clamp(p.x + d.x, 0.0f, kScreenMaxX), clamp(p.y + d.y, 0.0f, kScreenMaxY)};
+        const float mq = magnitude2(q);
+        if (mq > m) {
+          m = mq;
+          p = q;
+          moved = true;
+        }
+      }
+      if (!moved) step *= 0.5f;
+    }
+    best = m > best ? m : best;
+  }
+  return std::sqrt(best);
+}
+
+}  // namespace ff

@@ -1,0 +1,313 @@
+#include "frictionfield/core/tracker.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace ff {
+
+namespace {
+
+// Signed difference of two wrapping 32-bit microsecond stamps.
+int32_t elapsed_us(uint32_t later, uint32_t earlier) {
+  return static_cast<int32_t>(later - earlier);
+}
+
+float smoothstep(float t) {
+  t = clamp(t, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+constexpr float kInitialSpeedSigmaPxS = 1000.0f;  // touch-down: velocity unknown
+
+}  // namespace
+
+const char* to_string(Estimator e) {
+  switch (e) {
+    case Estimator::ThesisTicks: return "thesis-ticks";
+    case Estimator::TimedExtrapolation: return "timed-extrapolation";
+    case Estimator::Kalman: return "kalman";
+  }
+  return "?";
+}
+
+TrackerConfig TrackerConfig::thesis() {
+  TrackerConfig c;
+  c.estimator = Estimator::ThesisTicks;
+  c.one_euro = OneEuroConfig{};
+  c.rest_speed_px_s = 0.0f;  // v_hat = dxhat / |dxhat| at any speed
+  c.moving_speed_px_s = 0.0f;
+  c.max_extrapolation_us = std::numeric_limits<uint32_t>::max();  // the thesis never stops counting
+  c.max_speed_px_s = std::numeric_limits<float>::infinity();       // no jump rejection
+  return c;
+}
+
+TrackerConfig TrackerConfig::recommended() { return TrackerConfig{}; }
+
+void Tracker::KalmanAxis::start(float z, float r) {
+  p = z;
+  v = 0.0f;
+  P00 = r;
+  P01 = 0.0f;
+  P11 = kInitialSpeedSigmaPxS * kInitialSpeedSigmaPxS;
+}
+
+void Tracker::KalmanAxis::predict(float dt, float q) {
+  // Constant velocity driven by white acceleration of spectral density q.
+  p += v * dt;
+  const float dt2 = dt * dt;
+  P00 += dt * (2.0f * P01 + dt * P11) + q * dt2 * dt * (1.0f / 3.0f);
+  P01 += dt * P11 + q * dt2 * 0.5f;
+  P11 += q * dt;
+}
+
+void Tracker::KalmanAxis::update(float z, float r) {
+  const float s = P00 + r;
+  const float k0 = P00 / s;
+  const float k1 = P01 / s;
+  const float innovation = z - p;
+  p += k0 * innovation;
+  v += k1 * innovation;
+  P11 -= k1 * P01;
+  P01 *= 1.0f - k0;
+  P00 *= 1.0f - k0;
+}
+
+Tracker::Tracker(const TrackerConfig& config) { configure(config); }
+
+void Tracker::configure(const TrackerConfig& config) {
+  config_ = config;
+  OneEuroConfig euro = config.one_euro;
+  euro.rate_hz = 1e6f / static_cast<float>(kTickPeriodUs);
+  filter_x_.configure(euro);
+  filter_y_.configure(euro);
+  reset();
+}
+
+void Tracker::reset() {
+  filter_x_.reset();
+  filter_y_.reset();
+  state_ = TrackState{};
+  last_ = SensorSample{};
+  raw_velocity_ = {};
+  have_last_ = false;
+  have_velocity_ = false;
+  ticks_since_sample_ = 0;
+  have_pending_jump_ = false;
+  lifting_ = false;
+  stale_reported_ = false;
+  kx_ = KalmanAxis{};
+  ky_ = KalmanAxis{};
+  have_tick_ = false;
+  filters_fresh_ = false;
+}
+
+void Tracker::lose_finger() {
+  have_last_ = false;
+  have_velocity_ = false;
+  have_pending_jump_ = false;
+  lifting_ = false;
+  state_.present = false;
+  state_.velocity = {};
+  state_.direction = {};
+}
+
+void Tracker::restart_at(const SensorSample& s) {
+  // No history survives a touch-down or a confirmed jump: no velocity spike.
+  last_ = s;
+  have_last_ = true;
+  have_velocity_ = false;
+  raw_velocity_ = {};
+  ticks_since_sample_ = 0;
+  have_pending_jump_ = false;
+  lifting_ = false;
+  stale_reported_ = false;
+  filter_x_.reset();
+  filter_y_.reset();
+  const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
+  kx_.start(s.x, r);
+  ky_.start(s.y, r);
+  filters_fresh_ = false;
+}
+
+bool Tracker::is_jump(const SensorSample& s) const {
+  const float dt_s = static_cast<float>(elapsed_us(s.t_us, last_.t_us)) * 1e-6f;
+  const float allowed = config_.max_speed_px_s * dt_s + config_.jump_slack_px;
+  return length(Vec2{s.x, s.y} - Vec2{last_.x, last_.y}) > allowed;
+}
+
+void Tracker::accept(const SensorSample& s) {
+  const int32_t dt_us = elapsed_us(s.t_us, last_.t_us);
+  const float inv_dt = 1.0f / static_cast<float>(dt_us);
+  raw_velocity_ = {(s.x - last_.x) * inv_dt, (s.y - last_.y) * inv_dt};
+  have_velocity_ = true;
+  const float dt_s = static_cast<float>(dt_us) * 1e-6f;
+  const float q = config_.kalman.accel_noise_px_s2 * config_.kalman.accel_noise_px_s2;
+  const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
+  kx_.predict(dt_s, q);
+  ky_.predict(dt_s, q);
+  kx_.update(s.x, r);
+  ky_.update(s.y, r);
+  last_ = s;
+  ticks_since_sample_ = 0;
+  lifting_ = false;
+  stale_reported_ = false;
+}
+
+void Tracker::on_sample(const SensorSample& in) {
+  if (!in.touch) {
+    if (have_last_ && !lifting_) {
+      lifting_ = true;
+      untouched_since_us_ = in.t_us;
+    }
+    return;
+  }
+  if (!std::isfinite(in.x) || !std::isfinite(in.y)) {
+    faults_.add(Fault::NonFiniteCoordinate);
+    return;
+  }
+  const float m = config_.screen_margin_px;
+  if (in.x < -m || in.x > kScreenMaxX + m || in.y < -m || in.y > kScreenMaxY + m) {
+    faults_.add(Fault::OffScreen);
+    return;
+  }
+  SensorSample s = in;  // within the margin: clamped onto the screen
+  s.x = clamp(s.x, 0.0f, kScreenMaxX);
+  s.y = clamp(s.y, 0.0f, kScreenMaxY);
+
+  if (!have_last_) {
+    faults_.add(Fault::TouchDown);
+    restart_at(s);
+    return;
+  }
+  if (elapsed_us(s.t_us, last_.t_us) <= 0) {
+    faults_.add(Fault::NonIncreasingTime);
+    return;
+  }
+  if (is_jump(s)) {
+    if (have_pending_jump_ && elapsed_us(s.t_us, pending_jump_.t_us) > 0) {
+      const float dt_s = static_cast<float>(elapsed_us(s.t_us, pending_jump_.t_us)) * 1e-6f;
+      const float allowed = config_.max_speed_px_s * dt_s + config_.jump_slack_px;
+      if (length(Vec2{s.x, s.y} - Vec2{pending_jump_.x, pending_jump_.y}) <= allowed) {
+        faults_.add(Fault::JumpConfirmed);  // the finger really is there now
+        restart_at(s);
+        return;
+      }
+      faults_.add(Fault::JumpRejected);  // the previous candidate was a glitch
+    }
+    pending_jump_ = s;
+    have_pending_jump_ = true;
+    return;
+  }
+  if (have_pending_jump_) {
+    faults_.add(Fault::JumpRejected);  // back on the old track: it was a glitch
+    have_pending_jump_ = false;
+  }
+  accept(s);
+}
+
+uint32_t Tracker::extrapolation_us(uint32_t now_us) {
+  const int32_t since = elapsed_us(now_us, last_.t_us);
+  const uint32_t dt = since > 0 ? static_cast<uint32_t>(since) : 0u;
+  if (dt > config_.max_extrapolation_us) {
+    if (!stale_reported_) faults_.add(Fault::StaleSample);
+    stale_reported_ = true;
+    return config_.max_extrapolation_us;
+  }
+  return dt;
+}
+
+Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
+  switch (config_.estimator) {
+    case Estimator::ThesisTicks:
+    case Estimator::TimedExtrapolation: {
+      float horizon_us;
+      if (config_.estimator == Estimator::ThesisTicks) {
+        // n ticks since the sample, 0 at the first tick that sees it.
+        const uint64_t n_us = static_cast<uint64_t>(ticks_since_sample_) * kTickPeriodUs;
+        horizon_us = static_cast<float>(n_us < config_.max_extrapolation_us ? n_us : config_.max_extrapolation_us);
+        if (ticks_since_sample_ != UINT32_MAX) ++ticks_since_sample_;
+      } else {
+        horizon_us = static_cast<float>(extrapolation_us(now_us));
+      }
+      const Vec2 p_ext = Vec2{last_.x, last_.y} + horizon_us * raw_velocity_;
+      const Vec2 p{filter_x_.filter(p_ext.x), filter_y_.filter(p_ext.y)};
+      velocity = {filter_x_.derivative(), filter_y_.derivative()};
+      return p;
+    }
+    case Estimator::Kalman: {
+      const float dt_s = static_cast<float>(extrapolation_us(now_us)) * 1e-6f;
+      velocity = {kx_.v, ky_.v};
+      return {kx_.p + kx_.v * dt_s, ky_.p + ky_.v * dt_s};
+    }
+  }
+  return {last_.x, last_.y};
+}
+
+Vec2 Tracker::faded_direction(Vec2 v) const {
+  const float speed = length(v);
+  if (!(speed > 0.0f) || !std::isfinite(speed)) return {};
+  float gain = 1.0f;
+  const float lo = config_.rest_speed_px_s, hi = config_.moving_speed_px_s;
+  if (hi > lo) gain = smoothstep((speed - lo) / (hi - lo));
+  else if (hi > 0.0f && speed < hi) gain = 0.0f;
+  return (gain / speed) * v;
+}
+
+TrackState Tracker::on_tick(uint32_t now_us, bool need_filter) {
+  if (have_tick_) {
+    const int32_t step = elapsed_us(now_us, last_tick_us_);
+    if (step <= 0) {  // time stood still or ran back: repeat the last state
+      faults_.add(Fault::BadTickTime);
+      return state_;
+    }
+  }
+  have_tick_ = true;
+  last_tick_us_ = now_us;
+
+  if (have_last_ && lifting_ && elapsed_us(now_us, untouched_since_us_) >= static_cast<int32_t>(config_.lift_off_timeout_us)) {
+    faults_.add(Fault::LiftOff);
+    lose_finger();
+  }
+  if (have_last_ && elapsed_us(now_us, last_.t_us) > static_cast<int32_t>(config_.stale_timeout_us)) {
+    faults_.add(Fault::SensorTimeout);
+    lose_finger();
+  }
+  if (!have_last_) {
+    state_.present = false;
+    state_.velocity = {};
+    state_.direction = {};
+    return state_;
+  }
+
+  state_.present = true;
+  if (!need_filter) {
+    // The scene needs no position: report the sample, restart filters on next use.
+    state_.position = {last_.x, last_.y};
+    state_.velocity = {};
+    state_.direction = {};
+    filters_fresh_ = true;
+    return state_;
+  }
+  if (filters_fresh_) {
+    const SensorSample keep = last_;
+    const Vec2 v = raw_velocity_;
+    const bool had_v = have_velocity_;
+    restart_at(keep);
+    raw_velocity_ = v;
+    have_velocity_ = had_v;
+  }
+
+  Vec2 velocity;
+  Vec2 p = estimate(now_us, velocity);
+  if (!is_finite(p) || !is_finite(velocity)) {  // cannot happen with valid input; never propagate
+    restart_at(last_);
+    p = {last_.x, last_.y};
+    velocity = {};
+  }
+  state_.position = {clamp(p.x, 0.0f, kScreenMaxX), clamp(p.y, 0.0f, kScreenMaxY)};
+  state_.velocity = velocity;
+  state_.direction = faded_direction(velocity);
+  return state_;
+}
+
+}  // namespace ff
