@@ -1,0 +1,117 @@
+#include "frictionfield/host/scene_spec.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "frictionfield/core/scenes.hpp"
+#include "frictionfield/host/scene_file.hpp"
+
+namespace ff::host {
+
+const char* scene_names() {
+  return "heightmap, frictionmap, neutral, tunnel-converging, tunnel-diverging, tunnel-neutral, "
+         "pilot-c, familiarisation-path, bump-map, vortex, file";
+}
+
+void add_scene_options(CLI::App& app, SceneSpec& spec) {
+  app.add_option("--scene", spec.scene, std::string("scene to render: ") + scene_names())
+      ->capture_default_str();
+  app.add_option("--target", spec.target, "path target: top, middle or bottom")->capture_default_str();
+  app.add_option("--strength", spec.strength, "haptic strength s in (0, 1]: 1, 0.66, 0.33 in the experiment")
+      ->capture_default_str();
+  app.add_option("--scene-file", spec.scene_file, "general scene definition (with --scene file)");
+  app.add_option("--tunnel-x-start", spec.tunnel_x_start, "steering tunnel: start x (px)")->capture_default_str();
+  app.add_option("--tunnel-length", spec.tunnel_length, "steering tunnel: length (px)")->capture_default_str();
+  app.add_option("--width-start", spec.tunnel_width_start, "steering tunnel: width at the start (px)")
+      ->capture_default_str();
+  app.add_option("--width-end", spec.tunnel_width_end, "steering tunnel: width at the end (px)")
+      ->capture_default_str();
+  app.add_option("--tunnel-scale", spec.tunnel_scale, "steering tunnel: valley scale s (1 pilot A, 10 pilot B)")
+      ->capture_default_str();
+  app.add_option("--evaluation", spec.evaluation, "closed (closed-form gradients) or table (lookup table)")
+      ->capture_default_str();
+  app.add_option("--table-spacing", spec.table_spacing, "lookup table node spacing (px)")->capture_default_str();
+  app.add_option("--table-storage", spec.table_storage, "lookup table storage: int16 or float")
+      ->capture_default_str();
+  app.add_option("--table-source", spec.table_source,
+                 "lookup table contents: gradient (tabulated) or height (central differences)")
+      ->capture_default_str();
+  app.add_option("--idle-amplitude", spec.idle_amplitude, "amplitude without a finger (0: the plate rests)")
+      ->capture_default_str();
+  app.add_flag("--inverted-dac", spec.inverted_dac,
+               "decreasing DAC calibration (AD9834 FSADJUST wired as in Analog Devices' circuit note)");
+}
+
+namespace {
+
+bool parse_target(const std::string& name, Target& out) {
+  if (name == "top") out = Target::Top;
+  else if (name == "middle") out = Target::Middle;
+  else if (name == "bottom") out = Target::Bottom;
+  else return false;
+  return true;
+}
+
+}  // namespace
+
+bool make_condition(const SceneSpec& spec, Condition& out, std::string& error) {
+  Target target;
+  if (!parse_target(spec.target, target)) {
+    error = "unknown target '" + spec.target + "': use top, middle or bottom";
+    return false;
+  }
+  if (!(spec.strength > 0.0f && spec.strength <= 1.0f)) {
+    error = "strength must be in (0, 1] (the experiment uses 1, 0.66 and 0.33)";
+    return false;
+  }
+  TunnelParams tunnel;
+  tunnel.x_start = spec.tunnel_x_start;
+  tunnel.length = spec.tunnel_length;
+  tunnel.width_start = spec.tunnel_width_start;
+  tunnel.width_end = spec.tunnel_width_end;
+  tunnel.scale = spec.tunnel_scale;
+
+  Condition c;
+  const std::string& s = spec.scene;
+  if (s == "heightmap") c.scene = scenes::heightmap(target);
+  else if (s == "frictionmap") c.scene = scenes::frictionmap(target);
+  else if (s == "neutral") c.scene = scenes::neutral();
+  else if (s == "tunnel-converging") c.scene = scenes::steering_tunnel(tunnel, scenes::TunnelMode::Converging);
+  else if (s == "tunnel-diverging") c.scene = scenes::steering_tunnel(tunnel, scenes::TunnelMode::Diverging);
+  else if (s == "tunnel-neutral") c.scene = scenes::steering_tunnel(tunnel, scenes::TunnelMode::Neutral);
+  else if (s == "pilot-c") c.scene = scenes::pilot_c_valley(target);
+  else if (s == "familiarisation-path") c.scene = scenes::familiarisation_path();
+  else if (s == "bump-map") c.scene = scenes::bump_map();
+  else if (s == "vortex") c.scene = scenes::vortex();
+  else if (s == "file") {
+    if (spec.scene_file.empty()) {
+      error = "--scene file needs --scene-file PATH";
+      return false;
+    }
+    if (!read_scene_file(spec.scene_file, c.scene, error)) return false;
+  } else {
+    error = "unknown scene '" + s + "': use one of " + scene_names();
+    return false;
+  }
+
+  if (spec.evaluation == "table") {
+    c.scene.evaluation = Evaluation::Table;
+    c.scene.table.spacing_px = spec.table_spacing;
+    if (spec.table_storage == "int16") c.scene.table.storage = TableStorage::Int16;
+    else if (spec.table_storage == "float") c.scene.table.storage = TableStorage::Float32;
+    else return error = "table storage is int16 or float", false;
+    if (spec.table_source == "gradient") c.scene.table.source = TableSource::TabulatedGradient;
+    else if (spec.table_source == "height") c.scene.table.source = TableSource::HeightCentralDifferences;
+    else return error = "table source is gradient or height", false;
+  } else if (spec.evaluation != "closed" && !(s == "file" && spec.evaluation.empty())) {
+    error = "evaluation is closed or table";
+    return false;
+  }
+
+  c.amplitude.strength = spec.strength;
+  c.amplitude.idle_amplitude = spec.idle_amplitude;
+  if (spec.inverted_dac) c.amplitude.calibration = DacCalibration::inverted();
+  out = c;
+  return true;
+}
+
+}  // namespace ff::host
