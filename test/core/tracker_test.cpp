@@ -1,0 +1,260 @@
+// The tracker: the thesis pipeline exactly, the Kalman default, and every fault.
+#include "frictionfield/core/tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace ff {
+namespace {
+
+struct TrackerRun {
+  Tracker tracker;
+  explicit TrackerRun(const TrackerConfig& c) : tracker(c) {}
+  // Feeds samples due by each tick (SPEC.md timing) and records the states.
+  std::vector<TrackState> replay(const std::vector<SensorSample>& samples, uint32_t t0, int ticks) {
+    std::vector<TrackState> out;
+    size_t next = 0;
+    for (int k = 0; k < ticks; ++k) {
+      const uint32_t now = t0 + static_cast<uint32_t>(k) * kTickPeriodUs;
+      while (next < samples.size() && static_cast<int32_t>(samples[next].t_us - now) <= 0) {
+        tracker.on_sample(samples[next++]);
+      }
+      out.push_back(tracker.on_tick(now));
+    }
+    return out;
+  }
+};
+
+// Constant-velocity finger sampled every 5 ms.
+std::vector<SensorSample> line(uint32_t t0, Vec2 p0, Vec2 v_px_s, int n, uint32_t period = 5000) {
+  std::vector<SensorSample> s;
+  for (int i = 0; i < n; ++i) {
+    const float t = static_cast<float>(i) * static_cast<float>(period) * 1e-6f;
+    s.push_back({t0 + static_cast<uint32_t>(i) * period, p0.x + v_px_s.x * t, p0.y + v_px_s.y * t, true});
+  }
+  return s;
+}
+
+// Thesis alg. 3/4 with y extrapolated from y, in double, independent of the core.
+struct ReferenceThesis {
+  struct Euro {
+    bool init = false;
+    double xhat = 0, dxhat = 0;
+    double step(double x) {
+      const double fr = 2000;
+      auto alpha = [&](double fc) { return 1.0 / (1.0 + fr / (2 * M_PI * fc)); };
+      if (!init) { init = true; xhat = x; dxhat = 0; return x; }
+      dxhat = alpha(25) * (x - xhat) * fr + (1 - alpha(25)) * dxhat;
+      const double a = alpha(20 + 0.0004 * std::fabs(dxhat));
+      return xhat = a * x + (1 - a) * xhat;
+    }
+  } ex, ey;
+  double x = 0, y = 0, dxraw = 0, dyraw = 0, dt = 1;
+  double lastt = 0;
+  bool have = false;
+  int idx = 0;
+  void sample(const SensorSample& s) {
+    if (have) {
+      dt = static_cast<double>(s.t_us) - lastt;
+      dxraw = static_cast<double>(s.x) - x;
+      dyraw = static_cast<double>(s.y) - y;
+    }
+    have = true;
+    x = s.x;
+    y = s.y;
+    lastt = s.t_us;
+    idx = 0;
+  }
+  void tick(double& fx, double& fy) {
+    const double xe = x + idx * dxraw / dt * 500, ye = y + idx * dyraw / dt * 500;
+    ++idx;
+    fx = ex.step(xe);
+    fy = ey.step(ye);
+  }
+};
+
+TEST(Tracker, ThesisPipelineMatchesIndependentReference) {
+  std::vector<SensorSample> s;
+  for (int i = 0; i < 300; ++i) {
+    const float t = static_cast<float>(i) * 0.005f;
+    s.push_back({1000u + static_cast<uint32_t>(i) * 5000u, 400.0f + 250.0f * std::sin(3.0f * t),
+                 240.0f + 150.0f * std::sin(2.0f * t), true});
+  }
+  TrackerRun run(TrackerConfig::thesis());
+  const std::vector<TrackState> got = run.replay(s, 1000, 2990);
+  ReferenceThesis ref;
+  size_t next = 0;
+  double worst = 0;
+  for (int k = 0; k < 2990; ++k) {
+    const uint32_t now = 1000u + static_cast<uint32_t>(k) * 500u;
+    while (next < s.size() && s[next].t_us <= now) ref.sample(s[next++]);
+    double fx, fy;
+    ref.tick(fx, fy);
+    worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - fx, static_cast<double>(got[k].position.y) - fy));
+  }
+  EXPECT_LT(worst, 0.01) << "px";
+}
+
+TEST(Tracker, ThesisExtrapolatesYFromY) {
+  // The thesis pseudo-code wrote y_extrapol <- x + ...: a finger at x = 100 moving in y must stay at its own y.
+  TrackerRun run(TrackerConfig::thesis());
+  const auto states = run.replay(line(0, {100, 300}, {0, 100}, 40), 0, 400);
+  EXPECT_NEAR(static_cast<double>(states.back().position.x), 100.0, 1e-3);
+  EXPECT_GT(states.back().position.y, 300.0f);
+}
+
+TEST(Tracker, ThesisCountsTicksSinceTheSample) {
+  // After the second sample the thesis adds n * 500 us of raw velocity: at the
+  // tick that sees it n = 0, one tick later n = 1. The 1-euro output follows the
+  // extrapolated input; with a long constant velocity it converges to x_true + lag.
+  TrackerRun run(TrackerConfig::thesis());
+  const auto states = run.replay(line(0, {100, 240}, {200, 0}, 200), 0, 1990);
+  // Steady state of a first-order filter on a ramp: lag = v / (2 pi fc) (fc = 20 + beta |v|).
+  const double v = 200, fc = 20 + 0.0004 * v, lag_px = v / (2 * M_PI * fc);
+  // Extrapolation inside each 5 ms sample period averages to the true position at the tick.
+  const double truth = 100 + v * 1989 * 500e-6;
+  EXPECT_NEAR(truth - static_cast<double>(states.back().position.x), lag_px, 0.6);
+}
+
+TEST(Tracker, KalmanPredictsToTheTickOnAConstantVelocity) {
+  TrackerRun run(TrackerConfig::recommended());
+  const auto states = run.replay(line(0, {100, 100}, {300, 150}, 200), 0, 1990);
+  const double t = 1989 * 500e-6;
+  EXPECT_NEAR(static_cast<double>(states.back().position.x), 100 + 300 * t, 0.05);
+  EXPECT_NEAR(static_cast<double>(states.back().position.y), 100 + 150 * t, 0.05);
+  const Vec2 d = states.back().direction;
+  EXPECT_NEAR(static_cast<double>(d.x), 2 / std::sqrt(5.0), 1e-4);
+  EXPECT_NEAR(static_cast<double>(d.y), 1 / std::sqrt(5.0), 1e-4);
+}
+
+TEST(Tracker, RestingFingerHasNoDirection) {
+  TrackerRun run(TrackerConfig::recommended());
+  const auto states = run.replay(line(0, {300, 300}, {0, 0}, 100), 0, 990);
+  EXPECT_EQ(states.back().direction.x, 0.0f);
+  EXPECT_EQ(states.back().direction.y, 0.0f);
+  EXPECT_TRUE(states.back().present);
+}
+
+TEST(Tracker, DirectionFadesSmoothlyWithSpeed) {
+  TrackerConfig c = TrackerConfig::recommended();
+  Tracker t(c);
+  // Slow (below rest speed), medium, fast: |direction| 0, in (0, 1), 1.
+  for (float speed : {5.0f, 37.5f, 200.0f}) {
+    TrackerRun run(c);
+    const auto states = run.replay(line(0, {300, 300}, {speed, 0}, 200), 0, 1990);
+    const double len = static_cast<double>(length(states.back().direction));
+    if (speed < c.rest_speed_px_s) EXPECT_EQ(len, 0.0);
+    else if (speed > c.moving_speed_px_s) EXPECT_NEAR(len, 1.0, 1e-5);
+    else EXPECT_NEAR(len, 0.5, 0.05);  // 37.5 px/s is midway between 15 and 60
+  }
+}
+
+TEST(Tracker, TouchDownStartsWithoutHistory) {
+  TrackerRun run(TrackerConfig::recommended());
+  auto s = line(0, {100, 100}, {400, 0}, 40);          // 200 ms stroke
+  s.push_back({200000, 0, 0, false});                  // lift-off
+  const auto again = line(400000, {700, 400}, {0, 0}, 40);  // touch-down far away, at rest
+  s.insert(s.end(), again.begin(), again.end());
+  const auto states = run.replay(s, 0, 1000);
+  EXPECT_FALSE(states[(400000 - 1000) / 500].present);  // idle between the touches
+  const TrackState first = states[400000 / 500];
+  EXPECT_TRUE(first.present);
+  EXPECT_NEAR(static_cast<double>(first.position.x), 700.0, 1e-3);
+  EXPECT_EQ(length(first.direction), 0.0f);  // no velocity spike from the old stroke
+  EXPECT_EQ(run.tracker.faults()[Fault::TouchDown], 2u);
+  EXPECT_EQ(run.tracker.faults()[Fault::LiftOff], 1u);
+}
+
+TEST(Tracker, LiftOffAfterTimeout) {
+  TrackerConfig c = TrackerConfig::recommended();
+  TrackerRun run(c);
+  auto s = line(0, {100, 100}, {100, 0}, 20);
+  s.push_back({100000, 0, 0, false});
+  const auto states = run.replay(s, 0, 400);
+  const int lift_tick = static_cast<int>((100000 + c.lift_off_timeout_us) / 500);
+  EXPECT_TRUE(states[lift_tick - 1].present);
+  EXPECT_FALSE(states[lift_tick].present);
+}
+
+TEST(Tracker, MissingSamplesHoldThenTimeOut) {
+  TrackerConfig c = TrackerConfig::recommended();
+  TrackerRun run(c);
+  const auto states = run.replay(line(0, {100, 100}, {400, 0}, 20), 0, 2000);  // last sample at 95 ms
+  const int hold_from = static_cast<int>((95000 + c.max_extrapolation_us) / 500);
+  EXPECT_FLOAT_EQ(states[hold_from + 1].position.x, states[hold_from + 20].position.x);  // held
+  EXPECT_EQ(run.tracker.faults()[Fault::StaleSample], 1u);
+  const int gone = static_cast<int>((95000 + c.stale_timeout_us) / 500) + 1;
+  EXPECT_TRUE(states[gone - 2].present);
+  EXPECT_FALSE(states[gone].present);
+  EXPECT_EQ(run.tracker.faults()[Fault::SensorTimeout], 1u);
+}
+
+TEST(Tracker, SingleJumpIsRejectedAConfirmedOneRestarts) {
+  TrackerRun run(TrackerConfig::recommended());
+  auto s = line(0, {100, 240}, {200, 0}, 40);
+  s[20].x = 600;  // a second finger for one sample
+  s[20].y = 50;
+  auto states = run.replay(s, 0, 400);
+  EXPECT_EQ(run.tracker.faults()[Fault::JumpRejected], 1u);
+  for (const TrackState& st : states) EXPECT_LT(st.position.x, 200.0f);
+  // Two samples at the new place: the finger really moved there.
+  TrackerRun run2(TrackerConfig::recommended());
+  auto s2 = line(0, {100, 240}, {200, 0}, 20);
+  const auto moved = line(100000, {600, 50}, {0, 0}, 20);
+  s2.insert(s2.end(), moved.begin(), moved.end());
+  states = run2.replay(s2, 0, 400);
+  EXPECT_EQ(run2.tracker.faults()[Fault::JumpConfirmed], 1u);
+  EXPECT_NEAR(static_cast<double>(states.back().position.x), 600.0, 1e-3);
+}
+
+TEST(Tracker, BadSamplesAreDroppedAndCounted) {
+  TrackerRun run(TrackerConfig::recommended());
+  auto s = line(0, {100, 240}, {200, 0}, 40);
+  s[5].x = NAN;
+  s[6].y = INFINITY;
+  s[7].x = -500;            // far off the screen
+  s[8].t_us = s[7].t_us;    // duplicate timestamp (s[7] was dropped, so compare with s[6]...)
+  s[9].t_us = s[4].t_us;    // earlier than the last accepted
+  s[10].x = -10;            // within the margin: clamped to 0
+  const auto states = run.replay(s, 0, 400);
+  const FaultCounters& f = run.tracker.faults();
+  EXPECT_EQ(f[Fault::NonFiniteCoordinate], 2u);
+  EXPECT_EQ(f[Fault::OffScreen], 1u);
+  EXPECT_EQ(f[Fault::NonIncreasingTime], 1u);
+  for (const TrackState& st : states) {
+    EXPECT_TRUE(is_finite(st.position));
+    EXPECT_TRUE(is_finite(st.direction));
+  }
+}
+
+TEST(Tracker, ClockWrapIsInvisible) {
+  // The same stroke starting at 0 and 3 s before the 32-bit wrap renders identically.
+  const uint32_t late = 0xFFFFFFFFu - 3000000u;
+  const auto a = line(0, {100, 100}, {150, 80}, 1200);
+  auto b = a;
+  for (SensorSample& s : b) s.t_us += late;
+  TrackerRun ra(TrackerConfig::recommended()), rb(TrackerConfig::recommended());
+  const auto sa = ra.replay(a, 0, 12000);
+  const auto sb = rb.replay(b, late, 12000);
+  for (size_t i = 0; i < sa.size(); ++i) {
+    ASSERT_EQ(sa[i].position.x, sb[i].position.x) << i;
+    ASSERT_EQ(sa[i].direction.y, sb[i].direction.y) << i;
+  }
+  EXPECT_EQ(rb.tracker.faults().total(), ra.tracker.faults().total());
+}
+
+TEST(Tracker, TickTimeThatDoesNotAdvanceRepeatsTheState) {
+  Tracker t;
+  for (const SensorSample& s : line(0, {100, 100}, {100, 0}, 10)) t.on_sample(s);
+  const TrackState a = t.on_tick(50000);
+  const TrackState b = t.on_tick(50000);
+  const TrackState c = t.on_tick(49000);
+  EXPECT_EQ(a.position.x, b.position.x);
+  EXPECT_EQ(a.position.x, c.position.x);
+  EXPECT_EQ(t.faults()[Fault::BadTickTime], 2u);
+}
+
+}  // namespace
+}  // namespace ff
