@@ -1,1 +1,115 @@
+// The 2 kHz tick end to end: scenes switch atomically, idle without a finger,
+// only what the scene needs is computed, and SPEC.md's output identity holds.
+#include "frictionfield/core/haptic_pipeline.hpp"
+
 #include <gtest/gtest.h>
+
+#include <memory>
+
+#include "frictionfield/core/scenes.hpp"
+
+namespace ff {
+namespace {
+
+Condition condition(const SceneDefinition& s, float strength = 1.0f) {
+  Condition c;
+  c.scene = s;
+  c.amplitude.strength = strength;
+  return c;
+}
+
+// A finger moving right along y = 240 at 300 px/s, 200 Hz samples.
+void stroke(HapticPipeline& p, uint32_t from_us, int ticks, std::vector<TickOutput>* out = nullptr) {
+  for (int k = 0; k < ticks; ++k) {
+    const uint32_t now = from_us + static_cast<uint32_t>(k) * kTickPeriodUs;
+    if (now % 5000 == 0) p.post_sample({now, 100.0f + 300.0f * static_cast<float>(now) * 1e-6f, 240.0f, true});
+    const TickOutput t = p.tick(now);
+    if (out) out->push_back(t);
+  }
+}
+
+TEST(HapticPipeline, BootsIdleWithThePlateResting) {
+  auto p = std::make_unique<HapticPipeline>();
+  const TickOutput t = p->tick(0);
+  EXPECT_FALSE(t.present);
+  EXPECT_EQ(t.amplitude, 0.0f);
+  EXPECT_EQ(t.dac, 0);
+}
+
+TEST(HapticPipeline, OutputObeysTheSpecIdentity) {
+  // amplitude = 0.5 - s (vx, vy) . G_norm and dac = calibration(amplitude).
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(p->set_condition(condition(scenes::heightmap(Target::Top), 0.66f)), PrepareStatus::Ok);
+  std::vector<TickOutput> out;
+  stroke(*p, 0, 400, &out);
+  const TickOutput& t = out.back();
+  ASSERT_TRUE(t.present);
+  EXPECT_NEAR(static_cast<double>(length(t.direction)), 1.0, 1e-5);
+  const Vec2 g = p->plan().normalized_gradient(t.position);
+  EXPECT_NEAR(static_cast<double>(t.amplitude), 0.5 - 0.66 * static_cast<double>(dot(t.direction, g)), 1e-6);
+  EXPECT_EQ(t.dac, static_cast<uint16_t>(static_cast<double>(t.amplitude) * 4095.0 + 0.5));
+}
+
+TEST(HapticPipeline, NeutralNeedsNoTrackingAndRendersHalf) {
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(p->set_condition(condition(scenes::neutral())), PrepareStatus::Ok);
+  std::vector<TickOutput> out;
+  stroke(*p, 0, 100, &out);
+  EXPECT_EQ(out.back().amplitude, 0.5f);
+  EXPECT_EQ(out.back().dac, 2048);
+  EXPECT_EQ(out.back().direction.x, 0.0f);
+  // Reported position is the last sample's: 100 + 300 * 0.045.
+  EXPECT_FLOAT_EQ(out.back().position.x, 113.5f);
+}
+
+TEST(HapticPipeline, SwitchesScenesBetweenTicksAndRefusesBadOnes) {
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(p->set_condition(condition(scenes::frictionmap(Target::Middle))), PrepareStatus::Ok);
+  std::vector<TickOutput> out;
+  stroke(*p, 0, 200, &out);
+  EXPECT_FLOAT_EQ(out.back().amplitude, 1.0f);  // on the path
+  SceneDefinition bad = scenes::heightmap(Target::Top);
+  bad.elements[0].weight = NAN;
+  EXPECT_EQ(p->set_condition(condition(bad)), PrepareStatus::InvalidParameter);
+  out.clear();
+  stroke(*p, 100000, 1, &out);
+  EXPECT_FLOAT_EQ(out.back().amplitude, 1.0f);  // still the frictionmap
+  ASSERT_EQ(p->set_condition(condition(scenes::neutral())), PrepareStatus::Ok);
+  out.clear();
+  stroke(*p, 100500, 1, &out);
+  EXPECT_FLOAT_EQ(out.back().amplitude, 0.5f);  // the very next tick
+}
+
+TEST(HapticPipeline, SwitchingToADirectionalSceneRestartsTheFilterCleanly) {
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(p->set_condition(condition(scenes::neutral())), PrepareStatus::Ok);
+  stroke(*p, 0, 200);
+  ASSERT_EQ(p->set_condition(condition(scenes::heightmap(Target::Middle))), PrepareStatus::Ok);
+  std::vector<TickOutput> out;
+  stroke(*p, 100000, 400, &out);
+  for (const TickOutput& t : out) {
+    EXPECT_TRUE(std::isfinite(t.amplitude));
+    EXPECT_LE(length(t.direction), 1.0f + 1e-6f);
+  }
+  EXPECT_GT(out.back().amplitude, 0.5f);  // moving right towards the middle target: assisted
+}
+
+TEST(HapticPipeline, MailboxOverflowIsCounted) {
+  auto p = std::make_unique<HapticPipeline>();
+  for (uint32_t i = 0; i < SampleMailbox::kCapacity + 3; ++i) p->post_sample({i * 10u, 100, 100, true});
+  EXPECT_EQ(p->faults()[Fault::MailboxOverflow], 3u);
+  p->tick(1000);
+  EXPECT_TRUE(p->post_sample({2000, 100, 100, true}));
+}
+
+TEST(HapticPipeline, BadStrengthIsCountedAndRepaired) {
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(p->set_condition(condition(scenes::heightmap(Target::Top), NAN)), PrepareStatus::Ok);
+  EXPECT_EQ(p->faults()[Fault::BadStrength], 1u);
+  std::vector<TickOutput> out;
+  stroke(*p, 0, 200, &out);
+  EXPECT_FLOAT_EQ(out.back().amplitude, 0.5f);
+}
+
+}  // namespace
+}  // namespace ff
