@@ -1,0 +1,240 @@
+// ff-tracegen: synthetic finger traces with ground truth, for the replay,
+// the tracking benchmark and the stress tests.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "sensor_model.hpp"
+#include "trace_writer.hpp"
+
+namespace {
+
+using namespace ff::tracegen;
+
+constexpr const char* kDescription =
+    "ff-tracegen: synthetic finger traces for the frictionfield touchscreen, with ground truth.\n"
+    "\n"
+    "A simulated participant explores the 800 x 480 px screen (1 px ~ 0.2 mm) like the thesis'\n"
+    "participants did: back and forth along the three paths (--strategy along), in strokes across\n"
+    "them (across), or both in turn (mixed). Every stroke is a minimum-jerk movement whose peak\n"
+    "speed is drawn between --speed-min and --speed-max; the finger pauses briefly at each reversal.\n"
+    "The zForce sensor is simulated at --rate Hz with timing jitter, Gaussian noise and optional\n"
+    "quantisation, and each fault the tracker must handle can be inserted on request.\n"
+    "\n"
+    "Output (SPEC.md 'Trace files'): t_us,x,y,touch,x_true,y_true[,event]\n"
+    "  x_true, y_true  the true finger at t_us (readers ignore these columns; nan while lifted)\n"
+    "  event           with --events: what each row exercises (touch-down, lift-off, late, jump, ...)\n"
+    "The same seed and options always give the same file.";
+
+constexpr const char* kFooter =
+    "Examples:\n"
+    "  ff-tracegen --strategy along --duration 10 --seed 3 -o along.csv\n"
+    "  ff-tracegen --strategy across --noise high --quantise px --truth-ticks truth.csv -o across.csv\n"
+    "  ff-tracegen --all-faults --events --wrap -o faults.csv     # every fault, clock wrapping\n"
+    "  ff-tracegen --duration 3600 --lifts 200 --rests 300 -o hour.csv   # an hour-long session";
+
+struct Cli {
+  std::string output = "-";
+  std::string truth_ticks;
+  std::string strategy = "mixed";
+  std::string paths = "all";
+  std::string noise = "low";
+  double noise_px = -1.0;
+  std::string quantise = "none";
+  double quantum_px = -1.0;
+  bool events = false;
+  bool all_faults = false;
+  bool progress = false;
+  bool quiet = false;
+};
+
+void print_progress(const char* what, double fraction) {
+  std::fprintf(stderr, "\rff-tracegen: %s %3d%%", what, static_cast<int>(std::lround(100.0 * fraction)));
+  if (fraction >= 1.0) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
+}
+
+void print_summary(const GeneratedTrace& trace, const TraceOptions& o) {
+  double peak_max = 0.0, peak_sum = 0.0;
+  int strokes = 0, rests = 0, lifts = 0;
+  for (const Segment& s : trace.motion.segments()) {
+    if (s.kind == SegmentKind::Stroke) {
+      ++strokes;
+      peak_sum += s.peak_speed_px_s;
+      peak_max = std::max(peak_max, s.peak_speed_px_s);
+    } else if (s.kind == SegmentKind::Hold && s.rest) {
+      ++rests;
+    } else if (s.kind == SegmentKind::Lifted) {
+      ++lifts;
+    }
+  }
+  std::fprintf(stderr, "ff-tracegen: %zu rows, %.2f s, %s strategy, seed %llu, noise %.2f px, t_us %llu..%llu%s\n",
+               trace.samples.size(), trace.motion.duration_s(), to_string(o.motion.strategy),
+               static_cast<unsigned long long>(o.seed), o.sensor.noise_px,
+               static_cast<unsigned long long>(trace.samples.empty() ? 0 : trace.samples.front().t_us),
+               static_cast<unsigned long long>(trace.end_us()),
+               trace.end_us() >= (uint64_t{1} << 32) && trace.start_us < (uint64_t{1} << 32) ? " (32-bit clock wraps)" : "");
+  std::fprintf(stderr, "ff-tracegen: %d strokes, peak speed mean %.0f mm/s, max %.0f mm/s; %d rests, %d lifts\n", strokes,
+               strokes ? peak_sum / strokes * kMmPerPx : 0.0, peak_max * kMmPerPx, rests, lifts);
+  std::string faults;
+  for (int e = static_cast<int>(SampleEvent::AfterGap); e < static_cast<int>(SampleEvent::kCount); ++e) {
+    if (trace.events[e] == 0) continue;
+    faults += " " + std::string(to_string(static_cast<SampleEvent>(e))) + "=" + std::to_string(trace.events[e]);
+  }
+  std::fprintf(stderr, "ff-tracegen: rows by kind: touch-down=%d lift-off=%d%s\n",
+               trace.events[static_cast<int>(SampleEvent::TouchDown)],
+               trace.events[static_cast<int>(SampleEvent::LiftReport)], faults.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  TraceOptions o;
+  Cli cli;
+  CLI::App app{kDescription, "ff-tracegen"};
+  app.footer(kFooter);
+  app.get_formatter()->column_width(34);
+
+  app.add_option("-o,--output", cli.output, "Trace file to write ('-' = standard output)")->capture_default_str();
+  app.add_option("--truth-ticks", cli.truth_ticks,
+                 "Also write the true finger at every 500 us tick (t_us,x_true,y_true,vx_true,vy_true,touch) "
+                 "from the first report on, for comparing a replay tick by tick");
+  app.add_option("--seed", o.seed, "Random seed: same seed and options, same trace")->capture_default_str();
+  app.add_option("--duration", o.motion.duration_s, "Length of the exploration in seconds")
+      ->capture_default_str()->check(CLI::Range(0.05, 24.0 * 3600.0));
+
+  auto* motion = "Motion";
+  app.add_option("--strategy", cli.strategy, "along: back and forth along the paths; across: strokes across them; "
+                                             "mixed: both in turn")
+      ->capture_default_str()->check(CLI::IsMember({"along", "across", "mixed"}))->group(motion);
+  app.add_option("--paths", cli.paths, "Which path(s) the along-strategy follows: all, top, middle, bottom")
+      ->capture_default_str()->check(CLI::IsMember({"all", "top", "middle", "bottom"}))->group(motion);
+  app.add_option("--speed-min", o.motion.speed_min_mm_s, "Slowest stroke's peak speed (mm/s)")
+      ->capture_default_str()->check(CLI::Range(1.0, 5000.0))->group(motion);
+  app.add_option("--speed-max", o.motion.speed_max_mm_s, "Fastest stroke's peak speed (mm/s)")
+      ->capture_default_str()->check(CLI::Range(1.0, 5000.0))->group(motion);
+  app.add_option("--dwell-max", o.motion.dwell_max_s, "Longest pause at a reversal (s; uniform from 0)")
+      ->capture_default_str()->check(CLI::Range(0.0, 10.0))->group(motion);
+  app.add_option("--rests", o.motion.rests, "Rests: the finger stays still on the screen for 0.6-2 s")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(motion);
+  app.add_option("--lifts", o.motion.lifts, "Lift-offs: the finger leaves for 0.15-0.6 s and lands elsewhere")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(motion);
+
+  auto* sensor = "Sensor";
+  app.add_option("--rate", o.sensor.rate_hz, "Sensor report rate (Hz)")
+      ->capture_default_str()->check(CLI::Range(10.0, 2000.0))->group(sensor);
+  app.add_option("--jitter-us", o.sensor.jitter_us, "Timing jitter, 1 sigma (us; clipped to 30 % of the period)")
+      ->capture_default_str()->check(CLI::Range(0.0, 1e5))->group(sensor);
+  app.add_option("--noise", cli.noise, "Position noise: none, low (1 px = 0.2 mm, 1 sigma per axis) or "
+                                       "high (2.5 px = 0.5 mm: 95 % within ~1.2 mm)")
+      ->capture_default_str()->check(CLI::IsMember({"none", "low", "high"}))->group(sensor);
+  app.add_option("--noise-px", cli.noise_px, "Position noise, 1 sigma per axis in px (overrides --noise)")
+      ->check(CLI::Range(0.0, 100.0))->group(sensor);
+  app.add_option("--quantise", cli.quantise, "Round reported coordinates: none, px (whole pixels) or "
+                                             "zforce (0.1 mm = 0.5 px, the zForce's unit)")
+      ->capture_default_str()->check(CLI::IsMember({"none", "px", "zforce"}))->group(sensor);
+  app.add_option("--quantum-px", cli.quantum_px, "Round reported coordinates to this step in px (overrides --quantise)")
+      ->check(CLI::Range(0.0, 100.0))->group(sensor);
+  app.add_option("--latency-us", o.sensor.latency_us, "Reports describe the finger this long before their timestamp")
+      ->capture_default_str()->check(CLI::Range(0.0, 1e6))->group(sensor);
+
+  auto* faults = "Faults (each inserted N times at seeded random places, away from each other)";
+  app.add_option("--missing", o.faults.missing, "Gaps of 1-6 missing reports")->check(CLI::NonNegativeNumber)->group(faults);
+  app.add_option("--late", o.faults.late, "Reports read 1-12 ms late (stamped at the read, measured at the scan)")
+      ->check(CLI::NonNegativeNumber)->group(faults);
+  app.add_option("--jumps", o.faults.jumps, "1-3 reports from a second finger or a glitch, >= 150 px away")
+      ->check(CLI::NonNegativeNumber)->group(faults);
+  app.add_option("--duplicates", o.faults.duplicates,
+                 "Non-increasing timestamps, in turn: an exact duplicate row, a new report with the same "
+                 "timestamp, a report stamped before its predecessor")
+      ->check(CLI::NonNegativeNumber)->group(faults);
+  app.add_option("--nan", o.faults.non_finite, "Reports with nan or infinite coordinates")
+      ->check(CLI::NonNegativeNumber)->group(faults);
+  app.add_option("--off-screen", o.faults.off_screen, "Reports far outside the screen (-300, 900, 65535, 880)")
+      ->check(CLI::NonNegativeNumber)->group(faults);
+  app.add_flag("--wrap", o.faults.wrap, "Start so that the 32-bit microsecond clock wraps mid-stroke near the "
+                                        "middle (t_us passes 2^32 = 4294967296 in the file)")->group(faults);
+  app.add_option("--start-us", o.faults.start_us, "Time stamp of the first report (ignored with --wrap)")
+      ->capture_default_str()->group(faults);
+  app.add_flag("--all-faults", cli.all_faults, "Shorthand: 2 of each fault above, 2 rests and 2 lifts "
+                                               "(explicit counts win)")->group(faults);
+
+  auto* output = "Output";
+  app.add_flag("--events", cli.events, "Add an 'event' column naming what each row exercises")->group(output);
+  app.add_flag("--progress", cli.progress, "Show progress (on by default for traces over 5 minutes)")->group(output);
+  app.add_flag("-q,--quiet", cli.quiet, "No summary or progress on standard error")->group(output);
+
+  CLI11_PARSE(app, argc, argv);
+
+  parse_strategy(cli.strategy, o.motion.strategy);
+  parse_path_choice(cli.paths, o.motion.paths);
+  if (o.motion.speed_max_mm_s < o.motion.speed_min_mm_s) {
+    std::fprintf(stderr, "ff-tracegen: --speed-max (%g) is below --speed-min (%g)\n", o.motion.speed_max_mm_s,
+                 o.motion.speed_min_mm_s);
+    return 2;
+  }
+  o.sensor.noise_px = cli.noise == "none" ? 0.0 : (cli.noise == "high" ? kNoiseHighPx : kNoiseLowPx);
+  if (cli.noise_px >= 0.0) o.sensor.noise_px = cli.noise_px;
+  o.sensor.quantum_px = cli.quantise == "px" ? 1.0 : (cli.quantise == "zforce" ? kZForceQuantumPx : 0.0);
+  if (cli.quantum_px >= 0.0) o.sensor.quantum_px = cli.quantum_px;
+  o.motion.dwell_min_s = 0.0;
+  if (cli.all_faults) {
+    auto at_least = [&app](const char* option, int& count, int value) {
+      if (app.count(option) == 0) count = value;
+    };
+    at_least("--missing", o.faults.missing, 2);
+    at_least("--late", o.faults.late, 2);
+    at_least("--jumps", o.faults.jumps, 2);
+    at_least("--duplicates", o.faults.duplicates, 3);
+    at_least("--nan", o.faults.non_finite, 2);
+    at_least("--off-screen", o.faults.off_screen, 2);
+    at_least("--rests", o.motion.rests, 2);
+    at_least("--lifts", o.motion.lifts, 2);
+  }
+  const bool show_progress = !cli.quiet && (cli.progress || o.motion.duration_s > 300.0);
+
+  if (show_progress) print_progress("planning and sampling", 0.0);
+  const GeneratedTrace trace = generate_trace(o);
+  if (show_progress) print_progress("planning and sampling", 1.0);
+
+  std::ofstream file;
+  std::ostream* out = &std::cout;
+  if (cli.output != "-") {
+    file.open(cli.output);
+    if (!file) {
+      std::fprintf(stderr, "ff-tracegen: cannot write %s\n", cli.output.c_str());
+      return 1;
+    }
+    out = &file;
+  }
+  write_trace(*out, trace, cli.events);
+  out->flush();
+  if (!*out) {
+    std::fprintf(stderr, "ff-tracegen: writing %s failed\n", cli.output.c_str());
+    return 1;
+  }
+
+  if (!cli.truth_ticks.empty()) {
+    std::ofstream ticks(cli.truth_ticks);
+    if (!ticks) {
+      std::fprintf(stderr, "ff-tracegen: cannot write %s\n", cli.truth_ticks.c_str());
+      return 1;
+    }
+    Progress progress;
+    if (show_progress) progress = [](double f) { print_progress("truth at ticks", f); };
+    const uint64_t rows = write_truth_ticks(ticks, trace, progress);
+    ticks.flush();
+    if (!ticks) {
+      std::fprintf(stderr, "ff-tracegen: writing %s failed\n", cli.truth_ticks.c_str());
+      return 1;
+    }
+    if (!cli.quiet) std::fprintf(stderr, "ff-tracegen: %llu tick rows in %s\n", static_cast<unsigned long long>(rows),
+                                 cli.truth_ticks.c_str());
+  }
+  if (!cli.quiet) print_summary(trace, o);
+  return 0;
+}

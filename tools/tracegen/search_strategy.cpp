@@ -1,0 +1,171 @@
+#include "search_strategy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace ff::tracegen {
+
+namespace {
+
+constexpr double kRises[3] = {-200.0, 0.0, 200.0};  // top, middle, bottom (SPEC.md)
+constexpr double kMinX = 30.0, kMaxX = 770.0, kMinY = 20.0, kMaxY = 460.0;
+
+Point clamp_to_screen(Point p) { return {std::clamp(p.x, kMinX, kMaxX), std::clamp(p.y, kMinY, kMaxY)}; }
+
+class Planner {
+ public:
+  Planner(const MotionOptions& o, Random& rng) : o_(o), rng_(rng), motion_(start_point()) {
+    // Rests and lifts at random moments between 10 % and 90 % of the trace.
+    for (int i = 0; i < o.rests; ++i) events_.push_back({rng_.uniform(0.1, 0.9) * o.duration_s, false});
+    for (int i = 0; i < o.lifts; ++i) events_.push_back({rng_.uniform(0.1, 0.9) * o.duration_s, true});
+    std::sort(events_.begin(), events_.end(), [](const Event& a, const Event& b) { return a.t_s < b.t_s; });
+    rise_ = pick_rise();
+  }
+
+  Motion run() {
+    Strategy mode = o_.strategy == Strategy::Mixed ? (rng_.chance(0.5) ? Strategy::Along : Strategy::Across)
+                                                   : o_.strategy;
+    int strokes_left_in_mode = rng_.integer(2, 6);
+    while (motion_.duration_s() < o_.duration_s) {
+      if (mode == Strategy::Along) along_stroke();
+      else across_stroke();
+      dwell();
+      handle_events();
+      if (o_.strategy == Strategy::Mixed && --strokes_left_in_mode <= 0) {
+        mode = mode == Strategy::Along ? Strategy::Across : Strategy::Along;
+        strokes_left_in_mode = rng_.integer(2, 6);
+      }
+    }
+    return motion_;
+  }
+
+ private:
+  struct Event {
+    double t_s;
+    bool lift;
+  };
+
+  Point start_point() { return {rng_.uniform(50.0, 100.0), 240.0 + 5.0 * rng_.gaussian()}; }
+
+  double speed() { return rng_.log_uniform(o_.speed_min_mm_s, o_.speed_max_mm_s) * kPxPerMm; }
+
+  double pick_rise() {
+    switch (o_.paths) {
+      case PathChoice::Top: return kRises[0];
+      case PathChoice::Middle: return kRises[1];
+      case PathChoice::Bottom: return kRises[2];
+      case PathChoice::All: break;
+    }
+    return kRises[rng_.integer(0, 2)];
+  }
+
+  // Back and forth along one path; a new path is chosen only back in the
+  // start area, where the three paths meet.
+  void along_stroke() {
+    const Point here = motion_.position();
+    if (here.x < 160.0 && rightwards_) rise_ = pick_rise();
+    const double length = rightwards_ ? rng_.uniform(250.0, 600.0) : rng_.uniform(150.0, 550.0);
+    double x1 = rightwards_ ? here.x + length : here.x - length;
+    x1 = std::clamp(x1, 40.0, 690.0);
+    if (std::fabs(x1 - here.x) < 40.0) {  // at an end: turn round
+      rightwards_ = !rightwards_;
+      x1 = std::clamp(rightwards_ ? here.x + length : here.x - length, 40.0, 690.0);
+    }
+    const double u1 = std::clamp(6.0 * rng_.gaussian(), -18.0, 18.0);
+    // Leave the current offset from the path continuous: start from where the finger is.
+    motion_.stroke_along_path(x1, rise_, u1, speed());
+    const bool went_right = x1 > here.x;
+    rightwards_ = rng_.chance(0.85) ? !went_right : went_right;  // mostly back and forth
+  }
+
+  // Up and down across the paths, drifting right; from the start area the
+  // finger first sweeps into the field, from the far right back to the start.
+  void across_stroke() {
+    const Point here = motion_.position();
+    if (here.x > 680.0) {
+      motion_.stroke_to(clamp_to_screen({rng_.uniform(60.0, 160.0), 240.0 + 30.0 * rng_.gaussian()}), speed(),
+                        20.0 * rng_.gaussian());
+      return;
+    }
+    if (here.x < 150.0) {
+      motion_.stroke_to(clamp_to_screen({rng_.uniform(180.0, 500.0), rng_.uniform(100.0, 380.0)}), speed(),
+                        20.0 * rng_.gaussian());
+      return;
+    }
+    downwards_ = here.y < 240.0 ? true : (here.y > 240.0 ? false : !downwards_);
+    const double reach = rng_.uniform(150.0, 380.0);
+    const double centre = 240.0 + 40.0 * rng_.gaussian();
+    const double y1 = downwards_ ? centre + reach / 2.0 : centre - reach / 2.0;
+    const double x1 = here.x + rng_.uniform(-20.0, 90.0);
+    motion_.stroke_to(clamp_to_screen({x1, y1}), speed(), 10.0 * rng_.gaussian());
+  }
+
+  void dwell() { motion_.hold(rng_.uniform(o_.dwell_min_s, o_.dwell_max_s), false); }
+
+  void handle_events() {
+    while (next_event_ < events_.size() && events_[next_event_].t_s <= motion_.duration_s()) {
+      const Event& e = events_[next_event_++];
+      if (e.lift) {
+        const Point landing = clamp_to_screen({rng_.uniform(60.0, 700.0), rng_.uniform(60.0, 420.0)});
+        motion_.lift(rng_.uniform(o_.lift_min_s, o_.lift_max_s), landing);
+      } else {
+        motion_.hold(rng_.uniform(o_.rest_min_s, o_.rest_max_s), true);
+      }
+    }
+  }
+
+  const MotionOptions& o_;
+  Random& rng_;
+  Motion motion_;
+  std::vector<Event> events_;
+  size_t next_event_ = 0;
+  double rise_ = 0.0;
+  bool rightwards_ = true;
+  bool downwards_ = true;
+};
+
+}  // namespace
+
+const char* to_string(Strategy s) {
+  switch (s) {
+    case Strategy::Along: return "along";
+    case Strategy::Across: return "across";
+    case Strategy::Mixed: return "mixed";
+  }
+  return "?";
+}
+
+bool parse_strategy(const std::string& text, Strategy& out) {
+  for (Strategy s : {Strategy::Along, Strategy::Across, Strategy::Mixed}) {
+    if (text == to_string(s)) {
+      out = s;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* to_string(PathChoice p) {
+  switch (p) {
+    case PathChoice::All: return "all";
+    case PathChoice::Top: return "top";
+    case PathChoice::Middle: return "middle";
+    case PathChoice::Bottom: return "bottom";
+  }
+  return "?";
+}
+
+bool parse_path_choice(const std::string& text, PathChoice& out) {
+  for (PathChoice p : {PathChoice::All, PathChoice::Top, PathChoice::Middle, PathChoice::Bottom}) {
+    if (text == to_string(p)) {
+      out = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+Motion plan_motion(const MotionOptions& options, Random& rng) { return Planner(options, rng).run(); }
+
+}  // namespace ff::tracegen

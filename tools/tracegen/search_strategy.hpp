@@ -1,0 +1,44 @@
+#pragma once
+// How a participant explores the screen (thesis section 6.4, figure 10): back
+// and forth along the paths (typical of the frictionmap), strokes across
+// them (typical of the heightmap), or a mix. Produces the true motion.
+#include <string>
+
+#include "deterministic_random.hpp"
+#include "motion.hpp"
+
+namespace ff::tracegen {
+
+enum class Strategy : uint8_t { Along, Across, Mixed };
+const char* to_string(Strategy s);
+bool parse_strategy(const std::string& text, Strategy& out);
+
+// Which path(s) the along-strategy follows.
+enum class PathChoice : uint8_t { All, Top, Middle, Bottom };
+const char* to_string(PathChoice p);
+bool parse_path_choice(const std::string& text, PathChoice& out);
+
+struct MotionOptions {
+  Strategy strategy = Strategy::Mixed;
+  PathChoice paths = PathChoice::All;
+  double duration_s = 10.0;
+  // Peak speed of each stroke, log-uniform between these (mm/s).
+  double speed_min_mm_s = 50.0;
+  double speed_max_mm_s = 400.0;
+  // Pause at each reversal (s), uniform.
+  double dwell_min_s = 0.0;
+  double dwell_max_s = 0.12;
+  // Deliberate rests and lifts, spread over the trace.
+  int rests = 0;
+  double rest_min_s = 0.6;
+  double rest_max_s = 2.0;
+  int lifts = 0;
+  double lift_min_s = 0.15;
+  double lift_max_s = 0.6;
+};
+
+// The motion is at least options.duration_s long (it ends after the stroke
+// that crosses the duration).
+Motion plan_motion(const MotionOptions& options, Random& rng);
+
+}  // namespace ff::tracegen

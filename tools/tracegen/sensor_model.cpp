@@ -1,0 +1,293 @@
+#include "sensor_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "deterministic_random.hpp"
+
+namespace ff::tracegen {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr uint64_t kClockWrap = uint64_t{1} << 32;
+
+// A report before timestamps are made absolute: times relative to motion start.
+struct Report {
+  int64_t t_rel_us = 0;
+  double x = 0.0, y = 0.0;
+  bool touch = false;
+  SampleEvent event = SampleEvent::Normal;
+};
+
+// What happens to a report; Duplicate cycles through SampleEvent's Duplicate, SameTime, Earlier.
+enum class Plan : uint8_t { None, Missing, Late, Jump, Duplicate, NonFinite, OffScreen };
+
+class SensorSimulator {
+ public:
+  SensorSimulator(const Motion& motion, const TraceOptions& o)
+      : motion_(motion), o_(o), timing_(o.seed, Stream::Timing), noise_(o.seed, Stream::Noise),
+        faults_(o.seed, Stream::Faults) {}
+
+  std::vector<Report> run() {
+    std::vector<Report> reports = scan();
+    plan_faults(reports);
+    return apply_faults(reports);
+  }
+
+ private:
+  TrueState truth(int64_t t_rel_us) const { return motion_.at(static_cast<double>(t_rel_us) * 1e-6); }
+
+  double quantise(double v) const {
+    const double q = o_.sensor.quantum_px;
+    return q > 0.0 ? std::round(v / q) * q : v;
+  }
+
+  // A report of the finger as the sensor sees it at t_rel_us.
+  void measure(Report& r) {
+    const TrueState s = motion_.at((static_cast<double>(r.t_rel_us) - o_.sensor.latency_us) * 1e-6);
+    r.x = quantise(s.position.x + o_.sensor.noise_px * noise_.gaussian());
+    r.y = quantise(s.position.y + o_.sensor.noise_px * noise_.gaussian());
+  }
+
+  // Reports on a jittered grid while the finger is down; one touch = 0 report
+  // at each lift and at the end.
+  std::vector<Report> scan() {
+    std::vector<Report> out;
+    const double period_us = 1e6 / o_.sensor.rate_hz;
+    const double max_jitter = 0.3 * period_us;
+    const double end_us = motion_.duration_s() * 1e6;
+    bool was_touching = false;
+    Report last;
+    for (int64_t n = 0;; ++n) {
+      const double nominal = static_cast<double>(n) * period_us;
+      if (nominal > end_us) break;
+      const double jitter = n == 0 ? 0.0 : std::clamp(o_.sensor.jitter_us * timing_.gaussian(), -max_jitter, max_jitter);
+      Report r;
+      r.t_rel_us = static_cast<int64_t>(std::llround(nominal + jitter));
+      const bool touching = truth(r.t_rel_us).touching;
+      if (touching) {
+        r.touch = true;
+        r.event = was_touching ? SampleEvent::Normal : SampleEvent::TouchDown;
+        measure(r);
+        out.push_back(r);
+        last = r;
+      } else if (was_touching) {
+        r.touch = false;
+        r.x = last.x;
+        r.y = last.y;
+        r.event = SampleEvent::LiftReport;
+        out.push_back(r);
+      }
+      was_touching = touching;
+    }
+    if (was_touching) {
+      Report r = last;
+      r.t_rel_us = last.t_rel_us + static_cast<int64_t>(std::llround(period_us));
+      r.touch = false;
+      r.event = SampleEvent::LiftReport;
+      out.push_back(r);
+    }
+    return out;
+  }
+
+  // Picks `count` sites, each a run of 1..max_run ordinary reports with 8
+  // ordinary reports on either side that no other site uses, so that each
+  // fault is seen on its own, away from touch-downs and lifts.
+  void pick(const std::vector<Report>& reports, int count, Plan plan, int max_run) {
+    const int n = static_cast<int>(reports.size());
+    for (int placed = 0, attempts = 0; placed < count && attempts < 1000 * (count + 1); ++attempts) {
+      const int run = faults_.integer(1, max_run);
+      const int i = faults_.integer(0, std::max(0, n - 1));
+      const int lo = i - 8, hi = i + run + 8;
+      if (lo < 0 || hi >= n) continue;
+      bool free = true;
+      for (int k = lo; k <= hi && free; ++k) {
+        const Report& r = reports[static_cast<size_t>(k)];
+        free = !taken_[static_cast<size_t>(k)] && r.touch && r.event == SampleEvent::Normal;
+      }
+      if (!free) continue;
+      for (int k = lo; k <= hi; ++k) taken_[static_cast<size_t>(k)] = true;
+      for (int k = i; k < i + run; ++k) plans_[static_cast<size_t>(k)] = plan;
+      ++placed;
+    }
+  }
+
+  void plan_faults(const std::vector<Report>& reports) {
+    plans_.assign(reports.size(), Plan::None);
+    taken_.assign(reports.size(), false);
+    const FaultOptions& f = o_.faults;
+    pick(reports, f.missing, Plan::Missing, 6);
+    pick(reports, f.late, Plan::Late, 1);
+    pick(reports, f.jumps, Plan::Jump, 3);
+    pick(reports, f.duplicates, Plan::Duplicate, 1);
+    pick(reports, f.non_finite, Plan::NonFinite, 1);
+    pick(reports, f.off_screen, Plan::OffScreen, 1);
+  }
+
+  std::vector<Report> apply_faults(const std::vector<Report>& in) {
+    std::vector<Report> out;
+    out.reserve(in.size() + static_cast<size_t>(o_.faults.duplicates));
+    int duplicate_kind = 0, non_finite_kind = 0, off_screen_kind = 0;
+    bool after_gap = false;
+    int64_t overwritten_until = std::numeric_limits<int64_t>::min();
+    Point second_finger;
+    bool in_jump = false;
+    for (size_t i = 0; i < in.size(); ++i) {
+      Report r = in[i];
+      const Plan plan = plans_[i];
+      if (plan != Plan::Jump) in_jump = false;
+      if (plan == Plan::Missing) {
+        after_gap = true;
+        continue;
+      }
+      if (r.t_rel_us <= overwritten_until) continue;  // superseded by a late read
+      if (after_gap && r.event == SampleEvent::Normal) r.event = SampleEvent::AfterGap;
+      after_gap = false;
+      switch (plan) {
+        case Plan::None:
+        case Plan::Missing:
+          break;
+        case Plan::Late: {
+          // Read late: the position is from the scan, the stamp from the read.
+          r.t_rel_us += faults_.integer(1000, 12000);
+          r.event = SampleEvent::Late;
+          overwritten_until = r.t_rel_us + 300;
+          break;
+        }
+        case Plan::Jump: {
+          if (!in_jump) {
+            const TrueState s = truth(r.t_rel_us);
+            do {
+              second_finger = {faults_.uniform(20.0, 780.0), faults_.uniform(20.0, 460.0)};
+            } while (std::hypot(second_finger.x - s.position.x, second_finger.y - s.position.y) < 150.0);
+            in_jump = true;
+          }
+          r.x = quantise(second_finger.x + o_.sensor.noise_px * noise_.gaussian());
+          r.y = quantise(second_finger.y + o_.sensor.noise_px * noise_.gaussian());
+          r.event = SampleEvent::Jump;
+          break;
+        }
+        case Plan::NonFinite: {
+          static constexpr int kKinds = 5;
+          switch (non_finite_kind++ % kKinds) {
+            case 0: r.x = kNaN; r.event = SampleEvent::NaN; break;
+            case 1: r.y = kNaN; r.event = SampleEvent::NaN; break;
+            case 2: r.x = r.y = kNaN; r.event = SampleEvent::NaN; break;
+            case 3: r.x = kInf; r.event = SampleEvent::Infinite; break;
+            default: r.y = -kInf; r.event = SampleEvent::Infinite; break;
+          }
+          break;
+        }
+        case Plan::OffScreen: {
+          switch (off_screen_kind++ % 4) {
+            case 0: r.x = -300.0; break;
+            case 1: r.y = 900.0; break;
+            case 2: r.x = r.y = 65535.0; break;  // a 16-bit "no value"
+            default: r.x = 880.0; break;         // beyond the screen plus any sane margin
+          }
+          r.event = SampleEvent::OffScreen;
+          break;
+        }
+        case Plan::Duplicate:
+          break;
+      }
+      out.push_back(r);
+      if (plan == Plan::Duplicate) {
+        Report extra = r;
+        switch (duplicate_kind++ % 3) {
+          case 0: extra.event = SampleEvent::Duplicate; break;
+          case 1: extra.event = SampleEvent::SameTime; measure(extra); break;
+          default:
+            extra.event = SampleEvent::Earlier;
+            extra.t_rel_us = r.t_rel_us - faults_.integer(500, 3000);
+            measure(extra);
+            break;
+        }
+        out.push_back(extra);
+      }
+    }
+    return out;
+  }
+
+  const Motion& motion_;
+  const TraceOptions& o_;
+  Random timing_, noise_, faults_;
+  std::vector<Plan> plans_;
+  std::vector<bool> taken_;
+};
+
+// Motion time (s) at which the 32-bit clock should wrap: between two reports
+// while the finger moves fast, as near the middle as possible.
+int64_t wrap_point_us(const Motion& motion, const std::vector<Report>& reports) {
+  const size_t n = reports.size();
+  for (size_t step = 0; step < n; ++step) {
+    for (int sign : {1, -1}) {
+      const int64_t i = static_cast<int64_t>(n / 2) + sign * static_cast<int64_t>(step);
+      if (i < 0 || i + 1 >= static_cast<int64_t>(n)) continue;
+      const Report& a = reports[static_cast<size_t>(i)];
+      const Report& b = reports[static_cast<size_t>(i) + 1];
+      if (!a.touch || !b.touch || b.t_rel_us <= a.t_rel_us) continue;
+      const int64_t mid = (a.t_rel_us + b.t_rel_us) / 2;
+      const TrueState s = motion.at(static_cast<double>(mid) * 1e-6);
+      if (std::hypot(s.velocity.x, s.velocity.y) > 200.0) return mid;
+    }
+  }
+  return n > 0 ? reports[n / 2].t_rel_us : 0;
+}
+
+}  // namespace
+
+const char* to_string(SampleEvent e) {
+  switch (e) {
+    case SampleEvent::Normal: return "-";
+    case SampleEvent::TouchDown: return "touch-down";
+    case SampleEvent::LiftReport: return "lift-off";
+    case SampleEvent::AfterGap: return "after-gap";
+    case SampleEvent::Late: return "late";
+    case SampleEvent::Jump: return "jump";
+    case SampleEvent::Duplicate: return "duplicate";
+    case SampleEvent::SameTime: return "same-time";
+    case SampleEvent::Earlier: return "earlier";
+    case SampleEvent::NaN: return "nan";
+    case SampleEvent::Infinite: return "infinite";
+    case SampleEvent::OffScreen: return "off-screen";
+    case SampleEvent::kCount: break;
+  }
+  return "?";
+}
+
+TrueState GeneratedTrace::truth_at(uint64_t t_us) const {
+  const double rel = static_cast<double>(static_cast<int64_t>(t_us - start_us));
+  return motion.at(rel * 1e-6);
+}
+
+GeneratedTrace generate_trace(const TraceOptions& options) {
+  GeneratedTrace trace;
+  Random motion_rng(options.seed, Stream::Motion);
+  trace.motion = plan_motion(options.motion, motion_rng);
+  const std::vector<Report> reports = SensorSimulator(trace.motion, options).run();
+
+  trace.start_us = options.faults.start_us;
+  if (options.faults.wrap) trace.start_us = kClockWrap - static_cast<uint64_t>(wrap_point_us(trace.motion, reports));
+
+  trace.samples.reserve(reports.size());
+  for (const Report& r : reports) {
+    TraceSample s;
+    s.t_us = trace.start_us + static_cast<uint64_t>(r.t_rel_us);
+    s.x = r.x;
+    s.y = r.y;
+    s.touch = r.touch;
+    s.event = r.event;
+    const TrueState truth = trace.motion.at(static_cast<double>(r.t_rel_us) * 1e-6);
+    s.x_true = truth.touching ? truth.position.x : kNaN;
+    s.y_true = truth.touching ? truth.position.y : kNaN;
+    trace.samples.push_back(s);
+    ++trace.events[static_cast<int>(s.event)];
+  }
+  return trace;
+}
+
+}  // namespace ff::tracegen

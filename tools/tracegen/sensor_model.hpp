@@ -1,0 +1,88 @@
+#pragma once
+// The zForce as the Teensy sees it: ~200 Hz reports with timing jitter,
+// noise and quantisation, plus every fault the tracker must survive,
+// inserted on request at random (seeded) places.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "motion.hpp"
+#include "search_strategy.hpp"
+
+namespace ff::tracegen {
+
+// What a row is; written as the optional `event` column.
+enum class SampleEvent : uint8_t {
+  Normal,
+  TouchDown,   // first report after the finger lands
+  LiftReport,  // touch = 0: the finger left
+  AfterGap,    // first report after missing ones
+  Late,        // stamped late: position measured up to 12 ms before t_us
+  Jump,        // a second finger or a glitch far from the finger
+  Duplicate,   // exact copy of the previous row
+  SameTime,    // a fresh report with the previous row's timestamp
+  Earlier,     // stamped before the previous row (out of order)
+  NaN,         // x and/or y not a number
+  Infinite,    // x or y infinite
+  OffScreen,   // far outside the screen (sensor garbage)
+  kCount
+};
+const char* to_string(SampleEvent e);
+
+struct TraceSample {
+  uint64_t t_us = 0;      // file time (may pass 2^32)
+  double x = 0.0;         // reported (noisy, quantised, maybe faulty)
+  double y = 0.0;
+  bool touch = false;
+  double x_true = 0.0;    // the finger at t_us (NaN while lifted)
+  double y_true = 0.0;
+  SampleEvent event = SampleEvent::Normal;
+};
+
+// Noise presets: 1 sigma per axis. "~1 mm accuracy" (SPEC.md) is 5 px; high
+// noise puts 95 % of reports within ~1.2 mm, low within ~0.5 mm.
+constexpr double kNoiseLowPx = 1.0;
+constexpr double kNoiseHighPx = 2.5;
+// zForce coordinates arrive in 0.1 mm units = 0.5 px.
+constexpr double kZForceQuantumPx = 0.5;
+
+struct SensorOptions {
+  double rate_hz = 200.0;
+  double jitter_us = 150.0;   // 1 sigma, clipped to +-30 % of the period
+  double noise_px = kNoiseLowPx;
+  double quantum_px = 0.0;    // 0: no quantisation
+  double latency_us = 0.0;    // reports describe the finger this long before t_us
+};
+
+struct FaultOptions {
+  int missing = 0;      // gaps of 1-6 reports
+  int late = 0;         // reports stamped 1-12 ms late
+  int jumps = 0;        // 1-3 reports far away
+  int duplicates = 0;   // cycles: exact duplicate, same timestamp, earlier timestamp
+  int non_finite = 0;   // NaN / infinite coordinates
+  int off_screen = 0;
+  bool wrap = false;    // start so that the 32-bit clock wraps in mid-stroke near the middle
+  uint64_t start_us = 10'000'000;  // time of the first report unless wrap
+};
+
+struct TraceOptions {
+  MotionOptions motion;
+  SensorOptions sensor;
+  FaultOptions faults;
+  uint64_t seed = 1;
+};
+
+struct GeneratedTrace {
+  Motion motion;
+  uint64_t start_us = 0;  // file time of motion time 0 (= the first report)
+  std::vector<TraceSample> samples;
+  int events[static_cast<int>(SampleEvent::kCount)] = {};  // rows of each kind
+
+  // The true finger at a file time.
+  TrueState truth_at(uint64_t t_us) const;
+  uint64_t end_us() const { return samples.empty() ? start_us : samples.back().t_us; }
+};
+
+GeneratedTrace generate_trace(const TraceOptions& options);
+
+}  // namespace ff::tracegen
