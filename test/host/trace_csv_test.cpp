@@ -1,0 +1,74 @@
+#include "frictionfield/host/trace_csv.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace ff::host {
+namespace {
+
+bool parse(const std::string& text, std::vector<TraceRow>& rows, TraceError& err) {
+  std::istringstream in(text);
+  return read_sensor_trace(in, rows, err);
+}
+
+TEST(TraceCsv, ReadsAnyColumnOrderAndIgnoresExtraColumns) {
+  std::vector<TraceRow> rows;
+  TraceError err;
+  ASSERT_TRUE(parse("x,touch,t_us,y,x_true,y_true\n10.5,1,5000000000,20,10,20\n,0,5000005000,,0,0\n", rows, err))
+      << err.message;
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].t_us, 5000000000ull);  // beyond 2^32
+  EXPECT_FLOAT_EQ(rows[0].x, 10.5f);
+  EXPECT_FLOAT_EQ(rows[0].y, 20.0f);
+  EXPECT_TRUE(rows[0].touch);
+  EXPECT_FALSE(rows[1].touch);  // no finger: empty x, y allowed
+}
+
+TEST(TraceCsv, KeepsNonFiniteCoordinatesForTheTrackerToJudge) {
+  std::vector<TraceRow> rows;
+  TraceError err;
+  ASSERT_TRUE(parse("t_us,x,y,touch\n0,nan,5,1\n5,inf,-inf,1\n", rows, err));
+  EXPECT_TRUE(std::isnan(rows[0].x));
+  EXPECT_TRUE(std::isinf(rows[1].y));
+}
+
+TEST(TraceCsv, ErrorsNameLineAndColumn) {
+  struct Case { const char* text; size_t line, column; const char* says; };
+  const Case cases[] = {
+      {"", 1, 0, "empty file"},
+      {"t,x,y\n", 1, 0, "header"},
+      {"t_us,x,y,touch\n0,1,2,1\n5,1\n", 3, 3, "fields"},
+      {"t_us,x,y,touch\n-5,1,2,1\n", 2, 1, "t_us"},
+      {"t_us,x,y,touch\n1.5,1,2,1\n", 2, 1, "t_us"},
+      {"t_us,x,y,touch\n0,1,2,2\n", 2, 4, "touch"},
+      {"t_us,x,y,touch\n0,abc,2,1\n", 2, 2, "x is not a number"},
+      {"t_us,x,y,touch\n0,1,,1\n", 2, 3, "y is not a number"},
+  };
+  for (const Case& c : cases) {
+    std::vector<TraceRow> rows;
+    TraceError err;
+    EXPECT_FALSE(parse(c.text, rows, err)) << c.text;
+    EXPECT_EQ(err.line, c.line) << c.text;
+    EXPECT_EQ(err.column, c.column) << c.text;
+    EXPECT_NE(err.message.find(c.says), std::string::npos) << err.message;
+  }
+  TraceError e{3, 2, "bad"};
+  EXPECT_EQ(e.to_string("a.csv"), "a.csv:3:2: bad");
+}
+
+TEST(TraceCsv, WritesTheReplayFormat) {
+  std::ostringstream out;
+  write_replay_header(out);
+  TickOutput t;
+  t.position = {1.5f, 2.25f};
+  t.direction = {0.6f, -0.8f};
+  t.amplitude = 0.25f;
+  t.dac = 1024;
+  write_replay_row(out, 5000000000ull, t);
+  EXPECT_EQ(out.str(), "t_us,x,y,vx,vy,amplitude,dac\n5000000000,1.500,2.250,0.60000,-0.80000,0.250000,1024\n");
+}
+
+}  // namespace
+}  // namespace ff::host
