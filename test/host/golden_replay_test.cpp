@@ -1,0 +1,118 @@
+// Golden traces: every bundled trace replayed through the whole pipeline and
+// compared with its stored output. Tolerances: position 1e-3 px, direction
+// 1e-4, amplitude 1e-5 (well under one DAC LSB = 2.4e-4), DAC code +-1 (a
+// half-code rounding may flip between compilers).
+// FF_UPDATE_GOLDEN=1 rewrites the files after an intended change.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "frictionfield/host/replay.hpp"
+#include "frictionfield/host/scene_spec.hpp"
+
+namespace ff::host {
+namespace {
+
+struct GoldenCase {
+  std::string trace, scene, target, tracker;
+  float strength = 1.0f;
+  int stride = 1;
+  std::string golden_name() const {
+    return trace.substr(0, trace.size() - 4) + "." + scene + "-" + tracker + ".golden.csv";
+  }
+};
+
+std::vector<GoldenCase> load_manifest() {
+  std::vector<GoldenCase> cases;
+  std::ifstream in(std::string(FF_TRACE_DIR) + "/golden.txt");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    GoldenCase c;
+    s >> c.trace >> c.scene >> c.target >> c.strength >> c.tracker >> c.stride;
+    if (s) cases.push_back(c);
+  }
+  return cases;
+}
+
+std::vector<std::string> render(const GoldenCase& c) {
+  SceneSpec spec;
+  spec.scene = c.scene;
+  spec.target = c.target;
+  spec.strength = c.strength;
+  Condition cond;
+  std::string err;
+  EXPECT_TRUE(make_condition(spec, cond, err)) << err;
+  auto p = std::make_unique<HapticPipeline>(c.tracker == "thesis" ? TrackerConfig::thesis()
+                                                                   : TrackerConfig::recommended());
+  EXPECT_EQ(p->set_condition(cond), PrepareStatus::Ok);
+  std::vector<TraceRow> rows;
+  TraceError terr;
+  EXPECT_TRUE(read_sensor_trace_file(std::string(FF_TRACE_DIR) + "/" + c.trace, rows, terr)) << terr.message;
+  std::vector<std::string> lines;
+  uint64_t k = 0;
+  replay(rows, *p, [&](uint64_t t, const TickOutput& o) {
+    if (k++ % static_cast<uint64_t>(c.stride) != 0) return;
+    std::ostringstream row;
+    write_replay_row(row, t, o);
+    std::string r = row.str();
+    r.pop_back();
+    lines.push_back(r);
+  }, 200);  // 100 ms after the last sample: lift-off and time-outs play out
+  return lines;
+}
+
+std::vector<double> fields(const std::string& line) {
+  std::vector<double> v;
+  std::istringstream s(line);
+  std::string f;
+  while (std::getline(s, f, ',')) v.push_back(std::strtod(f.c_str(), nullptr));
+  return v;
+}
+
+class GoldenReplay : public ::testing::TestWithParam<GoldenCase> {};
+
+TEST_P(GoldenReplay, MatchesStoredOutput) {
+  const GoldenCase& c = GetParam();
+  const std::vector<std::string> got = render(c);
+  const std::string path = std::string(FF_TRACE_DIR) + "/" + c.golden_name();
+  if (std::getenv("FF_UPDATE_GOLDEN") != nullptr) {
+    std::ofstream out(path);
+    out << "t_us,x,y,vx,vy,amplitude,dac\n";
+    for (const std::string& l : got) out << l << "\n";
+    GTEST_SKIP() << "rewrote " << path;
+  }
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path << " missing: run with FF_UPDATE_GOLDEN=1";
+  std::string line;
+  std::getline(in, line);
+  size_t i = 0;
+  const double tol[] = {0, 1e-3, 1e-3, 1e-4, 1e-4, 1e-5, 1};  // DAC: rounding may flip at a half code
+  while (std::getline(in, line)) {
+    ASSERT_LT(i, got.size()) << "golden has more ticks";
+    const std::vector<double> want = fields(line), have = fields(got[i]);
+    ASSERT_EQ(want.size(), 7u);
+    ASSERT_EQ(have.size(), 7u);
+    for (int f = 0; f < 7; ++f) {
+      ASSERT_NEAR(have[f], want[f], tol[f] + 1e-9) << c.golden_name() << " row " << i + 2 << " column " << f + 1;
+    }
+    ++i;
+  }
+  EXPECT_EQ(i, got.size()) << "replay has more ticks than the golden";
+}
+
+INSTANTIATE_TEST_SUITE_P(Traces, GoldenReplay, ::testing::ValuesIn(load_manifest()),
+                         [](const ::testing::TestParamInfo<GoldenCase>& info) {
+                           std::string n = info.param.golden_name();
+                           n = n.substr(0, n.size() - 11);
+                           for (char& ch : n) if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return n;
+                         });
+
+}  // namespace
+}  // namespace ff::host
