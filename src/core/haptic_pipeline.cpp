@@ -12,7 +12,9 @@ HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : tracker_(tracker)
 PrepareStatus HapticPipeline::set_condition(const Condition& condition) {
   const uint8_t next = static_cast<uint8_t>(active_.load(std::memory_order_acquire) ^ 1u);
   Slot& slot = slots_[next];
+  const uint32_t start = micros_ ? micros_() : 0u;
   const PrepareStatus status = slot.plan.prepare(condition.scene, slot.table, sizeof(slot.table));
+  last_prepare_us_ = micros_ ? micros_() - start : 0u;
   if (status != PrepareStatus::Ok) return status;
   if (!slot.map.configure(condition.amplitude)) {
     const AmplitudeSettings& in = condition.amplitude;

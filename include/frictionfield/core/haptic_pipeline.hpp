@@ -39,6 +39,10 @@ class HapticPipeline {
   // Main loop side ---------------------------------------------------------
   // Prepares and atomically switches to `condition`; on error nothing changes.
   PrepareStatus set_condition(const Condition& condition);
+  // Optional microsecond clock (micros() on the Teensy) to time preparation.
+  void set_clock(uint32_t (*micros)()) { micros_ = micros; }
+  // Time the last set_condition() took (0 without a clock).
+  uint32_t last_prepare_us() const { return last_prepare_us_; }
   bool post_sample(const SensorSample& s);  // false: mailbox full (counted)
 
   // Interrupt side ---------------------------------------------------------
@@ -63,6 +67,8 @@ class HapticPipeline {
   SampleMailbox mailbox_;
   Tracker tracker_;
   FaultCounters main_faults_;  // counted on the main-loop side only
+  uint32_t (*micros_)() = nullptr;
+  uint32_t last_prepare_us_ = 0;
   uint32_t ticks_ = 0;
 };
 
