@@ -1,6 +1,7 @@
 // ff-replay: a logged or generated finger trace through the full 2 kHz
 // pipeline, tick by tick, exactly as the firmware renders it.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -12,6 +13,11 @@
 #include "frictionfield/host/trace_csv.hpp"
 
 namespace {
+
+uint32_t host_micros() {
+  using namespace std::chrono;
+  return static_cast<uint32_t>(duration_cast<microseconds>(steady_clock::now().time_since_epoch()).count());
+}
 
 constexpr uint64_t kMaxReplayTicks = 2000ull * 3600 * 24;  // one day of ticks
 
@@ -83,6 +89,7 @@ int main(int argc, char** argv) {
   }
 
   auto pipeline = std::make_unique<ff::HapticPipeline>(tracker_config);
+  pipeline->set_clock(host_micros);
   const ff::PrepareStatus status = pipeline->set_condition(condition);
   if (status != ff::PrepareStatus::Ok) {
     std::cerr << "ff-replay: cannot prepare the scene: " << ff::to_string(status) << "\n";
@@ -131,8 +138,8 @@ int main(int argc, char** argv) {
                  static_cast<unsigned long long>(rejected));
     std::fprintf(stderr, "  amplitude min %.4f  mean %.4f  max %.4f\n", static_cast<double>(summary.amplitude_min),
                  static_cast<double>(summary.amplitude_mean), static_cast<double>(summary.amplitude_max));
-    std::fprintf(stderr, "  scene plan: max|G| %.4f, table %u bytes, plan %u bytes\n",
-                 static_cast<double>(ps.max_gradient), ps.table_bytes, ps.plan_bytes);
+    std::fprintf(stderr, "  scene plan: max|G| %.4f, table %u bytes, plan %u bytes, prepared in %u us (host)\n",
+                 static_cast<double>(ps.max_gradient), ps.table_bytes, ps.plan_bytes, pipeline->last_prepare_us());
     std::fprintf(stderr, "  events/faults:");
     bool any = false;
     for (int i = 0; i < static_cast<int>(ff::Fault::kCount); ++i) {
