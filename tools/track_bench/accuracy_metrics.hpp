@@ -1,0 +1,24 @@
+#pragma once
+// Summary statistics for the tracking benchmark. Host only (double).
+#include <functional>
+#include <vector>
+
+namespace ff::bench {
+
+// Root mean square; 0 for no values.
+double rms(const std::vector<double>& values);
+double mean(const std::vector<double>& values);
+// p-th percentile (0..100) with linear interpolation between closest ranks
+// (numpy's default); 0 for no values.
+double percentile(std::vector<double> values, double p);
+
+// Angle between two vectors in degrees, [0, 180]; 90 if either is zero
+// (no direction carries no information either way).
+double angle_deg(double ax, double ay, double bx, double by);
+
+// The argument in [lo, hi] that minimises f, assumed unimodal near its
+// minimum: a grid of `steps` points, then golden-section search around the
+// best one down to `tolerance`.
+double minimise(const std::function<double(double)>& f, double lo, double hi, int steps, double tolerance);
+
+}  // namespace ff::bench

@@ -1,0 +1,103 @@
+#include "bench_report.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+namespace ff::bench {
+
+namespace {
+constexpr const char* kBegin = "<!-- track-bench:begin -->";
+constexpr const char* kEnd = "<!-- track-bench:end -->";
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+}  // namespace
+
+std::vector<GoalCheck> check_goal(const std::vector<ReportRow>& rows, const std::string& default_config) {
+  std::vector<GoalCheck> checks;
+  if (rows.empty()) return checks;
+  const std::string& baseline = rows.front().config;
+  for (const ReportRow& base : rows) {
+    if (base.config != baseline) continue;
+    for (const ReportRow& r : rows) {
+      if (r.config != default_config || r.noise != base.noise) continue;
+      GoalCheck g;
+      g.noise = r.noise;
+      g.heightmap_ratio = r.metrics.heightmap_rms / base.metrics.heightmap_rms;
+      g.lag_ms = r.metrics.lag_ms;
+      g.frictionmap_ratio = r.metrics.frictionmap_rms / base.metrics.frictionmap_rms;
+      checks.push_back(g);
+    }
+  }
+  return checks;
+}
+
+void write_report(std::ostream& out, const std::vector<ReportRow>& rows, double duration_s, double moving_speed_px_s) {
+  out << "| tracker | noise | pos RMSE px | pos p95 px | lag ms | dir err mean ° | dir err p95 ° "
+         "| HM amp RMS | HM amp p95 | FM amp RMS | FM amp p95 | HM at rest RMS | ns/tick |\n";
+  out << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const ReportRow& r : rows) {
+    const Metrics& m = r.metrics;
+    out << "| " << r.config << " | " << r.noise << " | " << fixed(m.position_rmse_px, 2) << " | "
+        << fixed(m.position_p95_px, 2) << " | " << fixed(m.lag_ms, 2) << " | " << fixed(m.direction_mean_deg, 1) << " | "
+        << fixed(m.direction_p95_deg, 1) << " | " << fixed(m.heightmap_rms, 3) << " | " << fixed(m.heightmap_p95, 3)
+        << " | " << fixed(m.frictionmap_rms, 3) << " | " << fixed(m.frictionmap_p95, 3) << " | "
+        << fixed(m.heightmap_rest_rms, 3) << " | " << fixed(m.ns_per_tick, 0) << " |\n";
+  }
+  out << "\n";
+  if (!rows.empty()) {
+    const Metrics& m = rows.front().metrics;
+    out << "Each row: 6 generated traces of " << fixed(duration_s, 0) << " s (" << m.moving_ticks
+        << " ticks while moving above " << fixed(moving_speed_px_s * 0.2, 0) << " mm/s, " << m.rest_ticks
+        << " at rest); noise low = 1 px, high = 2.5 px (1 sigma per axis); amplitudes on the raw 0..1 scale "
+           "(strength 1).\n\n";
+  }
+  for (const GoalCheck& g : check_goal(rows, "recommended()")) {
+    out << "Goal (" << g.noise << " noise): recommended() heightmap error " << fixed(100.0 * g.heightmap_ratio, 0)
+        << " % of the thesis pipeline's (goal <= 50 %), lag " << fixed(g.lag_ms, 2) << " ms (goal <= 2), frictionmap error "
+        << fixed(100.0 * g.frictionmap_ratio, 0) << " % of the thesis pipeline's (goal <= 100 %): "
+        << (g.met() ? "met" : "NOT met") << ".\n";
+  }
+}
+
+std::string replace_marked_text(const std::string& document, const std::string& text) {
+  const std::string block = std::string(kBegin) + "\n" + text + kEnd;
+  const size_t begin = document.find(kBegin);
+  const size_t end = begin == std::string::npos ? std::string::npos : document.find(kEnd, begin);
+  if (begin == std::string::npos || end == std::string::npos) {
+    std::string out = document;
+    if (!out.empty() && out.back() != '\n') out += '\n';
+    return out + block + "\n";
+  }
+  return document.substr(0, begin) + block + document.substr(end + std::string(kEnd).size());
+}
+
+bool replace_marked_section(const std::string& path, const std::string& text, std::string& error) {
+  std::string document;
+  {
+    std::ifstream in(path);
+    if (in) {
+      std::ostringstream s;
+      s << in.rdbuf();
+      document = s.str();
+    }
+  }
+  std::ofstream out(path);
+  if (!out) {
+    error = "cannot write " + path;
+    return false;
+  }
+  out << replace_marked_text(document, text);
+  if (!out) {
+    error = "writing " + path + " failed";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace ff::bench

@@ -1,0 +1,35 @@
+#pragma once
+// The benchmark's markdown table, the goal check of issue 3, and writing it
+// into a document between markers.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "tracking_evaluation.hpp"
+
+namespace ff::bench {
+
+struct ReportRow {
+  std::string config;  // the first config in the rows is the baseline (thesis pipeline)
+  std::string noise;   // "low" | "high"
+  Metrics metrics;
+};
+
+// The default tracker ("recommended()") against the baseline, per noise level.
+struct GoalCheck {
+  std::string noise;
+  double heightmap_ratio = 0.0;   // default / baseline heightmap RMS: goal <= 0.5
+  double lag_ms = 0.0;            // goal <= 2
+  double frictionmap_ratio = 0.0; // goal <= 1
+  bool met() const { return heightmap_ratio <= 0.5 && lag_ms <= 2.0 && frictionmap_ratio <= 1.0; }
+};
+std::vector<GoalCheck> check_goal(const std::vector<ReportRow>& rows, const std::string& default_config);
+
+void write_report(std::ostream& out, const std::vector<ReportRow>& rows, double duration_s, double moving_speed_px_s);
+
+// Replaces the text between "<!-- track-bench:begin -->" and
+// "<!-- track-bench:end -->" in the file (appends both if absent).
+bool replace_marked_section(const std::string& path, const std::string& text, std::string& error);
+std::string replace_marked_text(const std::string& document, const std::string& text);
+
+}  // namespace ff::bench

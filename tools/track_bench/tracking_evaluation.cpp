@@ -1,0 +1,248 @@
+#include "tracking_evaluation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+
+#include "accuracy_metrics.hpp"
+#include "frictionfield/core/haptic_pipeline.hpp"
+#include "frictionfield/core/scenes.hpp"
+
+namespace ff::bench {
+
+namespace {
+
+constexpr uint64_t kTickUs = kTickPeriodUs;
+
+std::unique_ptr<ScenePlan> prepared(const SceneDefinition& def) {
+  auto plan = std::make_unique<ScenePlan>();
+  plan->prepare(def, nullptr, 0);  // closed form: no table memory
+  return plan;
+}
+
+SensorSample to_sample(const tracegen::TraceSample& s) {
+  return {static_cast<uint32_t>(s.t_us), static_cast<float>(s.x), static_cast<float>(s.y), s.touch};
+}
+
+Vec2 to_vec(tracegen::Point p) { return {static_cast<float>(p.x), static_cast<float>(p.y)}; }
+
+// Host cost of the firmware's tick on the heightmap: best of three passes.
+double time_pipeline(const TrackerConfig& config, const PreparedCase& c) {
+  Condition condition;
+  condition.scene = scenes::heightmap(c.spec.target);
+  const auto& samples = c.trace.samples;
+  double best = 1e300;
+  for (int pass = 0; pass < 3; ++pass) {
+    auto pipeline = std::make_unique<HapticPipeline>(config);
+    pipeline->set_condition(condition);
+    size_t next = 0;
+    float sink = 0.0f;
+    const auto start = std::chrono::steady_clock::now();
+    for (const TickTruth& tick : c.ticks) {
+      while (next < samples.size() && samples[next].t_us <= tick.t_us) pipeline->post_sample(to_sample(samples[next++]));
+      sink += pipeline->tick(static_cast<uint32_t>(tick.t_us)).amplitude;
+    }
+    const auto stop = std::chrono::steady_clock::now();
+    volatile float keep = sink;
+    (void)keep;
+    const double ns = std::chrono::duration<double, std::nano>(stop - start).count();
+    best = std::min(best, ns / static_cast<double>(c.ticks.size()));
+  }
+  return best;
+}
+
+// Host cost of the tracker alone (for a second, direction-only tracker).
+double time_tracker(const TrackerConfig& config, const PreparedCase& c) {
+  const auto& samples = c.trace.samples;
+  double best = 1e300;
+  for (int pass = 0; pass < 3; ++pass) {
+    Tracker tracker(config);
+    size_t next = 0;
+    float sink = 0.0f;
+    const auto start = std::chrono::steady_clock::now();
+    for (const TickTruth& tick : c.ticks) {
+      while (next < samples.size() && samples[next].t_us <= tick.t_us) tracker.on_sample(to_sample(samples[next++]));
+      sink += tracker.on_tick(static_cast<uint32_t>(tick.t_us)).direction.x;
+    }
+    const auto stop = std::chrono::steady_clock::now();
+    volatile float keep = sink;
+    (void)keep;
+    const double ns = std::chrono::duration<double, std::nano>(stop - start).count();
+    best = std::min(best, ns / static_cast<double>(c.ticks.size()));
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<BenchCase> standard_cases(double noise_px, double duration_s) {
+  struct Shape {
+    const char* name;
+    tracegen::Strategy strategy;
+    Target target;
+  };
+  static constexpr Shape kShapes[] = {
+      {"along-top", tracegen::Strategy::Along, Target::Top},
+      {"along-middle", tracegen::Strategy::Along, Target::Middle},
+      {"along-bottom", tracegen::Strategy::Along, Target::Bottom},
+      {"across-top", tracegen::Strategy::Across, Target::Top},
+      {"across-middle", tracegen::Strategy::Across, Target::Middle},
+      {"across-bottom", tracegen::Strategy::Across, Target::Bottom},
+  };
+  std::vector<BenchCase> cases;
+  uint64_t seed = 101;
+  for (const Shape& shape : kShapes) {
+    BenchCase c;
+    c.name = shape.name;
+    c.target = shape.target;
+    tracegen::TraceOptions& o = c.options;
+    o.seed = seed++;
+    o.motion.strategy = shape.strategy;
+    o.motion.paths = tracegen::PathChoice::All;
+    o.motion.duration_s = duration_s;
+    o.motion.rests = std::max(1, static_cast<int>(duration_s / 15.0));
+    o.motion.lifts = 1;
+    o.sensor.noise_px = noise_px;
+    o.sensor.quantum_px = tracegen::kZForceQuantumPx;
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+PreparedCase prepare_case(const BenchCase& spec) {
+  PreparedCase c;
+  c.spec = spec;
+  c.trace = tracegen::generate_trace(spec.options);
+  c.heightmap = prepared(scenes::heightmap(spec.target));
+  c.frictionmap = prepared(scenes::frictionmap(spec.target));
+  if (c.trace.samples.empty()) return c;
+  const uint64_t t0 = c.trace.samples.front().t_us;
+  const uint64_t last = (c.trace.end_us() - t0 + kTickUs - 1) / kTickUs;
+  c.ticks.reserve(last + 1);
+  for (uint64_t k = 0; k <= last; ++k) {
+    TickTruth t;
+    t.t_us = t0 + k * kTickUs;
+    t.state = c.trace.truth_at(t.t_us);
+    const Vec2 p = to_vec(t.state.position);
+    const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
+    // The ideal renderer: true position, true unit direction (0.5 where undefined).
+    Vec2 direction{};
+    if (speed > 0.0) direction = to_vec({t.state.velocity.x / speed, t.state.velocity.y / speed});
+    t.heightmap_ideal = c.heightmap->amplitude(p, direction);
+    t.frictionmap_ideal = c.frictionmap->amplitude(p, {});
+    c.ticks.push_back(t);
+  }
+  return c;
+}
+
+void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCase& c) {
+  out << "t_us,x_true,y_true,vx_true,vy_true,touching,resting,present,x,y,vx,vy,dx,dy,hm,hm_ideal,fm,fm_ideal\n";
+  Tracker tracker(config);
+  const auto& samples = c.trace.samples;
+  size_t next = 0;
+  for (const TickTruth& tick : c.ticks) {
+    while (next < samples.size() && samples[next].t_us <= tick.t_us) tracker.on_sample(to_sample(samples[next++]));
+    const TrackState s = tracker.on_tick(static_cast<uint32_t>(tick.t_us));
+    const float hm = c.heightmap->amplitude(s.position, s.direction);
+    const float fm = c.frictionmap->amplitude(s.position, {});
+    char line[512];
+    std::snprintf(line, sizeof line, "%llu,%.3f,%.3f,%.2f,%.2f,%d,%d,%d,%.3f,%.3f,%.2f,%.2f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                  static_cast<unsigned long long>(tick.t_us), tick.state.position.x, tick.state.position.y,
+                  tick.state.velocity.x, tick.state.velocity.y, tick.state.touching ? 1 : 0, tick.state.resting ? 1 : 0,
+                  s.present ? 1 : 0, static_cast<double>(s.position.x), static_cast<double>(s.position.y),
+                  static_cast<double>(s.velocity.x), static_cast<double>(s.velocity.y), static_cast<double>(s.direction.x),
+                  static_cast<double>(s.direction.y), static_cast<double>(hm), static_cast<double>(tick.heightmap_ideal),
+                  static_cast<double>(fm), static_cast<double>(tick.frictionmap_ideal));
+    out << line;
+  }
+}
+
+Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& cases, const EvalOptions& options,
+                 const TrackerConfig* direction_from) {
+  Metrics m;
+  std::vector<double> position_error, direction_error, heightmap_error, frictionmap_error, rest_deviation;
+  struct Estimate {
+    const PreparedCase* c;
+    uint64_t t_us;
+    double x, y;
+  };
+  std::vector<Estimate> estimates;  // moving ticks, for the lag
+
+  for (const PreparedCase& c : cases) {
+    Tracker tracker(config);
+    Tracker direction_tracker(direction_from != nullptr ? *direction_from : config);
+    const auto& samples = c.trace.samples;
+    size_t next = 0;
+    for (const TickTruth& tick : c.ticks) {
+      while (next < samples.size() && samples[next].t_us <= tick.t_us) {
+        const SensorSample sample = to_sample(samples[next++]);
+        tracker.on_sample(sample);
+        if (direction_from != nullptr) direction_tracker.on_sample(sample);
+      }
+      TrackState s = tracker.on_tick(static_cast<uint32_t>(tick.t_us));
+      if (direction_from != nullptr) {
+        const TrackState d = direction_tracker.on_tick(static_cast<uint32_t>(tick.t_us));
+        s.velocity = d.velocity;
+        s.direction = d.direction;
+      }
+      if (!tick.state.touching) continue;
+      if (!s.present) {
+        ++m.untracked_ticks;
+        continue;
+      }
+      const float hm = c.heightmap->amplitude(s.position, s.direction);
+      if (tick.state.resting) {
+        ++m.rest_ticks;
+        rest_deviation.push_back(static_cast<double>(hm) - 0.5);
+        continue;
+      }
+      const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
+      if (speed < options.moving_speed_px_s) continue;
+      ++m.moving_ticks;
+      const double ex = static_cast<double>(s.position.x) - tick.state.position.x;
+      const double ey = static_cast<double>(s.position.y) - tick.state.position.y;
+      position_error.push_back(std::hypot(ex, ey));
+      direction_error.push_back(angle_deg(static_cast<double>(s.velocity.x), static_cast<double>(s.velocity.y),
+                                          tick.state.velocity.x, tick.state.velocity.y));
+      heightmap_error.push_back(std::fabs(static_cast<double>(hm - tick.heightmap_ideal)));
+      const float fm = c.frictionmap->amplitude(s.position, {});
+      frictionmap_error.push_back(std::fabs(static_cast<double>(fm - tick.frictionmap_ideal)));
+      estimates.push_back({&c, tick.t_us, static_cast<double>(s.position.x), static_cast<double>(s.position.y)});
+    }
+  }
+
+  m.position_rmse_px = rms(position_error);
+  m.position_p95_px = percentile(position_error, 95.0);
+  m.direction_mean_deg = mean(direction_error);
+  m.direction_p95_deg = percentile(direction_error, 95.0);
+  m.heightmap_rms = rms(heightmap_error);
+  m.heightmap_p95 = percentile(heightmap_error, 95.0);
+  m.frictionmap_rms = rms(frictionmap_error);
+  m.frictionmap_p95 = percentile(frictionmap_error, 95.0);
+  m.heightmap_rest_rms = rms(rest_deviation);
+
+  if (options.lag && !estimates.empty()) {
+    // RMSE of the estimate against the truth `shift` earlier; the lag is the
+    // shift that fits best (positive: the estimate trails the finger).
+    auto rmse_at = [&estimates](double shift_ms) {
+      double sum = 0.0;
+      for (const Estimate& e : estimates) {
+        const double t_rel = static_cast<double>(static_cast<int64_t>(e.t_us - e.c->trace.start_us)) * 1e-6;
+        const tracegen::TrueState truth = e.c->trace.motion.at(t_rel - shift_ms * 1e-3);
+        const double dx = e.x - truth.position.x, dy = e.y - truth.position.y;
+        sum += dx * dx + dy * dy;
+      }
+      return std::sqrt(sum / static_cast<double>(estimates.size()));
+    };
+    m.lag_ms = minimise(rmse_at, -10.0, 30.0, 21, 0.02);
+  }
+  if (options.cost && !cases.empty()) {
+    m.ns_per_tick = time_pipeline(config, cases.front());
+    if (direction_from != nullptr) m.ns_per_tick += time_tracker(*direction_from, cases.front());
+  }
+  return m;
+}
+
+}  // namespace ff::bench

@@ -1,0 +1,82 @@
+#pragma once
+// Runs a tracker configuration over generated traces, tick for tick as the
+// replay does (SPEC.md "Timing of a replay"), and measures what is felt:
+// position, lag, direction and the rendered amplitude against an ideal
+// renderer fed the true position and the true direction.
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "frictionfield/core/path_curve.hpp"
+#include "frictionfield/core/scene_plan.hpp"
+#include "frictionfield/core/tracker.hpp"
+#include "sensor_model.hpp"
+
+namespace ff::bench {
+
+struct BenchCase {
+  std::string name;
+  tracegen::TraceOptions options;
+  Target target = Target::Middle;  // of the heightmap and frictionmap scenes
+};
+
+// The fixed benchmark set at one noise level (1 sigma, px): both search
+// strategies, all three targets, zForce quantisation, 200 Hz with jitter,
+// rests and a lift. The motion does not depend on the noise level.
+std::vector<BenchCase> standard_cases(double noise_px, double duration_s);
+
+// The truth at one tick and what the ideal renderer outputs there.
+struct TickTruth {
+  uint64_t t_us = 0;
+  tracegen::TrueState state;
+  float heightmap_ideal = 0.5f;
+  float frictionmap_ideal = 0.0f;
+};
+
+struct PreparedCase {
+  BenchCase spec;
+  tracegen::GeneratedTrace trace;
+  std::vector<TickTruth> ticks;  // t0 + k * 500 us, t0 = the first report
+  std::unique_ptr<ScenePlan> heightmap;
+  std::unique_ptr<ScenePlan> frictionmap;
+};
+
+// Generates the trace, prepares both scenes (closed form) and the ideal
+// amplitudes at every tick.
+PreparedCase prepare_case(const BenchCase& spec);
+
+struct EvalOptions {
+  double moving_speed_px_s = 50.0;  // the finger "moves" above 10 mm/s
+  bool lag = true;                  // the slowest metric
+  bool cost = true;                 // time the pipeline's tick
+};
+
+struct Metrics {
+  double position_rmse_px = 0.0;
+  double position_p95_px = 0.0;
+  double lag_ms = 0.0;             // time shift minimising the position RMSE
+  double direction_mean_deg = 0.0;
+  double direction_p95_deg = 0.0;
+  double heightmap_rms = 0.0;      // |A - A_ideal| while moving
+  double heightmap_p95 = 0.0;
+  double frictionmap_rms = 0.0;
+  double frictionmap_p95 = 0.0;
+  double heightmap_rest_rms = 0.0; // |A - 0.5| while the finger rests
+  double ns_per_tick = 0.0;        // HapticPipeline::tick() on the heightmap, host
+  size_t moving_ticks = 0;
+  size_t rest_ticks = 0;
+  size_t untracked_ticks = 0;      // finger down but no track (before the first tick after touch-down)
+};
+
+// Every tick of one case as CSV: t_us, truth (x, y, vx, vy, touching, resting),
+// estimate (present, x, y, vx, vy, dx, dy), amplitudes (heightmap, ideal, frictionmap, ideal).
+void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCase& c);
+
+// With `direction_from`, a second tracker with that configuration runs
+// alongside and supplies the velocity and direction (a candidate estimator:
+// position from one filter, direction from a smoother one).
+Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& cases, const EvalOptions& options,
+                 const TrackerConfig* direction_from = nullptr);
+
+}  // namespace ff::bench
