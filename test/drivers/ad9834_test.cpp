@@ -1,0 +1,143 @@
+// AD9834 driver: frequency words by hand (SPEC.md's 34.9 kHz both ways), the
+// exact SPI words of the start-up (replayed), and every operation through the
+// emulated chip, which must never see a word it would misread.
+#include "frictionfield/drivers/ad9834.hpp"
+
+#include <gtest/gtest.h>
+
+#include "frictionfield/emulated/ad9834_model.hpp"
+#include "frictionfield/emulated/replay_mocks.hpp"
+
+namespace ff {
+namespace {
+
+using emulated::Ad9834Model;
+using emulated::MockSpiBus16;
+using emulated::SpiTransaction;
+
+TEST(Ad9834Word, SpecCarrierRoundsToNearest) {
+  // 34900 * 2^28 / 75e6 = 124911.97: nearest 124912 = 0x1E7F0.
+  const uint32_t w = ad9834::frequency_word(34900);
+  EXPECT_EQ(w, 124912u);
+  EXPECT_EQ(ad9834::freq_lsb_word(0, w), 0x67F0);
+  EXPECT_EQ(ad9834::freq_msb_word(0, w), 0x4007);
+  EXPECT_EQ(ad9834::output_millihz(w), 34900010u);  // 34900.0096 Hz: 0.0096 Hz off
+}
+
+TEST(Ad9834Word, TruncationReproducesTheLinuxDriver) {
+  // ad9834_calc_freqreg: (u64)fout << 28 / mclk = 124911 = 0x1E7EF; words 0x67EF, 0x4007 (SPEC.md).
+  const uint32_t w = ad9834::frequency_word(34900, ad9834::kMclkHz, ad9834::Rounding::Truncate);
+  EXPECT_EQ(w, 124911u);
+  EXPECT_EQ(ad9834::freq_lsb_word(0, w), 0x67EF);
+  EXPECT_EQ(ad9834::freq_msb_word(0, w), 0x4007);
+  EXPECT_EQ(ad9834::output_millihz(w), 34899730u);  // 0.27 Hz low
+}
+
+TEST(Ad9834Word, EdgesAndOtherUnits) {
+  EXPECT_EQ(ad9834::frequency_word(0), 0u);
+  EXPECT_EQ(ad9834::frequency_word(1), 4u);  // 3.58 steps
+  EXPECT_EQ(ad9834::frequency_word(1, ad9834::kMclkHz, ad9834::Rounding::Truncate), 3u);
+  EXPECT_EQ(ad9834::frequency_word(37500000), 1u << 27);  // MCLK / 2
+  EXPECT_EQ(ad9834::frequency_word(40000000), 1u << 27);  // above Nyquist: clamped
+  EXPECT_EQ(ad9834::frequency_word(400, 25000000), 4295u);  // AN-1070's 0x10C7
+  EXPECT_EQ(ad9834::frequency_word(1000, 0), 0u);           // no clock: no tone
+  EXPECT_EQ(ad9834::frequency_word_millihz(34900000), 124912u);
+  EXPECT_EQ(ad9834::frequency_word_millihz(34900500), 124914u);  // 124913.76
+  EXPECT_EQ(ad9834::output_millihz(1u << 27), 37500000000u);
+}
+
+TEST(Ad9834, StartUpWordsAreResetRegistersRelease) {
+  MockSpiBus16 spi({
+      {SpiMode::Mode2, 4, {0x2100, 0x67F0, 0x4007, 0xA7F0, 0x8007, 0xC000, 0xE000}, BusStatus::Ok},
+      {SpiMode::Mode2, 4, {0x2000}, BusStatus::Ok},
+  });
+  Ad9834 dds(spi, 4);
+  EXPECT_EQ(dds.start(34900), BusStatus::Ok);
+  std::string why;
+  EXPECT_TRUE(spi.finished(&why)) << why;
+  EXPECT_EQ(dds.control(), 0x2000);
+}
+
+TEST(Ad9834, StartUpThroughTheChip) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(34900, false), BusStatus::Ok);
+  EXPECT_TRUE(chip.in_reset());
+  EXPECT_FALSE(chip.output_on());
+  ASSERT_EQ(dds.release_reset(), BusStatus::Ok);
+  EXPECT_TRUE(chip.output_on());
+  EXPECT_EQ(chip.output_word(), 124912u);
+  EXPECT_NEAR(chip.output_hz(), 34900.0096, 1e-3);
+  EXPECT_EQ(chip.output_phase(), 0);
+  EXPECT_FALSE(chip.triangle());
+  EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+TEST(Ad9834, SleepStatesAndOutputOff) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);
+  dds.set_output_enabled(false);
+  EXPECT_FALSE(chip.output_on());
+  EXPECT_EQ(chip.control() & 0x00C0, 0x0040);  // SLEEP12
+  dds.set_power(Ad9834::Power::ClockStopped);
+  EXPECT_EQ(chip.control() & 0x00C0, 0x0080);  // SLEEP1
+  dds.set_power(Ad9834::Power::Off);
+  EXPECT_EQ(chip.control() & 0x00C0, 0x00C0);
+  dds.set_output_enabled(true);
+  EXPECT_TRUE(chip.output_on());
+  dds.hold_reset();
+  EXPECT_FALSE(chip.output_on());
+  dds.release_reset();
+  EXPECT_TRUE(chip.output_on());
+  EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+TEST(Ad9834, SelectsBetweenTheRegisters) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);
+  ASSERT_EQ(dds.set_frequency_hz(1, 25000), BusStatus::Ok);
+  ASSERT_EQ(dds.set_phase(1, 1024), BusStatus::Ok);  // 90 degrees
+  EXPECT_EQ(chip.output_word(), 124912u);            // FREQ1 written while FREQ0 plays
+  ASSERT_EQ(dds.select(1, 1), BusStatus::Ok);
+  EXPECT_EQ(chip.output_word(), ad9834::frequency_word(25000));
+  EXPECT_EQ(chip.output_phase(), 1024);
+  EXPECT_EQ(dds.selected_frequency(), 1);
+  EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+TEST(Ad9834, LsbOnlyWriteUsesHlbWithoutB28) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);
+  ASSERT_EQ(dds.set_frequency_lsbs(0, 124912u + 5u), BusStatus::Ok);
+  EXPECT_EQ(chip.output_word(), 124917u);
+  EXPECT_EQ(chip.control() & ad9834::kB28, 0);
+  ASSERT_EQ(dds.set_frequency_word(0, 124912u), BusStatus::Ok);  // B28 back on first
+  EXPECT_EQ(chip.output_word(), 124912u);
+  EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+TEST(Ad9834, TriangleAndArgumentChecks) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(1000), BusStatus::Ok);
+  ASSERT_EQ(dds.set_waveform(Ad9834::Waveform::Triangle), BusStatus::Ok);
+  EXPECT_TRUE(chip.triangle());
+  EXPECT_EQ(dds.set_phase(0, 4096), BusStatus::InvalidArgument);
+  EXPECT_EQ(dds.set_frequency_word(0, 1u << 28), BusStatus::InvalidArgument);
+  EXPECT_EQ(dds.set_frequency_word(2, 1), BusStatus::InvalidArgument);
+  EXPECT_EQ(dds.select(0, 2), BusStatus::InvalidArgument);
+  EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+TEST(Ad9834, CountsBusErrors) {
+  MockSpiBus16 spi({{SpiMode::Mode2, 0, {0x2100, 0x4000, 0x4000, 0x8000, 0x8000, 0xC000, 0xE000}, BusStatus::Timeout}});
+  Ad9834 dds(spi, 0);
+  EXPECT_EQ(dds.start(0), BusStatus::Timeout);
+  EXPECT_EQ(dds.bus_errors(), 1u);
+}
+
+}  // namespace
+}  // namespace ff
