@@ -17,6 +17,8 @@ const char* to_string(Fault f) {
     case Fault::BadStrength: return "bad_strength";
     case Fault::BadCalibration: return "bad_calibration";
     case Fault::BadTickTime: return "bad_tick_time";
+    case Fault::SampleTimeImplausible: return "sample_time_implausible";
+    case Fault::TimeBaseReset: return "time_base_reset";
     case Fault::kCount: break;
   }
   return "?";

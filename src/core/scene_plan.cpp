@@ -90,12 +90,20 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
   }
 
   bool has_vortex = false;
+  float max_weight = 0.0f;
   for (int i = 0; i < def.element_count; ++i) {
     const FieldElement& e = def.elements[i];
     if (!valid_element(e)) return PrepareStatus::InvalidParameter;
     if (e.weight == 0.0f) continue;  // contributes nothing: not evaluated
     has_vortex |= e.kind == ElementKind::Vortex;
+    max_weight = std::fmax(max_weight, std::fabs(e.weight));
     next.elements_[next.count_++] = e;
+  }
+  if (def.rendering == Rendering::Directional && def.sampled.heights == nullptr) {
+    // G / (2 max|G|) does not care about a common factor: scale the weights
+    // to at most 1 so that 1e30 or 1e-30 neither overflow nor vanish.
+    for (int i = 0; i < next.count_; ++i) next.elements_[i].weight /= max_weight;
+    next.field_scale_ = max_weight;
   }
 
   const SampledHeightMap& sm = def.sampled;
@@ -161,7 +169,7 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
 
   if (def.rendering == Rendering::Directional) {
     const float max_g = next.find_max_gradient();
-    next.stats_.max_gradient = max_g;
+    next.stats_.max_gradient = max_g * next.field_scale_;  // in the definition's units
     // A field that is flat everywhere renders 0.5 (no direction to favour).
     next.inv_two_max_ = (max_g > 0.0f && std::isfinite(max_g)) ? 0.5f / max_g : 0.0f;
   }
@@ -181,7 +189,9 @@ float ScenePlan::closed_form_profile(Vec2 p) const {
   return a;
 }
 
-Vec2 ScenePlan::field(Vec2 p) const {
+Vec2 ScenePlan::field(Vec2 p) const { return field_scale_ * scaled_field(p); }
+
+Vec2 ScenePlan::scaled_field(Vec2 p) const {
   if (evaluation_ == Evaluation::ClosedForm) return closed_form_field(p);
   if (table_source_ == TableSource::TabulatedGradient) return table_.sample2(p);
   // Central differences of the bilinear height, one node spacing either side.
@@ -198,7 +208,7 @@ float ScenePlan::profile(Vec2 p) const {
 
 Vec2 ScenePlan::normalized_gradient(Vec2 p) const {
   if (rendering_ != Rendering::Directional) return {};
-  return inv_two_max_ * field(p);
+  return inv_two_max_ * scaled_field(p);
 }
 
 float ScenePlan::amplitude(Vec2 position, Vec2 direction) const {
@@ -222,14 +232,17 @@ float ScenePlan::find_max_gradient() {
   constexpr float kStep = 16.0f;
   constexpr int kCandidates = 4;
   Vec2 best_p[kCandidates];
-  float best_m[kCandidates];
+  float best_m[kCandidates];  // |G| (not squared)
   for (int i = 0; i < kCandidates; ++i) best_m[i] = -1.0f;
 
-  auto magnitude2 = [&](Vec2 p) {
+  auto magnitude = [&](Vec2 p) {
     ++stats_.gradient_evaluations;
-    const Vec2 g = field(p);
-    const float m = dot(g, g);
-    return std::isfinite(m) ? m : 0.0f;
+    const Vec2 g = scaled_field(p);
+    // |G| without overflow or underflow of the squares: scale by the larger component.
+    const float m = std::fmax(std::fabs(g.x), std::fabs(g.y));
+    if (!(m > 0.0f) || !std::isfinite(m)) return 0.0f;
+    const Vec2 u = (1.0f / m) * g;
+    return m * length(u);
   };
   auto consider = [&](Vec2 p, float m) {
     int worst = 0;
@@ -246,7 +259,7 @@ float ScenePlan::find_max_gradient() {
     const float y = j == ny - 1 ? kScreenMaxY : static_cast<float>(j) * kStep;
     for (int i = 0; i < nx; ++i) {
       const float x = i == nx - 1 ? kScreenMaxX : static_cast<float>(i) * kStep;
-      consider({x, y}, magnitude2({x, y}));
+      consider({x, y}, magnitude({x, y}));
     }
   }
 
@@ -261,7 +274,7 @@ float ScenePlan::find_max_gradient() {
       bool moved = false;
       for (const Vec2& d : moves) {
         const Vec2 q{clamp(p.x + d.x, 0.0f, kScreenMaxX), clamp(p.y + d.y, 0.0f, kScreenMaxY)};
-        const float mq = magnitude2(q);
+        const float mq = magnitude(q);
         if (mq > m) {
           m = mq;
           p = q;
@@ -272,7 +285,7 @@ float ScenePlan::find_max_gradient() {
     }
     best = m > best ? m : best;
   }
-  return std::sqrt(best);
+  return best;
 }
 
 }  // namespace ff

@@ -18,6 +18,7 @@ float smoothstep(float t) {
 }
 
 constexpr float kInitialSpeedSigmaPxS = 1000.0f;  // touch-down: velocity unknown
+constexpr float kMinSpeedPxS = 1e-6f;             // below this the direction is undefined
 
 }  // namespace
 
@@ -98,6 +99,7 @@ void Tracker::reset() {
   kx_ = KalmanAxis{};
   ky_ = KalmanAxis{};
   have_tick_ = false;
+  have_tick_candidate_ = false;
   filters_fresh_ = false;
 }
 
@@ -174,12 +176,29 @@ void Tracker::on_sample(const SensorSample& in) {
   s.x = clamp(s.x, 0.0f, kScreenMaxX);
   s.y = clamp(s.y, 0.0f, kScreenMaxY);
 
+  if (have_tick_) {
+    // Judge the stamp by the tick clock (the same micros() on the device): a
+    // report from the future, or older than the stale timeout, is a glitch.
+    const int32_t lead = elapsed_us(s.t_us, last_tick_us_);
+    if (lead > static_cast<int32_t>(config_.max_sample_lead_us) ||
+        -lead > static_cast<int32_t>(config_.stale_timeout_us)) {
+      faults_.add(Fault::SampleTimeImplausible);
+      return;
+    }
+  }
   if (!have_last_) {
     faults_.add(Fault::TouchDown);
     restart_at(s);
     return;
   }
   if (elapsed_us(s.t_us, last_.t_us) <= 0) {
+    if (have_tick_ && elapsed_us(last_.t_us, last_tick_us_) > static_cast<int32_t>(config_.max_sample_lead_us)) {
+      // The newest accepted report now lies in the future of a re-anchored
+      // tick clock: the time base moved, so start again from this report.
+      faults_.add(Fault::TimeBaseReset);
+      restart_at(s);
+      return;
+    }
     faults_.add(Fault::NonIncreasingTime);
     return;
   }
@@ -244,24 +263,40 @@ Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
 }
 
 Vec2 Tracker::faded_direction(Vec2 v) const {
-  const float speed = length(v);
-  if (!(speed > 0.0f) || !std::isfinite(speed)) return {};
+  // Normalise by the larger component first: squares of tiny (subnormal)
+  // speeds lose precision, and v / |v| must stay unit length.
+  const float m = std::fmax(std::fabs(v.x), std::fabs(v.y));
+  if (!(m > kMinSpeedPxS) || !std::isfinite(m)) return {};  // at rest: no direction
+  const Vec2 u = (1.0f / m) * v;
+  const float len = length(u);  // in [1, sqrt 2]
+  const float speed = m * len;
   float gain = 1.0f;
   const float lo = config_.rest_speed_px_s, hi = config_.moving_speed_px_s;
   if (hi > lo) gain = smoothstep((speed - lo) / (hi - lo));
   else if (hi > 0.0f && speed < hi) gain = 0.0f;
-  return (gain / speed) * v;
+  return (gain / len) * u;
 }
 
 TrackState Tracker::on_tick(uint32_t now_us, bool need_filter) {
   if (have_tick_) {
     const int32_t step = elapsed_us(now_us, last_tick_us_);
-    if (step <= 0) {  // time stood still or ran back: repeat the last state
+    if (step <= 0 || step > static_cast<int32_t>(config_.max_tick_step_us)) {
+      // Time stood still, ran back or leapt. One odd tick is a glitch: repeat
+      // the last state. Two in a row that agree with each other mean the
+      // clock itself moved: re-anchor on it.
+      const int32_t since = elapsed_us(now_us, tick_candidate_us_);
+      const bool confirmed = have_tick_candidate_ && since > 0 &&
+                             since <= static_cast<int32_t>(config_.max_tick_step_us);
       faults_.add(Fault::BadTickTime);
-      return state_;
+      if (!confirmed) {
+        tick_candidate_us_ = now_us;
+        have_tick_candidate_ = true;
+        return state_;
+      }
     }
   }
   have_tick_ = true;
+  have_tick_candidate_ = false;
   last_tick_us_ = now_us;
 
   if (have_last_ && lifting_ && elapsed_us(now_us, untouched_since_us_) >= static_cast<int32_t>(config_.lift_off_timeout_us)) {

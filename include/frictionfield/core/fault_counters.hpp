@@ -18,7 +18,9 @@ enum class Fault : uint8_t {
   MailboxOverflow,       // samples arrived faster than ticks could take them
   BadStrength,           // strength NaN or outside (0, 1]: repaired
   BadCalibration,        // non-monotonic or out-of-range calibration: linear used
-  BadTickTime,           // tick time went backwards or jumped: state restarted
+  BadTickTime,           // tick time stood still, ran back or leapt: state repeated until it settles
+  SampleTimeImplausible, // report stamped in the future or long past by the tick clock: dropped
+  TimeBaseReset,         // both clocks moved together (timer re-initialised): tracking restarted
   kCount
 };
 

@@ -56,6 +56,7 @@ class ScenePlan {
   float profile(Vec2 position) const;
 
  private:
+  Vec2 scaled_field(Vec2 p) const;  // G / field_scale_: what the tick evaluates
   Vec2 closed_form_field(Vec2 p) const;
   float closed_form_profile(Vec2 p) const;
   float find_max_gradient();
@@ -64,7 +65,8 @@ class ScenePlan {
   Needs needs_ = Needs::Nothing;
   float constant_ = 0.5f;
   float bias_ = 0.0f;
-  float inv_two_max_ = 0.0f;  // 1 / (2 max|G|), 0 for a flat field
+  float inv_two_max_ = 0.0f;  // 1 / (2 max|G|) of the scaled field, 0 for a flat field
+  float field_scale_ = 1.0f;  // the largest |weight|: weights are stored divided by it
   uint8_t count_ = 0;
   FieldElement elements_[kMaxSceneElements] = {};
   Evaluation evaluation_ = Evaluation::ClosedForm;

@@ -39,6 +39,8 @@ struct TrackerConfig {
   float max_speed_px_s = 5000.0f;         // 1 m/s: faster implies a second finger or a glitch
   float jump_slack_px = 25.0f;            // noise allowance on top of max speed
   float screen_margin_px = 40.0f;         // beyond the screen by more: dropped; within: clamped
+  uint32_t max_tick_step_us = 100000;     // a longer step between ticks is suspect until confirmed
+  uint32_t max_sample_lead_us = 2000;     // a report may be stamped this far after the last tick
 
   static TrackerConfig thesis();       // exactly SPEC.md / the thesis (no fade)
   static TrackerConfig recommended();  // the benchmarked default
@@ -107,6 +109,9 @@ class Tracker {
   bool filters_fresh_ = false;  // filters restarted from the last sample on next use
   uint32_t last_tick_us_ = 0;
   bool have_tick_ = false;
+  // A tick time that broke the 500 us rhythm, waiting for the next to confirm it.
+  uint32_t tick_candidate_us_ = 0;
+  bool have_tick_candidate_ = false;
 };
 
 }  // namespace ff

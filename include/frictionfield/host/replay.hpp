@@ -2,6 +2,8 @@
 // Replays a sensor trace through the 2 kHz pipeline exactly as SPEC.md times
 // it: ticks at t0 + k * 500 us (t0 = first sample), every sample at or before
 // a tick delivered before that tick. The firmware's tick, tick for tick.
+// Rows arrive in file order: a row stamped more than 20 ms after the next row
+// is delivered with it, so one bad stamp cannot hold the trace back.
 #include <cstdint>
 #include <functional>
 #include <vector>
