@@ -88,15 +88,35 @@ void ZforceSensor::begin(uint32_t now_us) {
   awaiting_ = false;
   attempts_ = 0;
   deadline_us_ = now_us + config_.boot_wait_us;
+  edge_pending_ = false;
   tracking_ = false;
   for (uint32_t& w : ignored_) w = 0;
 }
 
+bool ZforceSensor::next_edge(uint32_t& t_us) {
+  if (edge_pending_) {
+    edge_pending_ = false;
+    t_us = pending_edge_us_;
+    return true;
+  }
+  uint32_t edges = 0;
+  return dr_.take_edge(t_us, edges);
+}
+
 void ZforceSensor::drain_until_idle() {
-  // The header was wrong, so the length cannot be trusted: read single bytes
-  // until the sensor drops DR (its message is gone), bounded by the longest
-  // frame there can be.
+  // The header was wrong (or a read failed), so the length cannot be trusted:
+  // read single bytes until the sensor drops DR (its message is gone),
+  // bounded by the longest frame there can be.
+  // A new rising edge means the sensor has started its next message: stop
+  // there and keep the edge for it.
   for (uint32_t i = 0; i < kMaxDrainBytes && dr_.asserted(); ++i) {
+    uint32_t edge_us = 0;
+    uint32_t edges = 0;
+    if (dr_.take_edge(edge_us, edges)) {
+      edge_pending_ = true;
+      pending_edge_us_ = edge_us;
+      return;
+    }
     uint8_t b = 0;
     if (bus_.read(config_.address, &b, 1, config_.i2c_timeout_us) != BusStatus::Ok) {
       add(ZforceCount::BusError);
@@ -243,8 +263,7 @@ bool ZforceSensor::poll(uint32_t now_us, SensorSample& out) {
 
   for (int i = 0; i < kMaxFramesPerPoll && dr_.asserted(); ++i) {
     uint32_t edge_us = 0;
-    uint32_t edges = 0;
-    const uint32_t frame_us = dr_.take_edge(edge_us, edges) ? edge_us : now_us;
+    const uint32_t frame_us = next_edge(edge_us) ? edge_us : now_us;
     zforce::Message msg;
     if (!read_frame(msg)) continue;
     switch (msg.kind) {

@@ -84,6 +84,7 @@ class ZforceSensor {
 
   void add(ZforceCount c, uint32_t n = 1);
   void count_error(zforce::FrameError e);
+  bool next_edge(uint32_t& t_us);
   bool read_frame(zforce::Message& msg);  // false: nothing usable (counted)
   void drain_until_idle();
   void discard(uint32_t bytes);
@@ -102,6 +103,8 @@ class ZforceSensor {
   bool awaiting_ = false;
   uint8_t attempts_ = 0;
   uint32_t deadline_us_ = 0;
+  bool edge_pending_ = false;  // an edge seen while draining: the next message's
+  uint32_t pending_edge_us_ = 0;
   bool tracking_ = false;
   uint32_t tracked_seen_us_ = 0;
   uint8_t tracked_id_ = 0;

@@ -1,0 +1,460 @@
+// The zForce driver: the configuration exchange byte for byte (replayed),
+// then against the emulated sensor: samples in pixels at the DR edge time,
+// one finger tracked, every fault counted and dropped without losing sync.
+#include "frictionfield/drivers/zforce_sensor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "frictionfield/emulated/replay_mocks.hpp"
+#include "zforce_rig.hpp"
+
+namespace ff {
+namespace {
+
+using emulated::expect_read;
+using emulated::expect_write;
+using emulated::I2cTransaction;
+using emulated::MockI2cInitiator;
+using emulated::ZforceModel;
+using test::ZforceRig;
+using Fault = ZforceModel::Fault;
+
+// DR as the protocol defines it: up exactly while the sensor has a message,
+// i.e. while the next expected transaction is a read.
+class ScriptDr final : public DataReadyInput {
+ public:
+  ScriptDr(const std::vector<I2cTransaction>& script, const MockI2cInitiator& bus) : script_(script), bus_(bus) {}
+  bool asserted() const override {
+    return bus_.used() < gate && bus_.used() < script_.size() && script_[bus_.used()].write.empty();
+  }
+  bool take_edge(uint32_t& t_us, uint32_t& edges) override {
+    if (!asserted() || bus_.used() == last_) return false;
+    last_ = bus_.used();
+    t_us = edge_us;
+    edges = 1;
+    return true;
+  }
+  uint32_t edge_us = 0;
+  size_t gate = SIZE_MAX;  // DR stays low from this transaction on (the sensor has nothing yet)
+
+ private:
+  const std::vector<I2cTransaction>& script_;
+  const MockI2cInitiator& bus_;
+  size_t last_ = SIZE_MAX;
+};
+
+TEST(ZforceSensor, ConfigurationExchangeAndFirstTouchByteForByte) {
+  const std::vector<I2cTransaction> script = {
+      // Boot complete.
+      expect_read(0x50, {0xEE, 0x0F}),
+      expect_read(0x50, {0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81, 0x02, 0x07, 0x80}),
+      // touchFormat -> the default 9-byte descriptor.
+      expect_write(0x50, {0xEE, 0x08, 0xEE, 0x06, 0x40, 0x02, 0x02, 0x00, 0x66, 0x00}),
+      expect_read(0x50, {0xEE, 0x0E}),
+      expect_read(0x50, {0xEF, 0x0C, 0x40, 0x02, 0x02, 0x00, 0x66, 0x06, 0x41, 0x04, 0x01, 0xF6, 0x18, 0x04}),
+      // resolution 3200 x 1920.
+      expect_write(0x50, {0xEE, 0x10, 0xEE, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02, 0x0C, 0x80, 0x81,
+                          0x02, 0x07, 0x80}),
+      expect_read(0x50, {0xEE, 0x10}),
+      expect_read(0x50, {0xEF, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02, 0x0C, 0x80, 0x81, 0x02, 0x07,
+                         0x80}),
+      // frequency 200 Hz finger, 50 Hz idle, to the platform.
+      expect_write(0x50, {0xEE, 0x0F, 0xEE, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x68, 0x07, 0x80, 0x02, 0x00, 0xC8, 0x82,
+                          0x01, 0x32}),
+      expect_read(0x50, {0xEE, 0x0F}),
+      expect_read(0x50, {0xEF, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x68, 0x07, 0x80, 0x02, 0x00, 0xC8, 0x82, 0x01, 0x32}),
+      // two reported touches.
+      expect_write(0x50, {0xEE, 0x0B, 0xEE, 0x09, 0x40, 0x02, 0x02, 0x00, 0x73, 0x03, 0x86, 0x01, 0x02}),
+      expect_read(0x50, {0xEE, 0x0B}),
+      expect_read(0x50, {0xEF, 0x09, 0x40, 0x02, 0x02, 0x00, 0x73, 0x03, 0x86, 0x01, 0x02}),
+      // detection mode.
+      expect_write(0x50, {0xEE, 0x17, 0xEE, 0x15, 0x40, 0x02, 0x02, 0x00, 0x67, 0x0F, 0x80, 0x01, 0xFF, 0x81, 0x01,
+                          0x00, 0x82, 0x01, 0x00, 0x83, 0x01, 0x00, 0x84, 0x01, 0x00}),
+      expect_read(0x50, {0xEE, 0x17}),
+      expect_read(0x50, {0xEF, 0x15, 0x40, 0x02, 0x02, 0x00, 0x67, 0x0F, 0x80, 0x01, 0xFF, 0x81, 0x01, 0x00, 0x82,
+                         0x01, 0x00, 0x83, 0x01, 0x00, 0x84, 0x01, 0x00}),
+      // enable.
+      expect_write(0x50, {0xEE, 0x0B, 0xEE, 0x09, 0x40, 0x02, 0x02, 0x00, 0x65, 0x03, 0x81, 0x01, 0x00}),
+      expect_read(0x50, {0xEE, 0x0B}),
+      expect_read(0x50, {0xEF, 0x09, 0x40, 0x02, 0x02, 0x00, 0x65, 0x03, 0x81, 0x01, 0x00}),
+      // A touch: id 0 down at (400, 960) sensor units.
+      expect_read(0x50, {0xEE, 0x16}),
+      expect_read(0x50, {0xF0, 0x14, 0x40, 0x02, 0x02, 0x00, 0xA0, 0x0B, 0x42, 0x09, 0x00, 0x00, 0x01, 0x90, 0x03,
+                         0xC0, 0x00, 0x30, 0x64, 0x58, 0x01, 0x20}),
+  };
+  MockI2cInitiator bus(script);
+  ScriptDr dr(script, bus);
+  dr.gate = script.size() - 2;  // the touch comes later
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  SensorSample s;
+  uint32_t t = 0;
+  for (; t < 7000 && sensor.state() != ZforceState::Running; t += 1000) EXPECT_FALSE(sensor.poll(t, s));
+  ASSERT_EQ(sensor.state(), ZforceState::Running);
+  dr.gate = SIZE_MAX;
+  dr.edge_us = 123456;
+  ASSERT_TRUE(sensor.poll(130000, s));
+  EXPECT_EQ(s.t_us, 123456u);  // the DR edge, not the poll time
+  EXPECT_EQ(s.x, 100.0f);      // 400 * 0.25
+  EXPECT_EQ(s.y, 240.0f);      // 960 * 0.25
+  EXPECT_TRUE(s.touch);
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+  EXPECT_EQ(sensor.errors(), 0u);
+}
+
+TEST(ZforceSensor, ConfiguresTheEmulatedSensor) {
+  ZforceRig rig;
+  EXPECT_LT(rig.configure(), 20000u);
+  EXPECT_EQ(rig.sensor.state(), ZforceState::Running);
+  EXPECT_TRUE(rig.model.enabled());
+  EXPECT_TRUE(rig.model.detection_mode());
+  EXPECT_EQ(rig.model.resolution_x(), 3200);
+  EXPECT_EQ(rig.model.resolution_y(), 1920);
+  EXPECT_EQ(rig.model.finger_frequency(), 200);
+  EXPECT_EQ(rig.model.idle_frequency(), 50);
+  EXPECT_EQ(rig.model.reported_touches(), 2);
+  EXPECT_EQ(rig.model.requests_rejected(), 0u) << rig.model.last_rejection();
+  EXPECT_EQ(rig.sensor.count(ZforceCount::FramesRead), 7u);  // boot complete + six answers
+  EXPECT_EQ(rig.sensor.errors(), 0u);
+}
+
+// 40 reports, 5 ms apart with a little jitter, on the 0.25 px grid.
+std::vector<SensorSample> stroke(uint32_t t0, int n = 40, float x0 = 100.0f) {
+  std::vector<SensorSample> t;
+  for (int i = 0; i < n; ++i) {
+    t.push_back({t0 + static_cast<uint32_t>(i) * 5000u + static_cast<uint32_t>((i * 37) % 7) * 100u,
+                 x0 + 2.25f * static_cast<float>(i), 240.0f - 0.5f * static_cast<float>(i), true});
+  }
+  return t;
+}
+
+void expect_samples(const std::vector<SensorSample>& got, const std::vector<SensorSample>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(got[i].t_us, want[i].t_us) << i;
+    EXPECT_EQ(got[i].touch, want[i].touch) << i;
+    if (want[i].touch) {
+      EXPECT_EQ(got[i].x, want[i].x) << i;
+      EXPECT_EQ(got[i].y, want[i].y) << i;
+    }
+  }
+}
+
+TEST(ZforceSensor, ReportsATraceInPixelsAtTheDrEdgeTimes) {
+  ZforceRig rig;
+  rig.configure();
+  std::vector<SensorSample> trace = stroke(100000);
+  const SensorSample last = trace.back();
+  trace.push_back({last.t_us + 5000, 0.0f, 0.0f, false});
+  rig.model.load_trace(trace);
+  // Polled every 1.7 ms, out of step with the sensor.
+  const std::vector<SensorSample> got = rig.run(100000, last.t_us + 20000, 1700);
+  std::vector<SensorSample> want = trace;
+  want.back().x = last.x;
+  want.back().y = last.y;
+  expect_samples(got, want);
+  EXPECT_FALSE(rig.sensor.finger_present());
+  EXPECT_EQ(rig.sensor.count(ZforceCount::Samples), trace.size());
+  EXPECT_EQ(rig.sensor.errors(), 0u);
+}
+
+TEST(ZforceSensor, FingerPresentFollowsDownAndUp) {
+  ZforceRig rig;
+  rig.configure();
+  rig.model.load_trace({{100000, 50.0f, 50.0f, true}, {105000, 50.0f, 50.0f, false}});
+  rig.run(100000, 102000);
+  EXPECT_TRUE(rig.sensor.finger_present());
+  rig.run(102500, 106000);
+  EXPECT_FALSE(rig.sensor.finger_present());
+}
+
+class SecondFingerTest : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SecondFingerTest, IsIgnoredWhereverItIsListed) {
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000);
+  ZforceModel::SecondFinger second;
+  second.from_us = trace[10].t_us;
+  second.to_us = trace[25].t_us;
+  second.listed_first = GetParam();
+  rig.model.load_trace(trace, &second);
+  const std::vector<SensorSample> got = rig.run(100000, trace.back().t_us + 1000);
+  expect_samples(got, trace);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::OtherFingerIgnored), 16u);  // its down and 15 moves
+  EXPECT_EQ(rig.sensor.errors(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(ListedAfterOrFirst, SecondFingerTest, ::testing::Values(false, true));
+
+TEST(ZforceSensor, ASecondFingerLeftBehindIsNotAdopted) {
+  ZforceRig rig;
+  rig.configure();
+  std::vector<SensorSample> trace = stroke(100000, 10);
+  const uint32_t lift = trace.back().t_us + 5000;
+  trace.push_back({lift, 0.0f, 0.0f, false});
+  for (int i = 1; i <= 5; ++i) trace.push_back({lift + 5000u * i, 0.0f, 0.0f, false});  // second finger alone
+  const std::vector<SensorSample> again = stroke(lift + 100000, 5, 300.0f);
+  trace.insert(trace.end(), again.begin(), again.end());
+  ZforceModel::SecondFinger second;
+  second.from_us = trace[5].t_us;
+  second.to_us = lift + 25000;
+  rig.model.load_trace(trace, &second);
+  const std::vector<SensorSample> got = rig.run(100000, again.back().t_us + 1000);
+  ASSERT_EQ(got.size(), 10u + 1u + 5u);  // first stroke, its lift, the new stroke: nothing from the other finger
+  EXPECT_FALSE(got[10].touch);
+  EXPECT_EQ(got[11].x, 300.0f);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 0u);
+}
+
+TEST(ZforceSensor, TheFirstFingerDownIsTheOneTracked) {
+  // The other finger lands first (a frame with it alone), then the one the
+  // trace follows: the first stays tracked, as the thesis' sensor would have it.
+  ZforceRig rig;
+  rig.configure();
+  std::vector<SensorSample> trace = stroke(100000, 10);
+  trace.insert(trace.begin(), {95000, 0.0f, 0.0f, false});
+  ZforceModel::SecondFinger second;
+  second.from_us = 95000;
+  second.to_us = 200000;
+  second.x = 400.0f;
+  second.y = 100.0f;
+  rig.model.load_trace(trace, &second);
+  const std::vector<SensorSample> got = rig.run(95000, 160000);
+  ASSERT_EQ(got.size(), 11u);
+  for (const SensorSample& s : got) {
+    EXPECT_EQ(s.x, 400.0f);
+    EXPECT_EQ(s.y, 100.0f);
+  }
+}
+
+struct FaultCase {
+  Fault fault;
+  ZforceCount counter;
+};
+
+class CorruptFrameTest : public ::testing::TestWithParam<FaultCase> {};
+
+TEST_P(CorruptFrameTest, IsCountedOnceAndTheRestStaysInSync) {
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000);
+  rig.model.load_trace(trace);
+  ASSERT_TRUE(rig.model.corrupt_frame_at(trace[17].t_us, GetParam().fault));
+  const std::vector<SensorSample> got = rig.run(100000, trace.back().t_us + 1000);
+  std::vector<SensorSample> want = trace;
+  want.erase(want.begin() + 17);
+  expect_samples(got, want);
+  EXPECT_EQ(rig.sensor.count(GetParam().counter), 1u);
+  EXPECT_EQ(rig.sensor.errors(), 1u);
+  EXPECT_EQ(rig.model.frames_pending(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryFault, CorruptFrameTest,
+    ::testing::Values(FaultCase{Fault::BadHeader, ZforceCount::WrongHeader},
+                      FaultCase{Fault::Truncated, ZforceCount::Truncated},
+                      FaultCase{Fault::CutShort, ZforceCount::MalformedTag},
+                      FaultCase{Fault::LengthOverMax, ZforceCount::LengthOverMax},
+                      FaultCase{Fault::UnknownTag, ZforceCount::UnknownTag},
+                      FaultCase{Fault::MalformedLength, ZforceCount::MalformedTag},
+                      FaultCase{Fault::ImpossibleEvent, ZforceCount::ImpossibleValue},
+                      FaultCase{Fault::OutOfRange, ZforceCount::ImpossibleValue}));
+
+TEST(ZforceSensor, ResyncBytesAreExactlyTheRestOfTheBadFrame) {
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000, 5);
+  rig.model.load_trace(trace);
+  rig.model.corrupt_frame_at(trace[2].t_us, Fault::BadHeader);
+  rig.model.inject(trace[3].t_us + 1000, Fault::LengthOverMax);
+  rig.run(100000, trace.back().t_us + 1000);
+  // The bad frame is 25 bytes (2-byte timestamp) less its 2-byte header; then the 200 announced.
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResyncBytes), 23u + 200u);
+}
+
+TEST(ZforceSensor, InjectedGarbageBetweenReportsChangesNothing) {
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000);
+  rig.model.load_trace(trace);
+  const Fault faults[] = {Fault::BadHeader,   Fault::Truncated,       Fault::CutShort,        Fault::LengthOverMax,
+                          Fault::UnknownTag,  Fault::MalformedLength, Fault::ImpossibleEvent, Fault::OutOfRange};
+  int i = 2;
+  for (Fault f : faults) {
+    rig.model.inject(trace[i].t_us + 2500, f);
+    i += 4;
+  }
+  expect_samples(rig.run(100000, trace.back().t_us + 1000), trace);
+  EXPECT_EQ(rig.sensor.errors(), 8u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::MalformedTag), 2u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ImpossibleValue), 2u);
+}
+
+TEST(ZforceSensor, ABadFrameJustBeforeAGoodOneDoesNotSwallowIt) {
+  // Both are waiting when the main loop comes round: the drain of the bad one
+  // must stop at the good one's DR edge.
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000, 10);
+  rig.model.load_trace(trace);
+  rig.model.inject(trace[4].t_us - 100, Fault::BadHeader);
+  std::vector<SensorSample> got;
+  for (uint32_t t = 100000; t <= trace.back().t_us + 5000; t += 5000) {  // a slow loop: both due at once
+    rig.model.advance_to(t);
+    SensorSample s;
+    while (rig.sensor.poll(t, s)) got.push_back(s);
+  }
+  ASSERT_EQ(got.size(), trace.size());
+  EXPECT_EQ(got[4].x, trace[4].x);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::WrongHeader), 1u);
+}
+
+TEST(ZforceSensor, ABusErrorLosesOneReport) {
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000, 10);
+  rig.model.load_trace(trace);
+  std::vector<SensorSample> got = rig.run(100000, trace[3].t_us + 500);
+  rig.bus.fail_next(1, BusStatus::Timeout);
+  const std::vector<SensorSample> rest = rig.run(trace[4].t_us + 100, trace.back().t_us + 1000);
+  got.insert(got.end(), rest.begin(), rest.end());
+  std::vector<SensorSample> want = trace;
+  want.erase(want.begin() + 4);
+  expect_samples(got, want);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::BusError), 1u);
+}
+
+TEST(ZforceSensor, ALostDownIsRecoveredFromTheMoves) {
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000, 10);
+  rig.model.load_trace(trace);
+  rig.model.corrupt_frame_at(trace[0].t_us, Fault::BadHeader);
+  const std::vector<SensorSample> got = rig.run(100000, trace.back().t_us + 1000);
+  expect_samples(got, std::vector<SensorSample>(trace.begin() + 1, trace.end()));
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
+}
+
+TEST(ZforceSensor, ASilentFingerIsForgottenAndTheNextOneTracked) {
+  ZforceRig rig;
+  rig.configure();
+  std::vector<SensorSample> trace = stroke(100000, 5);  // no up: its frame was lost
+  rig.model.load_trace(trace);
+  rig.run(100000, 130000);
+  EXPECT_TRUE(rig.sensor.finger_present());
+  rig.run(130500, 350000);
+  EXPECT_FALSE(rig.sensor.finger_present());
+  EXPECT_EQ(rig.sensor.count(ZforceCount::TrackLost), 1u);
+}
+
+TEST(ZforceSensor, GhostReportsOfTheTrackedFingerGiveNoSample) {
+  ZforceRig rig;
+  rig.configure();
+  rig.model.load_trace(stroke(100000, 2));
+  const uint8_t id = 0, ghost = 4;
+  const uint32_t x = 800, y = 800;
+  rig.model.schedule_raw(107500, rig.model.touch_frame(&id, &ghost, &x, &y, 1, 107500));
+  const std::vector<SensorSample> got = rig.run(100000, 110000);
+  EXPECT_EQ(got.size(), 2u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::GhostOrInvalid), 1u);
+}
+
+TEST(ZforceSensor, LearnsTheSensorsTouchFormat) {
+  ZforceModel::Options o;
+  o.format.fields = 0xFF;  // id, event, x and y in three bytes each, nothing else
+  ZforceRig rig(ZforceConfig(), o);
+  rig.configure();
+  EXPECT_EQ(rig.sensor.format().bytes(), 8);
+  const std::vector<SensorSample> trace = stroke(100000, 10);
+  rig.model.load_trace(trace);
+  expect_samples(rig.run(100000, trace.back().t_us + 1000), trace);
+  EXPECT_EQ(rig.sensor.errors(), 0u);
+}
+
+TEST(ZforceSensor, RetriesThenGivesUpOnASilentSensor) {
+  ZforceModel::Options o;
+  o.answer_requests = false;
+  ZforceRig rig(ZforceConfig(), o);
+  rig.configure();
+  EXPECT_EQ(rig.sensor.state(), ZforceState::Failed);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ConfigRetry), 2u);
+  EXPECT_EQ(rig.model.requests(), 3u);
+}
+
+TEST(ZforceSensor, ConfiguresAgainAfterTheSensorReboots) {
+  ZforceRig rig;
+  rig.configure();
+  ASSERT_EQ(rig.model.requests(), 6u);
+  rig.model.schedule_raw(50000, {0xEE, 0x0F, 0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81,
+                                 0x02, 0x07, 0x80});
+  rig.run(50000, 80000, 1000);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::SensorRebooted), 1u);
+  EXPECT_EQ(rig.sensor.state(), ZforceState::Running);
+  EXPECT_EQ(rig.model.requests(), 12u);
+}
+
+TEST(ZforceSensor, CalibrationFlipsSwapsAndOffsetsByHand) {
+  // The sensor reports (400, 400) units for a finger at (100, 100) px.
+  const std::vector<SensorSample> at{{100000, 100.0f, 100.0f, true}};
+  const ScreenCalibration plain = ScreenCalibration::fit(3200, 1920);
+  auto sample_with = [&](const ScreenCalibration& c) {
+    ZforceConfig cfg;
+    cfg.calibration = c;
+    ZforceRig rig(cfg, ZforceModel::Options(), &plain);
+    rig.configure();
+    rig.model.load_trace(at);
+    const std::vector<SensorSample> got = rig.run(100000, 101000);
+    EXPECT_EQ(got.size(), 1u);
+    return got.empty() ? SensorSample{} : got[0];
+  };
+  ScreenCalibration c = plain;
+  c.flip_x = true;
+  c.flip_y = true;
+  SensorSample s = sample_with(c);
+  EXPECT_EQ(s.x, 700.0f);  // 0.25 * (3200 - 400)
+  EXPECT_EQ(s.y, 380.0f);  // 0.25 * (1920 - 400)
+  c = plain;
+  c.offset_x = 10.0f;
+  c.offset_y = -4.0f;
+  c.scale_x = 0.2f;
+  s = sample_with(c);
+  EXPECT_FLOAT_EQ(s.x, 90.0f);  // 10 + 0.2 * 400
+  EXPECT_EQ(s.y, 96.0f);        // -4 + 0.25 * 400
+  c = ScreenCalibration::fit(1920, 3200);  // sensor mounted along the side
+  c.swap_xy = true;
+  s = sample_with(c);
+  EXPECT_FLOAT_EQ(s.x, 400.0f * 800.0f / 1920.0f);
+  EXPECT_FLOAT_EQ(s.y, 400.0f * 480.0f / 3200.0f);
+}
+
+TEST(ScreenCalibration, FitValidityAndRepair) {
+  const ScreenCalibration c = ScreenCalibration::fit(3200, 1920);
+  EXPECT_EQ(c.scale_x, 0.25f);
+  EXPECT_EQ(c.scale_y, 0.25f);
+  EXPECT_TRUE(c.valid());
+  ScreenCalibration bad = c;
+  bad.scale_x = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(bad.valid());
+  ZforceConfig cfg;
+  cfg.calibration = bad;
+  ZforceRig rig(cfg, ZforceModel::Options(), &c);
+  rig.configure();
+  rig.model.load_trace({{100000, 100.0f, 100.0f, true}});
+  const std::vector<SensorSample> got = rig.run(100000, 101000);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].x, 100.0f);  // replaced by the fit to the resolution
+}
+
+TEST(ZforceCount, HasNames) {
+  EXPECT_STREQ(to_string(ZforceCount::OtherFingerIgnored), "other finger ignored");
+  EXPECT_STREQ(to_string(ZforceCount::TrackLost), "track lost");
+}
+
+}  // namespace
+}  // namespace ff
