@@ -27,7 +27,7 @@ class Planner {
     Strategy mode = o_.strategy == Strategy::Mixed ? (rng_.chance(0.5) ? Strategy::Along : Strategy::Across)
                                                    : o_.strategy;
     int strokes_left_in_mode = rng_.integer(2, 6);
-    while (motion_.duration_s() < o_.duration_s) {
+    while (motion_.duration_s() < o_.duration_s || next_event_ < events_.size()) {
       if (mode == Strategy::Along) along_stroke();
       else across_stroke();
       dwell();
@@ -36,6 +36,11 @@ class Planner {
         mode = mode == Strategy::Along ? Strategy::Across : Strategy::Along;
         strokes_left_in_mode = rng_.integer(2, 6);
       }
+    }
+    // Never end in the air: the finger lands and makes one more stroke.
+    if (motion_.segments().back().kind == SegmentKind::Lifted) {
+      if (mode == Strategy::Along) along_stroke();
+      else across_stroke();
     }
     return motion_;
   }
@@ -103,8 +108,9 @@ class Planner {
 
   void dwell() { motion_.hold(rng_.uniform(o_.dwell_min_s, o_.dwell_max_s), false); }
 
+  // At most one event after each stroke, so that two lifts never merge.
   void handle_events() {
-    while (next_event_ < events_.size() && events_[next_event_].t_s <= motion_.duration_s()) {
+    if (next_event_ < events_.size() && events_[next_event_].t_s <= motion_.duration_s()) {
       const Event& e = events_[next_event_++];
       if (e.lift) {
         const Point landing = clamp_to_screen({rng_.uniform(60.0, 700.0), rng_.uniform(60.0, 420.0)});

@@ -282,8 +282,11 @@ GeneratedTrace generate_trace(const TraceOptions& options) {
     s.touch = r.touch;
     s.event = r.event;
     const TrueState truth = trace.motion.at(static_cast<double>(r.t_rel_us) * 1e-6);
-    s.x_true = truth.touching ? truth.position.x : kNaN;
-    s.y_true = truth.touching ? truth.position.y : kNaN;
+    // A touch = 0 report has no finger to be true about (the last one comes
+    // after the motion ends).
+    const bool down = truth.touching && s.touch;
+    s.x_true = down ? truth.position.x : kNaN;
+    s.y_true = down ? truth.position.y : kNaN;
     trace.samples.push_back(s);
     ++trace.events[static_cast<int>(s.event)];
   }

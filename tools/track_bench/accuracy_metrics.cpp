@@ -63,4 +63,19 @@ double minimise(const std::function<double(double)>& f, double lo, double hi, in
   return f(x) <= best_f ? x : best_x;
 }
 
+double best_lag_ms(const std::vector<TimedPosition>& estimates, const std::function<Position2(double t_s)>& truth,
+                   double lo_ms, double hi_ms) {
+  if (estimates.empty()) return 0.0;
+  auto rmse_at = [&](double shift_ms) {
+    double sum = 0.0;
+    for (const TimedPosition& e : estimates) {
+      const Position2 p = truth(e.t_s - shift_ms * 1e-3);
+      sum += (e.x - p.x) * (e.x - p.x) + (e.y - p.y) * (e.y - p.y);
+    }
+    return std::sqrt(sum / static_cast<double>(estimates.size()));
+  };
+  const int steps = static_cast<int>(std::lround(hi_ms - lo_ms)) / 2 + 1;  // ~2 ms grid
+  return minimise(rmse_at, lo_ms, hi_ms, steps, 0.02);
+}
+
 }  // namespace ff::bench

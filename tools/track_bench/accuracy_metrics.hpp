@@ -21,4 +21,21 @@ double angle_deg(double ax, double ay, double bx, double by);
 // best one down to `tolerance`.
 double minimise(const std::function<double(double)>& f, double lo, double hi, int steps, double tolerance);
 
+// An estimate of the finger's position at a time.
+struct TimedPosition {
+  double t_s = 0.0;
+  double x = 0.0;
+  double y = 0.0;
+};
+struct Position2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+// The lag of `estimates` behind `truth`: the shift (ms, in [lo_ms, hi_ms])
+// minimising sqrt(mean |estimate(t) - truth(t - shift)|^2). Positive: the
+// estimate trails the finger.
+double best_lag_ms(const std::vector<TimedPosition>& estimates, const std::function<Position2(double t_s)>& truth,
+                   double lo_ms = -10.0, double hi_ms = 30.0);
+
 }  // namespace ff::bench

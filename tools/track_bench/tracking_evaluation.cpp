@@ -15,6 +15,7 @@ namespace ff::bench {
 namespace {
 
 constexpr uint64_t kTickUs = kTickPeriodUs;
+constexpr double kCaseTimeOffsetS = 1e6;  // separates cases on one time axis for the lag
 
 std::unique_ptr<ScenePlan> prepared(const SceneDefinition& def) {
   auto plan = std::make_unique<ScenePlan>();
@@ -224,19 +225,21 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
   m.heightmap_rest_rms = rms(rest_deviation);
 
   if (options.lag && !estimates.empty()) {
-    // RMSE of the estimate against the truth `shift` earlier; the lag is the
-    // shift that fits best (positive: the estimate trails the finger).
-    auto rmse_at = [&estimates](double shift_ms) {
-      double sum = 0.0;
-      for (const Estimate& e : estimates) {
-        const double t_rel = static_cast<double>(static_cast<int64_t>(e.t_us - e.c->trace.start_us)) * 1e-6;
-        const tracegen::TrueState truth = e.c->trace.motion.at(t_rel - shift_ms * 1e-3);
-        const double dx = e.x - truth.position.x, dy = e.y - truth.position.y;
-        sum += dx * dx + dy * dy;
-      }
-      return std::sqrt(sum / static_cast<double>(estimates.size()));
+    // Times are global (case index * 1e6 s + motion time) so that one truth
+    // function serves every case.
+    std::vector<TimedPosition> timed;
+    timed.reserve(estimates.size());
+    for (const Estimate& e : estimates) {
+      const double t_rel = static_cast<double>(static_cast<int64_t>(e.t_us - e.c->trace.start_us)) * 1e-6;
+      timed.push_back({static_cast<double>(e.c - cases.data()) * kCaseTimeOffsetS + t_rel, e.x, e.y});
+    }
+    auto truth = [&cases](double t_s) {
+      const size_t i = static_cast<size_t>(std::max(0.0, std::floor((t_s + 0.5 * kCaseTimeOffsetS) / kCaseTimeOffsetS)));
+      const PreparedCase& c = cases[std::min(i, cases.size() - 1)];
+      const tracegen::TrueState s = c.trace.motion.at(t_s - static_cast<double>(i) * kCaseTimeOffsetS);
+      return Position2{s.position.x, s.position.y};
     };
-    m.lag_ms = minimise(rmse_at, -10.0, 30.0, 21, 0.02);
+    m.lag_ms = best_lag_ms(timed, truth);
   }
   if (options.cost && !cases.empty()) {
     m.ns_per_tick = time_pipeline(config, cases.front());

@@ -1,0 +1,164 @@
+// Trace files as ff-tracegen writes them: SPEC.md's format, read back by the
+// project's own reader, truth at every tick, and the bundled traces.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "frictionfield/host/trace_csv.hpp"
+#include "sensor_model.hpp"
+#include "trace_writer.hpp"
+
+namespace ff::tracegen {
+namespace {
+
+TEST(FormatNumber, ShortestFixedThreeDecimals) {
+  EXPECT_EQ(format_number(1.5), "1.5");
+  EXPECT_EQ(format_number(2.0), "2");
+  EXPECT_EQ(format_number(123.4567), "123.457");
+  EXPECT_EQ(format_number(-0.0001), "0");
+  EXPECT_EQ(format_number(-3.25), "-3.25");
+  EXPECT_EQ(format_number(65535.0), "65535");
+  EXPECT_EQ(format_number(std::nan("")), "nan");
+  EXPECT_EQ(format_number(HUGE_VAL), "inf");
+  EXPECT_EQ(format_number(-HUGE_VAL), "-inf");
+}
+
+TraceOptions faulty() {
+  TraceOptions o;
+  o.seed = 19;
+  o.motion.duration_s = 8.0;
+  o.motion.lifts = 1;
+  o.motion.rests = 1;
+  o.faults.duplicates = 3;
+  o.faults.non_finite = 5;
+  o.faults.off_screen = 2;
+  o.faults.wrap = true;
+  return o;
+}
+
+TEST(WriteTrace, ReadsBackWithTheProjectsReader) {
+  const GeneratedTrace t = generate_trace(faulty());
+  std::stringstream csv;
+  write_trace(csv, t, true);
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "t_us,x,y,touch,x_true,y_true,event");
+  csv.seekg(0);
+  std::vector<host::TraceRow> rows;
+  host::TraceError error;
+  ASSERT_TRUE(host::read_sensor_trace(csv, rows, error)) << error.to_string("generated");
+  ASSERT_EQ(rows.size(), t.samples.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const TraceSample& s = t.samples[i];
+    EXPECT_EQ(rows[i].t_us, s.t_us);  // 64-bit: past 2^32 intact
+    EXPECT_EQ(rows[i].touch, s.touch);
+    if (!s.touch) continue;
+    for (auto [read, written] : {std::pair<float, double>{rows[i].x, s.x}, {rows[i].y, s.y}}) {
+      if (std::isnan(written)) {
+        EXPECT_TRUE(std::isnan(read));
+      } else if (std::isinf(written)) {
+        EXPECT_EQ(static_cast<double>(read), written);
+      } else {
+        EXPECT_NEAR(static_cast<double>(read), written, 0.0005 + 1e-4 * std::fabs(written));
+      }
+    }
+  }
+}
+
+TEST(WriteTruthTicks, EveryTickFromTheFirstReportToTheLast) {
+  TraceOptions o;
+  o.seed = 23;
+  o.motion.duration_s = 3.0;
+  o.motion.lifts = 1;
+  const GeneratedTrace t = generate_trace(o);
+  std::stringstream csv;
+  int progress_calls = 0;
+  double last_fraction = 0.0;
+  const uint64_t rows = write_truth_ticks(csv, t, [&](double f) {
+    ++progress_calls;
+    EXPECT_GE(f, last_fraction);
+    last_fraction = f;
+  });
+  EXPECT_EQ(last_fraction, 1.0);
+  EXPECT_GT(progress_calls, 10);
+  const uint64_t t0 = t.samples.front().t_us;
+  EXPECT_EQ(rows, (t.end_us() - t0 + 499) / 500 + 1);
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "t_us,x_true,y_true,vx_true,vy_true,touch");
+  uint64_t k = 0, lifted = 0;
+  while (std::getline(csv, line)) {
+    std::istringstream f(line);
+    std::string cell[6];
+    for (auto& c : cell) std::getline(f, c, ',');
+    const uint64_t t_us = std::stoull(cell[0]);
+    ASSERT_EQ(t_us, t0 + 500 * k);
+    const TrueState s = t.truth_at(t_us);
+    EXPECT_EQ(cell[5], s.touching ? "1" : "0");
+    if (s.touching) {
+      EXPECT_NEAR(std::stod(cell[1]), s.position.x, 0.0005);
+      EXPECT_NEAR(std::stod(cell[4]), s.velocity.y, 0.0005 + 1e-6 * std::fabs(s.velocity.y));
+    } else {
+      EXPECT_EQ(cell[1], "nan");
+      ++lifted;
+    }
+    ++k;
+  }
+  EXPECT_EQ(k, rows);
+  EXPECT_GT(lifted, 150000u / 500u - 12u);  // one lift of at least 0.15 s
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(BundledTraces, GeneratorStillReproducesThemBitForBit) {
+  // generate.sh: --strategy along --duration 10 --seed 1 --noise low
+  TraceOptions o;
+  o.seed = 1;
+  o.motion.strategy = Strategy::Along;
+  o.motion.duration_s = 10.0;
+  o.sensor.noise_px = kNoiseLowPx;
+  std::ostringstream csv;
+  write_trace(csv, generate_trace(o), false);
+  std::istringstream made(csv.str()), bundled(read_file(std::string(FF_TRACE_DIR) + "/gen_along_low.csv"));
+  std::string a, b;
+  size_t line = 0;
+  for (;;) {
+    const bool more_a = static_cast<bool>(std::getline(made, a));
+    const bool more_b = static_cast<bool>(std::getline(bundled, b));
+    ++line;
+    ASSERT_EQ(more_a, more_b) << "lengths differ at line " << line << ": run test/traces/generate.sh";
+    if (!more_a) break;
+    ASSERT_EQ(a, b) << "line " << line << " differs: run test/traces/generate.sh";
+  }
+  EXPECT_GT(line, 1000u);
+}
+
+TEST(BundledTraces, EveryTraceIsReadableAndDescribedInTheReadme) {
+  const std::string readme = read_file(std::string(FF_TRACE_DIR) + "/README.md");
+  const char* kTraces[] = {
+      "gen_along_low.csv", "gen_across_high_px.csv", "gen_mixed_zforce_rests.csv", "gen_all_faults.csv",
+      "gen_clock_wrap.csv", "edge_header_only.csv", "edge_single_sample.csv", "edge_no_finger.csv",
+      "edge_columns_reordered.csv", "edge_duplicate_times.csv", "edge_nan_inf.csv", "edge_off_screen.csv",
+      "edge_jump.csv", "edge_clock_wrap.csv", "edge_gaps.csv", "edge_lift_and_return.csv", "edge_rest.csv",
+  };
+  for (const char* name : kTraces) {
+    EXPECT_NE(readme.find(std::string("`") + name + "`"), std::string::npos) << name << " missing from README.md";
+    std::vector<host::TraceRow> rows;
+    host::TraceError error;
+    EXPECT_TRUE(host::read_sensor_trace_file(std::string(FF_TRACE_DIR) + "/" + name, rows, error))
+        << error.to_string(name);
+  }
+}
+
+}  // namespace
+}  // namespace ff::tracegen

@@ -1,0 +1,162 @@
+// The benchmark's evaluation: tick timing, the ideal renderer against
+// SPEC.md's formulas, known behaviour of the thesis pipeline, the goal, and
+// the report.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "bench_report.hpp"
+#include "motion.hpp"
+#include "proposed_config.hpp"
+#include "tracking_evaluation.hpp"
+
+namespace ff::bench {
+namespace {
+
+// SPEC.md "heightmap": G = 1/2 grad Z_path + 1/2 grad Z_cone, in double.
+void heightmap_gradient(double x, double y, double rise, double& gx, double& gy) {
+  const double a = 0.2;
+  const double u = y - tracegen::path_y(x, rise);
+  const double d = (u > 0 ? 1.0 : (u < 0 ? -1.0 : 0.0)) * a * a * u * u / (1.0 + a * a * u * u);
+  const double path_gx = d * -tracegen::path_slope(x, rise), path_gy = d;
+  const double tx = 700.0, ty = 240.0 + rise;
+  const double r = std::hypot(x - tx, y - ty);
+  gx = 0.5 * path_gx + 0.5 * (x - tx) / r;
+  gy = 0.5 * path_gy + 0.5 * (y - ty) / r;
+}
+
+double frictionmap(double x, double y, double rise) {
+  const double u = std::fabs(y - tracegen::path_y(x, rise));
+  const double t = std::clamp((30.0 - u) / 20.0, 0.0, 1.0);
+  return t * t * t * (10.0 + t * (-15.0 + 6.0 * t));
+}
+
+TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
+  BenchCase spec = standard_cases(1.0, 6.0)[0];  // along, target top
+  ASSERT_EQ(spec.target, Target::Top);
+  const PreparedCase c = prepare_case(spec);
+  ASSERT_FALSE(c.ticks.empty());
+  EXPECT_EQ(c.ticks.front().t_us, c.trace.samples.front().t_us);
+  EXPECT_GE(c.ticks.back().t_us, c.trace.end_us());
+  EXPECT_LT(c.ticks.back().t_us, c.trace.end_us() + 500);
+  // max|G| over the screen's pixel centres, in double.
+  double max_gradient = 0.0;
+  for (int y = 0; y < 480; ++y) {
+    for (int x = 0; x < 800; ++x) {
+      double gx, gy;
+      heightmap_gradient(x, y, -200.0, gx, gy);
+      max_gradient = std::max(max_gradient, std::hypot(gx, gy));
+    }
+  }
+  int checked = 0;
+  for (size_t k = 0; k < c.ticks.size(); k += 97) {
+    const TickTruth& t = c.ticks[k];
+    ASSERT_EQ(t.t_us, c.ticks.front().t_us + 500 * k);
+    if (!t.state.touching) continue;
+    const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
+    double expected_hm = 0.5;
+    if (speed > 0.0) {
+      double gx, gy;
+      heightmap_gradient(t.state.position.x, t.state.position.y, -200.0, gx, gy);
+      expected_hm = 0.5 - (t.state.velocity.x * gx + t.state.velocity.y * gy) / speed / (2.0 * max_gradient);
+    }
+    EXPECT_NEAR(static_cast<double>(t.heightmap_ideal), expected_hm, 1e-3) << k;
+    EXPECT_NEAR(static_cast<double>(t.frictionmap_ideal), frictionmap(t.state.position.x, t.state.position.y, -200.0),
+                2e-4)
+        << k;
+    ++checked;
+  }
+  EXPECT_GT(checked, 100);
+}
+
+class StandardSet : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    for (double noise : {1.0, 2.5}) {
+      auto& level = noise < 2.0 ? low_ : high_;
+      level = new std::vector<PreparedCase>();
+      for (const BenchCase& c : standard_cases(noise, 12.0)) level->push_back(prepare_case(c));
+    }
+  }
+  static void TearDownTestSuite() {
+    delete low_;
+    delete high_;
+  }
+  static EvalOptions no_cost() {
+    EvalOptions o;
+    o.cost = false;
+    return o;
+  }
+  static std::vector<PreparedCase>* low_;
+  static std::vector<PreparedCase>* high_;
+};
+std::vector<PreparedCase>* StandardSet::low_ = nullptr;
+std::vector<PreparedCase>* StandardSet::high_ = nullptr;
+
+TEST_F(StandardSet, ThesisPipelineLagsAbout7ms) {
+  // Issue 3: "lags about 7 ms behind the finger".
+  const Metrics m = evaluate(TrackerConfig::thesis(), *low_, no_cost());
+  EXPECT_GT(m.lag_ms, 5.0);
+  EXPECT_LT(m.lag_ms, 9.0);
+  EXPECT_GT(m.moving_ticks, 50000u);
+  EXPECT_GT(m.rest_ticks, 1000u);
+  // No fade in the thesis: a resting finger renders a full +-0.5 swing (RMS of
+  // v_hat . G_norm over random directions).
+  EXPECT_GT(m.heightmap_rest_rms, 0.2);
+}
+
+TEST_F(StandardSet, ProposedKalmanMeetsTheGoalAtBothNoiseLevels) {
+  for (const auto* level : {low_, high_}) {
+    const Metrics thesis = evaluate(TrackerConfig::thesis(), *level, no_cost());
+    const Metrics proposed = evaluate(proposed_tracker(), *level, no_cost());
+    EXPECT_LE(proposed.heightmap_rms, 0.5 * thesis.heightmap_rms);
+    EXPECT_LE(proposed.lag_ms, 2.0);
+    EXPECT_LE(proposed.frictionmap_rms, thesis.frictionmap_rms);
+    // The fade works at rest: under half the thesis pipeline's chatter.
+    EXPECT_LT(proposed.heightmap_rest_rms, 0.5 * thesis.heightmap_rest_rms);
+  }
+}
+
+TEST_F(StandardSet, SplitFilterKeepsTheDirectionAndRemovesTheLag) {
+  TrackerConfig position = proposed_tracker();
+  position.kalman.accel_noise_px_s2 = 700.0f;
+  position.kalman.measurement_noise_px = 1.5f;
+  const TrackerConfig direction = proposed_tracker();
+  const Metrics single = evaluate(direction, *low_, no_cost());
+  const Metrics split = evaluate(position, *low_, no_cost(), &direction);
+  EXPECT_DOUBLE_EQ(split.direction_mean_deg, single.direction_mean_deg);
+  EXPECT_LT(split.lag_ms, 0.5);
+  EXPECT_LT(split.position_rmse_px, single.position_rmse_px);
+}
+
+TEST(Report, GoalCheckAndTable) {
+  Metrics thesis, fine;
+  thesis.heightmap_rms = 0.2;
+  thesis.frictionmap_rms = 0.04;
+  fine.heightmap_rms = 0.08;
+  fine.frictionmap_rms = 0.03;
+  fine.lag_ms = 1.5;
+  const std::vector<ReportRow> rows = {{"thesis", "low", thesis}, {"recommended()", "low", fine}};
+  const std::vector<GoalCheck> goal = check_goal(rows, "recommended()");
+  ASSERT_EQ(goal.size(), 1u);
+  EXPECT_DOUBLE_EQ(goal[0].heightmap_ratio, 0.4);
+  EXPECT_DOUBLE_EQ(goal[0].frictionmap_ratio, 0.75);
+  EXPECT_TRUE(goal[0].met());
+  std::ostringstream out;
+  write_report(out, rows, 30.0, 50.0);
+  EXPECT_NE(out.str().find("| recommended() | low | 0.00 | 0.00 | 1.50 |"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("heightmap error 40 %"), std::string::npos);
+  EXPECT_NE(out.str().find(": met."), std::string::npos);
+}
+
+TEST(Report, MarkedSectionIsReplacedOrAppended) {
+  const std::string begin = "<!-- track-bench:begin -->", end = "<!-- track-bench:end -->";
+  EXPECT_EQ(replace_marked_text("# Title\nText", "T1\n"), "# Title\nText\n" + begin + "\nT1\n" + end + "\n");
+  const std::string doc = "A\n" + begin + "\nold\n" + end + "\nB\n";
+  EXPECT_EQ(replace_marked_text(doc, "new\n"), "A\n" + begin + "\nnew\n" + end + "\nB\n");
+}
+
+}  // namespace
+}  // namespace ff::bench
