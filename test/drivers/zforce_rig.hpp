@@ -23,18 +23,18 @@ struct ZforceRig {
     model.set_calibration(model_calibration ? *model_calibration : config.calibration);
   }
 
-  // Boot and configuration, polling every millisecond from t = 0. Returns
-  // the time it reached Running (or `limit_us`).
-  uint32_t configure(uint32_t limit_us = 2000000) {
-    sensor.begin(0);
-    for (uint32_t t = 0; t < limit_us; t += 1000) {
+  // Boot and configuration, polling every millisecond from `from_us`.
+  // Returns the time it reached Running or Failed (or gave up after `limit_us`).
+  uint32_t configure(uint32_t from_us = 0, uint32_t limit_us = 2000000) {
+    sensor.begin(from_us);
+    for (uint32_t t = from_us; t - from_us < limit_us; t += 1000) {
       model.advance_to(t);
       SensorSample s;
       while (sensor.poll(t, s)) {
       }
       if (sensor.state() == ZforceState::Running || sensor.state() == ZforceState::Failed) return t;
     }
-    return limit_us;
+    return from_us + limit_us;
   }
 
   // The main loop from `from_us` to `to_us` every `step_us`: all samples.
