@@ -147,7 +147,7 @@ TEST(Report, GoalCheckAndTable) {
   std::ostringstream out;
   write_report(out, rows, 30.0, 50.0);
   EXPECT_NE(out.str().find("| recommended() | low | 0.00 | 0.00 | 1.50 |"), std::string::npos) << out.str();
-  EXPECT_NE(out.str().find("heightmap error 40 %"), std::string::npos);
+  EXPECT_NE(out.str().find("recommended(): heightmap error 40 %"), std::string::npos);
   EXPECT_NE(out.str().find(": met."), std::string::npos);
 }
 
