@@ -27,6 +27,7 @@ const char* to_string(Estimator e) {
     case Estimator::ThesisTicks: return "thesis-ticks";
     case Estimator::TimedExtrapolation: return "timed-extrapolation";
     case Estimator::Kalman: return "kalman";
+    case Estimator::SplitKalman: return "split-kalman";
   }
   return "?";
 }
@@ -98,6 +99,8 @@ void Tracker::reset() {
   stale_reported_ = false;
   kx_ = KalmanAxis{};
   ky_ = KalmanAxis{};
+  px_ = KalmanAxis{};
+  py_ = KalmanAxis{};
   have_tick_ = false;
   have_tick_candidate_ = false;
   filters_fresh_ = false;
@@ -128,6 +131,9 @@ void Tracker::restart_at(const SensorSample& s) {
   const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
   kx_.start(s.x, r);
   ky_.start(s.y, r);
+  const float rp = config_.position_kalman.measurement_noise_px * config_.position_kalman.measurement_noise_px;
+  px_.start(s.x, rp);
+  py_.start(s.y, rp);
   filters_fresh_ = false;
 }
 
@@ -149,6 +155,15 @@ void Tracker::accept(const SensorSample& s) {
   ky_.predict(dt_s, q);
   kx_.update(s.x, r);
   ky_.update(s.y, r);
+  if (config_.estimator == Estimator::SplitKalman) {
+    const KalmanConfig& pk = config_.position_kalman;
+    const float qp = pk.accel_noise_px_s2 * pk.accel_noise_px_s2;
+    const float rp = pk.measurement_noise_px * pk.measurement_noise_px;
+    px_.predict(dt_s, qp);
+    py_.predict(dt_s, qp);
+    px_.update(s.x, rp);
+    py_.update(s.y, rp);
+  }
   last_ = s;
   ticks_since_sample_ = 0;
   lifting_ = false;
@@ -257,6 +272,11 @@ Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
       const float dt_s = static_cast<float>(extrapolation_us(now_us)) * 1e-6f;
       velocity = {kx_.v, ky_.v};
       return {kx_.p + kx_.v * dt_s, ky_.p + ky_.v * dt_s};
+    }
+    case Estimator::SplitKalman: {
+      const float dt_s = static_cast<float>(extrapolation_us(now_us)) * 1e-6f;
+      velocity = {kx_.v, ky_.v};  // smooth: the direction
+      return {px_.p + px_.v * dt_s, py_.p + py_.v * dt_s};  // fast: the position
     }
   }
   return {last_.x, last_.y};

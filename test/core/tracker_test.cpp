@@ -145,14 +145,14 @@ TEST(Tracker, RestingFingerHasNoDirection) {
 TEST(Tracker, DirectionFadesSmoothlyWithSpeed) {
   TrackerConfig c = TrackerConfig::recommended();
   Tracker t(c);
-  // Slow (below rest speed), medium, fast: |direction| 0, in (0, 1), 1.
-  for (float speed : {5.0f, 37.5f, 200.0f}) {
+  // Slow (below rest speed), midway, fast: |direction| 0, 1/2, 1.
+  for (float speed : {5.0f, 0.5f * (c.rest_speed_px_s + c.moving_speed_px_s), 200.0f}) {
     TrackerRun run(c);
     const auto states = run.replay(line(0, {300, 300}, {speed, 0}, 200), 0, 1990);
     const double len = static_cast<double>(length(states.back().direction));
     if (speed < c.rest_speed_px_s) EXPECT_EQ(len, 0.0);
     else if (speed > c.moving_speed_px_s) EXPECT_NEAR(len, 1.0, 1e-5);
-    else EXPECT_NEAR(len, 0.5, 0.05);  // 37.5 px/s is midway between 15 and 60
+    else EXPECT_NEAR(len, 0.5, 0.05);  // smoothstep(1/2)
   }
 }
 

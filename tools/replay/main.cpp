@@ -26,9 +26,10 @@ bool make_tracker(const std::string& name, const std::string& derivative, ff::Tr
   if (name == "thesis") out = ff::TrackerConfig::thesis();
   else if (name == "recommended") out = ff::TrackerConfig::recommended();
   else if (name == "kalman") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::Kalman; }
+  else if (name == "split-kalman") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::SplitKalman; }
   else if (name == "timed") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::TimedExtrapolation; }
   else if (name == "thesis-ticks") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::ThesisTicks; }
-  else return error = "unknown tracker '" + name + "': thesis, recommended, kalman, timed, thesis-ticks", false;
+  else return error = "unknown tracker '" + name + "': recommended, thesis, split-kalman, kalman, timed, thesis-ticks", false;
   if (derivative == "filtered") out.one_euro.derivative_from = ff::DerivativeFrom::PreviousFiltered;
   else if (derivative == "raw") out.one_euro.derivative_from = ff::DerivativeFrom::PreviousRaw;
   else return error = "--derivative is filtered or raw", false;
@@ -52,7 +53,8 @@ int main(int argc, char** argv) {
   app.add_option("trace", input, "sensor trace CSV (t_us,x,y,touch)")->required();
   app.add_option("-o,--output", output, "replay output CSV ('-' for stdout)")->capture_default_str();
   ff::host::add_scene_options(app, spec);
-  app.add_option("--tracker", tracker, "finger tracker: recommended, thesis, kalman, timed, thesis-ticks")
+  app.add_option("--tracker", tracker, "finger tracker: recommended (split Kalman), thesis (ticks + 1-euro, exactly as the thesis),\n"
+                 "split-kalman, kalman, timed (extrapolate to the tick's time + 1-euro), thesis-ticks")
       ->capture_default_str();
   app.add_option("--derivative", derivative, "1-euro derivative from the previous filtered or raw value")
       ->capture_default_str();
