@@ -348,6 +348,8 @@ void ReferenceThesisTracker::on_sample(const SensorSample& s) {
   n_ = 0;
 }
 
+double ReferenceThesisTracker::filtered_speed() const { return std::hypot(ex_.dxhat, ey_.dxhat); }
+
 void ReferenceThesisTracker::on_tick(DVec& position, DVec& direction) {
   const double h = static_cast<double>(n_) * 500.0;
   ++n_;

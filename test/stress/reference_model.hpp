@@ -53,6 +53,9 @@ class ReferenceScene {
   double profile(double x, double y) const;  // PositionOnly, clamped to [0, 1]
   // max|G| over [0, 799] x [0, 479]: 4 px scan, then refinement of the best nodes.
   double max_gradient() const { return max_gradient_; }
+  // Normalise by another max|G| (the core's), so that the float32 evaluation
+  // is compared apart from the accuracy of the core's search for the maximum.
+  void use_max_gradient(double m) { max_gradient_ = m; }
   // Raw amplitude in [0, 1] at p for the direction d (SPEC.md: A = 0.5 - d . G / (2 max|G|)).
   double raw_amplitude(double px, double py, double dx, double dy) const;
 
@@ -93,6 +96,7 @@ class ReferenceThesisTracker {
   // Position and direction at the next tick.
   void on_tick(DVec& position, DVec& direction);
   bool present() const { return have_; }
+  double filtered_speed() const;  // |(dxhat, dyhat)|, px/s
 
  private:
   struct Euro {

@@ -24,6 +24,7 @@ struct ClassResult {
   double worst_rendering = 0.0;  // max |A_float - A_double|, closed-form scenes
   double worst_table = 0.0;      // the same for table scenes (tabulation error; not a failure)
   int64_t worst_recovery = 0;    // ticks
+  double worst_max_gradient_error = 0.0;  // relative, the core's max|G| search against the double scan
   std::string first_failure;     // with the seed that reproduces it
   std::string note;              // class-specific measurement
 };

@@ -46,7 +46,17 @@ void InvariantChecker::fail(const Tick& t, const std::string& what) {
   }
 }
 
-void InvariantChecker::on_tick(const HapticPipeline&, const Tick& t) {
+void InvariantChecker::on_tick(const HapticPipeline& pipeline, const Tick& t) {
+  if (first_tick_) {
+    // The amplitude is compared with the core's own max|G|; how far that is
+    // from the true maximum is measured here, once.
+    first_tick_ = false;
+    const double core_max = pipeline.plan().stats().max_gradient;
+    if (pipeline.plan().needs() == Needs::PositionAndDirection && scene_.max_gradient() > 0.0) {
+      max_gradient_error = std::fabs(core_max - scene_.max_gradient()) / scene_.max_gradient();
+      scene_.use_max_gradient(core_max);
+    }
+  }
   ++ticks;
   const TickOutput& o = t.out;
   const double a = o.amplitude;
