@@ -74,7 +74,7 @@ std::vector<NamedConfig> standard_configs(const Tuned& tuned, const Tuned& split
        with_derivative(with_estimator(rec, Estimator::TimedExtrapolation), DerivativeFrom::PreviousFiltered)},
       {"timed extrapolation + 1-euro (raw)",
        with_derivative(with_estimator(rec, Estimator::TimedExtrapolation), DerivativeFrom::PreviousRaw)},
-      {"kalman (header defaults)", with_estimator(TrackerConfig{}, Estimator::Kalman)},
+      {"kalman, one filter (recommended() constants)", with_estimator(TrackerConfig{}, Estimator::Kalman)},
       {"recommended()", rec},
   };
   if (tuned.accel_noise_px_s2 > 0.0f) {
