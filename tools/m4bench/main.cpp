@@ -1,0 +1,181 @@
+// ff-m4bench: Cortex-M4F cost of every evaluation strategy, of scene
+// preparation, of each tracker configuration and of the whole 2 kHz tick,
+// in instructions, under qemu mps2-an386 with -icount shift=0 (deterministic:
+// the same numbers every run). Prints CSV records through semihosting; the
+// host's ff-bench supplies the errors, tools/bench/make_report.py merges both.
+//
+// Command line (semihosting): "smoke" runs closed forms, 8 px int16 tables and
+// every tracker briefly; nothing else runs everything.
+#include <cstring>
+
+#include "bench_cases.hpp"
+#include "bench_workload.hpp"
+#include "frictionfield/core/haptic_pipeline.hpp"
+#include "frictionfield/core/scene_plan.hpp"
+#include "semihosting.hpp"
+#include "systick_counter.hpp"
+
+namespace {
+
+using namespace ff;
+using namespace ff::bench;
+using ff::m4::Line;
+using ff::m4::SystickCounter;
+
+// The largest table measured (1 px, float, gradient: 800 x 480 x 2 x 4 bytes)
+// lives in PSRAM: the AN386 has room, the Teensy does not.
+constexpr size_t kBigTableBytes = 3u * 1024u * 1024u;
+alignas(8) __attribute__((section(".psram"))) unsigned char g_table[kBigTableBytes];
+
+// Static, as on the Teensy: two table slots of FF_TABLE_SLOT_BYTES each.
+HapticPipeline g_pipeline;
+ScenePlan g_plan;
+EvalPoint g_points[kEvalPoints];
+
+uint32_t g_instructions_per_count = 0;
+uint32_t g_clock_us = 1000;  // the stroke clock: strokes follow each other
+int g_failures = 0;
+
+int64_t instructions(uint64_t counts) { return static_cast<int64_t>(counts * g_instructions_per_count); }
+
+struct TickCost {
+  int64_t total = 0;
+  int64_t max = 0;
+  int ticks = 0;
+  uint32_t dac_sum = 0;
+};
+
+// One stroke through the pipeline; only tick() is timed (post_sample is the main loop's).
+TickCost run_pipeline_stroke() {
+  TickCost cost;
+  const FingerStroke stroke(g_clock_us);
+  for (int k = 0; k < FingerStroke::kTotalTicks; ++k) {
+    SensorSample s;
+    if (stroke.report_before(k, s)) g_pipeline.post_sample(s);
+    const uint64_t c0 = SystickCounter::counts();
+    const TickOutput out = g_pipeline.tick(stroke.tick_time(k));
+    const int64_t spent = instructions(SystickCounter::counts() - c0);
+    if (out.dac > kDacMax) ++g_failures;
+    if (k >= FingerStroke::kMovingTicks) continue;
+    if (k > 0 && !out.present) ++g_failures;  // the finger is on the glass all along
+    cost.total += spent;
+    cost.max = spent > cost.max ? spent : cost.max;
+    cost.dac_sum += out.dac;
+    ++cost.ticks;
+  }
+  g_clock_us += FingerStroke::kDurationUs;
+  return cost;
+}
+
+TickCost run_tracker_stroke(Tracker& tracker) {
+  TickCost cost;
+  const FingerStroke stroke(g_clock_us);
+  for (int k = 0; k < FingerStroke::kMovingTicks; ++k) {
+    SensorSample s;
+    const bool report = stroke.report_before(k, s);
+    const uint64_t c0 = SystickCounter::counts();
+    if (report) tracker.on_sample(s);
+    const TrackState st = tracker.on_tick(stroke.tick_time(k), true);
+    const int64_t spent = instructions(SystickCounter::counts() - c0);
+    if (!st.present) ++g_failures;
+    cost.total += spent;
+    cost.max = spent > cost.max ? spent : cost.max;
+    ++cost.ticks;
+  }
+  g_clock_us += FingerStroke::kDurationUs;
+  return cost;
+}
+
+void measure_case(const BenchCase& c, int eval_repeats) {
+  char id[96];
+  case_id(c, id, sizeof(id));
+  const SceneDefinition def = case_definition(c);
+
+  uint64_t c0 = SystickCounter::counts();
+  const PrepareStatus status = g_plan.prepare(def, g_table, sizeof(g_table));
+  const int64_t prepare = instructions(SystickCounter::counts() - c0);
+  if (status != PrepareStatus::Ok) {
+    ++g_failures;
+    Line().field("error").field(id).field(to_string(status)).print();
+    return;
+  }
+
+  c0 = SystickCounter::counts();
+  float sink = 0.0f;
+  for (int r = 0; r < eval_repeats; ++r) {
+    for (const EvalPoint& p : g_points) sink += g_plan.amplitude(p.position, p.direction);
+  }
+  const int64_t eval = instructions(SystickCounter::counts() - c0);
+  if (!(sink >= 0.0f)) ++g_failures;  // amplitudes are in [0, 1]: keeps the loop alive too
+  const uint32_t checksum = eval_checksum(g_plan, g_points, kEvalPoints);
+
+  // The whole tick, for every table the pipeline's slot can hold.
+  const PlanStats& stats = g_plan.stats();
+  TickCost tick;
+  int64_t pipeline_prepare = -1;
+  if (stats.table_bytes <= kTableSlotBytes) {
+    Condition condition;
+    condition.scene = def;
+    c0 = SystickCounter::counts();
+    const PrepareStatus ps = g_pipeline.set_condition(condition);
+    pipeline_prepare = instructions(SystickCounter::counts() - c0);
+    if (ps != PrepareStatus::Ok) {
+      ++g_failures;
+      Line().field("error").field(id).field(to_string(ps)).print();
+      return;
+    }
+    tick = run_pipeline_stroke();
+  }
+
+  Line()
+      .field("case").field(id).field(is_default(c) ? 1 : 0)
+      .field(prepare).field(static_cast<int64_t>(stats.gradient_evaluations))
+      .field(static_cast<int64_t>(stats.table_bytes)).field(static_cast<int64_t>(stats.plan_bytes))
+      .field(eval).field(static_cast<int64_t>(eval_repeats) * kEvalPoints).field(static_cast<int64_t>(checksum))
+      .field(tick.total).field(tick.ticks).field(tick.max).field(static_cast<int64_t>(tick.dac_sum))
+      .field(pipeline_prepare)
+      .print();
+}
+
+bool smoke_case(const BenchCase& c) {
+  return c.strategy.evaluation == Evaluation::ClosedForm ||
+         (c.strategy.table.spacing_px == 8.0f && c.strategy.table.storage == TableStorage::Int16 &&
+          c.strategy.table.source == TableSource::TabulatedGradient);
+}
+
+}  // namespace
+
+int main() {
+  SystickCounter::start();
+  char command[64];
+  ff::m4::command_line(command, sizeof(command));
+  const bool smoke = std::strstr(command, "smoke") != nullptr;
+
+  g_instructions_per_count = ff::m4::calibrate_instructions_per_count();
+  Line().field("m4bench").field(smoke ? "smoke" : "full").print();
+  Line().field("calibration").field(static_cast<int64_t>(g_instructions_per_count)).print();
+  if (g_instructions_per_count == 0) {
+    ff::m4::write_text("M4BENCH FAULT: SysTick does not count (run qemu with -icount shift=0)\n");
+    return 1;
+  }
+  Line().text("# case,id,default,prepare_instr,gradient_evaluations,table_bytes,plan_bytes,"
+              "eval_instr,evaluations,eval_checksum,tick_instr,ticks,tick_max_instr,tick_dac_sum,"
+              "pipeline_prepare_instr").print();
+
+  make_eval_points(g_points);
+  for (int i = 0; i < case_count(); ++i) {
+    const BenchCase c = case_at(i);
+    if (smoke && !smoke_case(c)) continue;
+    measure_case(c, smoke ? 1 : 8);
+  }
+
+  Line().text("# tracker,name,instr,ticks,max_instr").print();
+  for (int i = 0; i < kTrackerConfigCount; ++i) {
+    Tracker tracker(tracker_config(i));
+    const TickCost cost = run_tracker_stroke(tracker);
+    Line().field("tracker").field(tracker_config_name(i)).field(cost.total).field(cost.ticks).field(cost.max).print();
+  }
+
+  Line().field("done").field(g_failures).print();
+  return g_failures == 0 ? 0 : 1;
+}
