@@ -1,6 +1,7 @@
 #include "frictionfield/core/scene_plan.hpp"
 
 #include <cmath>
+#include <initializer_list>
 
 namespace ff {
 
@@ -230,7 +231,7 @@ float ScenePlan::find_max_gradient() {
   // Coarse scan of the screen (edges included), then a compass search from
   // the best few nodes: ~2k field evaluations instead of 384k pixels.
   constexpr float kStep = 16.0f;
-  constexpr int kCandidates = 4;
+  constexpr int kCandidates = 6;
   Vec2 best_p[kCandidates];
   float best_m[kCandidates];  // |G| (not squared)
   for (int i = 0; i < kCandidates; ++i) best_m[i] = -1.0f;
@@ -260,6 +261,23 @@ float ScenePlan::find_max_gradient() {
     for (int i = 0; i < nx; ++i) {
       const float x = i == nx - 1 ? kScreenMaxX : static_cast<float>(i) * kStep;
       consider({x, y}, magnitude({x, y}));
+    }
+  }
+  // A polyline segment can be steeper and narrower than the scan step: seed
+  // the search on every segment, where a valley's slope saturates (the
+  // screen's top and bottom edges) and near the path.
+  for (int e = 0; e < count_; ++e) {
+    const FieldElement& el = elements_[e];
+    if (el.kind != ElementKind::PathSink || el.valley.curve.kind != CurveKind::Polyline) continue;
+    const PathCurve& c = el.valley.curve;
+    for (int k = 1; k < c.count; ++k) {
+      const float x = clamp(0.5f * (c.points[k - 1].x + c.points[k].x), 0.0f, kScreenMaxX);
+      const float near = 3.0f / el.valley.a;
+      const float yp = c.at(x).y;
+      for (float y : {0.0f, kScreenMaxY, yp - near, yp + near}) {
+        const Vec2 p{x, clamp(y, 0.0f, kScreenMaxY)};
+        consider(p, magnitude(p));
+      }
     }
   }
 

@@ -207,13 +207,6 @@ void Tracker::on_sample(const SensorSample& in) {
     return;
   }
   if (elapsed_us(s.t_us, last_.t_us) <= 0) {
-    if (have_tick_ && elapsed_us(last_.t_us, last_tick_us_) > static_cast<int32_t>(config_.max_sample_lead_us)) {
-      // The newest accepted report now lies in the future of a re-anchored
-      // tick clock: the time base moved, so start again from this report.
-      faults_.add(Fault::TimeBaseReset);
-      restart_at(s);
-      return;
-    }
     faults_.add(Fault::NonIncreasingTime);
     return;
   }
@@ -313,6 +306,11 @@ TrackState Tracker::on_tick(uint32_t now_us, bool need_filter) {
         have_tick_candidate_ = true;
         return state_;
       }
+      // The clock moved: the reports' ages are unknown (a leap beyond 2^31 us
+      // even looks like the past), so the finger is found again from the
+      // next report instead of rendering an old one.
+      faults_.add(Fault::TimeBaseReset);
+      lose_finger();
     }
   }
   have_tick_ = true;

@@ -280,7 +280,7 @@ TEST(Tracker, OneTickGlitchIsIgnoredAClockStepIsFollowed) {
   EXPECT_TRUE(t.on_tick(40500).present);  // the next tick agrees with the old clock: carry on
   EXPECT_EQ(t.faults()[Fault::BadTickTime], 1u);
   // The whole clock steps back 1 s (ticks and reports): two ticks confirm it,
-  // the next report restarts tracking there.
+  // the finger is dropped and the next report touches down again.
   t.on_tick(1000000u - 999000u);
   t.on_tick(1000000u - 998500u);
   t.on_sample({1000000u - 998400u, 150, 100, true});
@@ -288,6 +288,7 @@ TEST(Tracker, OneTickGlitchIsIgnoredAClockStepIsFollowed) {
   EXPECT_TRUE(after.present);
   EXPECT_NEAR(static_cast<double>(after.position.x), 150.0, 1e-3);
   EXPECT_EQ(t.faults()[Fault::TimeBaseReset], 1u);
+  EXPECT_EQ(t.faults()[Fault::TouchDown], 2u);
 }
 
 }  // namespace

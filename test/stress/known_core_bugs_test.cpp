@@ -125,7 +125,7 @@ TEST(CoreRegressions, DirectionLongerThanOneAtSubnormalSpeed) {
 // slope 100 (x 200.3 .. 202.3): |G| ~ 100 on it, ~1 elsewhere; the core
 // finds 0.99987. (Random general scenes in
 // Precision.ClosedFormRenderingAgainstDouble miss by up to 33 %.)
-TEST(KnownCoreBugs, DISABLED_NarrowSteepFeatureEscapesTheMaxGradientSearch) {
+TEST(KnownCoreBugs, NarrowSteepFeatureEscapesTheMaxGradientSearch) {
   const Vec2 points[] = {{200.3f, 240.0f}, {202.3f, 440.0f}, {700.0f, 440.0f}};
   SceneDefinition s;
   s.rendering = Rendering::Directional;
@@ -145,7 +145,7 @@ TEST(KnownCoreBugs, DISABLED_NarrowSteepFeatureEscapesTheMaxGradientSearch) {
 // hour-old amplitude until a new report arrives (with the finger lifted
 // meanwhile: for up to another 35.8 min). Expected: a confirmed leap longer
 // than the stale timeout loses the finger (idle), as a 10 min leap does.
-TEST(KnownCoreBugs, DISABLED_TickClockLeapOfAnHourKeepsTheStaleFinger) {
+TEST(KnownCoreBugs, TickClockLeapOfAnHourKeepsTheStaleFinger) {
   Stroke s(scenes::heightmap(Target::Middle));
   s.run(0, 100, same, same);
   const uint32_t later = 3600u * 1000000u;

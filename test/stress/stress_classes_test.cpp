@@ -62,7 +62,7 @@ FF_STRESS_CLASS_TEST(extreme_weights_scale_invariance)
 FF_STRESS_CLASS_TEST(direction_unit_length)
 
 // Known core bug (docs/stress.md "Findings"): enable when the core is fixed.
-TEST(StressClass, DISABLED_max_gradient_search) { expect_clean("max_gradient_search"); }
+TEST(StressClass, max_gradient_search) { expect_clean("max_gradient_search"); }
 
 TEST(StressClass, EveryClassIsTested) {
   int known = 0;

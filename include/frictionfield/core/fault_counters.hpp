@@ -20,7 +20,7 @@ enum class Fault : uint8_t {
   BadCalibration,        // non-monotonic or out-of-range calibration: linear used
   BadTickTime,           // tick time stood still, ran back or leapt: state repeated until it settles
   SampleTimeImplausible, // report stamped in the future or long past by the tick clock: dropped
-  TimeBaseReset,         // both clocks moved together (timer re-initialised): tracking restarted
+  TimeBaseReset,         // the tick clock moved (confirmed leap or step back): finger found again
   kCount
 };
 
