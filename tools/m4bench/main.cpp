@@ -137,6 +137,61 @@ void measure_case(const BenchCase& c, int eval_repeats) {
       .print();
 }
 
+// The pieces of a tick, measured alone, to say where a whole tick's time goes.
+void measure_components() {
+  Line().text("# component,name,instr,count").print();
+  auto report = [](const char* name, int64_t instr, int count) {
+    Line().field("component").field(name).field(instr).field(count).print();
+  };
+  {
+    // What a scene that needs nothing still costs the tracker: presence and the last sample.
+    Tracker tracker(TrackerConfig::recommended());
+    const FingerStroke stroke(g_clock_us);
+    const uint64_t c0 = SystickCounter::counts();
+    for (int k = 0; k < FingerStroke::kMovingTicks; ++k) {
+      SensorSample s;
+      if (stroke.report_before(k, s)) tracker.on_sample(s);
+      if (!tracker.on_tick(stroke.tick_time(k), false).present) ++g_failures;
+    }
+    report("tracker recommended() without filtering (on_sample + on_tick(need_filter=false))",
+           instructions(SystickCounter::counts() - c0), FingerStroke::kMovingTicks);
+    g_clock_us += FingerStroke::kDurationUs;
+  }
+  {
+    AmplitudeMap map;
+    map.configure(AmplitudeSettings{});
+    uint32_t sum = 0;
+    const uint64_t c0 = SystickCounter::counts();
+    for (const EvalPoint& p : g_points) sum += map.dac_code(map.scale(p.position.x * (1.0f / kScreenMaxX)));
+    report("AmplitudeMap::scale + dac_code (strength 1 linear calibration)",
+           instructions(SystickCounter::counts() - c0), kEvalPoints);
+    if (sum == 0) ++g_failures;
+  }
+  {
+    SampleMailbox mailbox;
+    SensorSample s;
+    s.touch = true;
+    int taken = 0;
+    const uint64_t c0 = SystickCounter::counts();
+    for (int i = 0; i < kEvalPoints; ++i) {
+      mailbox.post(s);
+      taken += mailbox.take(s) ? 1 : 0;
+    }
+    report("SampleMailbox post + take", instructions(SystickCounter::counts() - c0), kEvalPoints);
+    if (taken != kEvalPoints) ++g_failures;
+  }
+  {
+    // An empty tick: no finger (idle code), the neutral scene.
+    Condition neutral;
+    if (g_pipeline.set_condition(neutral) != PrepareStatus::Ok) ++g_failures;
+    const uint64_t c0 = SystickCounter::counts();
+    for (int k = 0; k < FingerStroke::kMovingTicks; ++k) g_pipeline.tick(g_clock_us + 500u * static_cast<uint32_t>(k));
+    report("HapticPipeline::tick without a finger", instructions(SystickCounter::counts() - c0),
+           FingerStroke::kMovingTicks);
+    g_clock_us += FingerStroke::kDurationUs;
+  }
+}
+
 bool smoke_case(const BenchCase& c) {
   return c.strategy.evaluation == Evaluation::ClosedForm ||
          (c.strategy.table.spacing_px == 8.0f && c.strategy.table.storage == TableStorage::Int16 &&
@@ -175,6 +230,8 @@ int main() {
     const TickCost cost = run_tracker_stroke(tracker);
     Line().field("tracker").field(tracker_config_name(i)).field(cost.total).field(cost.ticks).field(cost.max).print();
   }
+
+  measure_components();
 
   Line().field("done").field(g_failures).print();
   return g_failures == 0 ? 0 : 1;
