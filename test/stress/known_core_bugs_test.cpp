@@ -1,7 +1,7 @@
 // Core defects found by the stress suite, each reduced to one input with the
 // expected and the observed behaviour (docs/stress.md "Findings"). Fixed
-// ones stay as regression tests (CoreRegressions); open ones are DISABLED_
-// (KnownCoreBugs) until fixed: --gtest_also_run_disabled_tests runs them.
+// ones stay as regression tests (CoreRegressions); an open one is added as
+// DISABLED_ (KnownCoreBugs) until fixed (--gtest_also_run_disabled_tests).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -117,15 +117,15 @@ TEST(CoreRegressions, DirectionLongerThanOneAtSubnormalSpeed) {
   EXPECT_LE(longest, 1.0f + 1e-5f);  // was 1.18 while the resting finger's dxhat decayed
 }
 
-// Bug 6, open (scene_plan.cpp, find_max_gradient): max|G| comes from a 16 px scan
+// Bug 6, fixed in c7ddc3a (scene_plan.cpp, find_max_gradient): max|G| comes from a 16 px scan
 // and a compass search from the best 4 nodes, so a steep feature narrower
 // than the scan step is missed and max|G| is underestimated; G_norm then
 // exceeds the 0.5 that ScenePlan promises and the amplitude saturates at 0 or
 // 1 across it. Here a valley along a polyline with a 2 px wide segment of
 // slope 100 (x 200.3 .. 202.3): |G| ~ 100 on it, ~1 elsewhere; the core
-// finds 0.99987. (Random general scenes in
+// found 0.99987. (Random general scenes in
 // Precision.ClosedFormRenderingAgainstDouble miss by up to 33 %.)
-TEST(KnownCoreBugs, NarrowSteepFeatureEscapesTheMaxGradientSearch) {
+TEST(CoreRegressions, NarrowSteepFeatureEscapesTheMaxGradientSearch) {
   const Vec2 points[] = {{200.3f, 240.0f}, {202.3f, 440.0f}, {700.0f, 440.0f}};
   SceneDefinition s;
   s.rendering = Rendering::Directional;
@@ -133,11 +133,11 @@ TEST(KnownCoreBugs, NarrowSteepFeatureEscapesTheMaxGradientSearch) {
   auto plan = std::make_unique<ScenePlan>();
   ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
   const Vec2 on_segment{201.3f, 100.0f};  // u = 100 - 340 = -240: dz/du ~ -1, |G| = sqrt(1 + 100^2)
-  EXPECT_GE(static_cast<double>(plan->stats().max_gradient), 99.0);  // got 0.99987
-  EXPECT_LE(static_cast<double>(length(plan->normalized_gradient(on_segment))), 0.5 + 1e-6);  // got 49.99
+  EXPECT_GE(static_cast<double>(plan->stats().max_gradient), 99.0);  // was 0.99987
+  EXPECT_LE(static_cast<double>(length(plan->normalized_gradient(on_segment))), 0.5 + 1e-6);  // was 49.99
 }
 
-// Bug 7, open (tracker.cpp, on_tick): after the tick clock leaps forward by
+// Bug 7, fixed in c7ddc3a (tracker.cpp, on_tick): after the tick clock leaps forward by
 // more than 2^31 us (35.8 min: ticks stopped for an hour, or the host paused
 // a replay) and the leap is confirmed, the newest report looks 2^32 - 3.6e9
 // us in the *future*, so `elapsed_us(now, last_.t_us) > stale_timeout` never
@@ -145,14 +145,14 @@ TEST(KnownCoreBugs, NarrowSteepFeatureEscapesTheMaxGradientSearch) {
 // hour-old amplitude until a new report arrives (with the finger lifted
 // meanwhile: for up to another 35.8 min). Expected: a confirmed leap longer
 // than the stale timeout loses the finger (idle), as a 10 min leap does.
-TEST(KnownCoreBugs, TickClockLeapOfAnHourKeepsTheStaleFinger) {
+TEST(CoreRegressions, TickClockLeapOfAnHourKeepsTheStaleFinger) {
   Stroke s(scenes::heightmap(Target::Middle));
   s.run(0, 100, same, same);
   const uint32_t later = 3600u * 1000000u;
   s.pipeline->tick(later);
   const TickOutput t = s.pipeline->tick(later + 500u);  // the leap is confirmed here
-  EXPECT_FALSE(t.present);       // got true
-  EXPECT_EQ(t.amplitude, 0.0f);  // got 0.75 (the state of an hour ago)
+  EXPECT_FALSE(t.present);       // was true
+  EXPECT_EQ(t.amplitude, 0.0f);  // was 0.75 (the state of an hour ago)
 }
 
 }  // namespace

@@ -675,7 +675,7 @@ Case make_max_search(Rng& rng) {
     const ReferenceScene ref(scene);
     if (!(ref.max_gradient() > 0.0)) return std::string();
     measure = std::fabs(static_cast<double>(plan->stats().max_gradient) - ref.max_gradient()) / ref.max_gradient();
-    if (measure > 1e-3) {
+    if (measure > kMaxGradientBound) {
       char buf[120];
       std::snprintf(buf, sizeof buf, "core max|G| %.6g, double scan %.6g", static_cast<double>(plan->stats().max_gradient), ref.max_gradient());
       return std::string(buf);
@@ -742,7 +742,7 @@ const std::vector<StressClass>& stress_classes() {
       {"tick_time_glitch_ahead", "one tick told a time 2^30 .. 2^31 us ahead, then normal", false, tick_time_glitch_ahead},
       {"clock_set_back", "the time base steps back 10 ms .. 100 s mid-stroke (reports and ticks)", false, clock_set_back},
       {"second_finger_and_flapping", "reports from a second finger anywhere on screen, touch flapping 1/0", false, second_finger_and_flapping},
-      {"max_gradient_search", "max|G| of random general scenes (steep narrow polyline segments, textures) against a double scan", true, max_gradient_search},
+      {"max_gradient_search", "max|G| of random general scenes (steep narrow polyline segments, textures) against a double scan", false, max_gradient_search},
       {"direction_unit_length", "thesis tracker (raw derivative) resting without noise: |v_hat| = 1 as dxhat decays through subnormals", false, direction_unit_length},
   };
   return classes;

@@ -15,6 +15,9 @@ constexpr double kRenderingBound = 2e-3;
 // a run that never saw it (same presence, position within 0.5 px, amplitude
 // within 0.02) for good.
 constexpr int64_t kRecoveryBoundTicks = 400;
+// The core's max|G| search (coarse scan + compass search) against a double
+// 4 px scan with refinement, relative: it may miss a corner peak slightly.
+constexpr double kMaxGradientBound = 2e-2;
 
 struct ClassResult {
   std::string name;

@@ -54,21 +54,19 @@ FF_STRESS_CLASS_TEST(general_scenes)
 FF_STRESS_CLASS_TEST(tick_stalls_and_skips)
 FF_STRESS_CLASS_TEST(second_finger_and_flapping)
 
-// Found failing, fixed in the core (7706717): regression classes now.
+// Found failing, fixed in the core (7706717, c7ddc3a): regression classes now.
 FF_STRESS_CLASS_TEST(stamps_far_ahead)
 FF_STRESS_CLASS_TEST(tick_time_glitch_ahead)
 FF_STRESS_CLASS_TEST(clock_set_back)
 FF_STRESS_CLASS_TEST(extreme_weights_scale_invariance)
 FF_STRESS_CLASS_TEST(direction_unit_length)
-
-// Known core bug (docs/stress.md "Findings"): enable when the core is fixed.
-TEST(StressClass, max_gradient_search) { expect_clean("max_gradient_search"); }
+FF_STRESS_CLASS_TEST(max_gradient_search)
 
 TEST(StressClass, EveryClassIsTested) {
   int known = 0;
   for (const StressClass& c : stress_classes()) known += c.known_bug ? 1 : 0;
   EXPECT_EQ(stress_classes().size(), 22u);
-  EXPECT_EQ(known, 1);
+  EXPECT_EQ(known, 0);  // docs/stress.md "Findings": every bug found so far is fixed
 }
 
 }  // namespace

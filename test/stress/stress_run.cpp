@@ -52,7 +52,7 @@ void InvariantChecker::on_tick(const HapticPipeline& pipeline, const Tick& t) {
     // from the true maximum is measured here, once.
     first_tick_ = false;
     const double core_max = pipeline.plan().stats().max_gradient;
-    if (pipeline.plan().needs() == Needs::PositionAndDirection && scene_.max_gradient() > 0.0) {
+    if (closed_form_ && pipeline.plan().needs() == Needs::PositionAndDirection && scene_.max_gradient() > 0.0) {
       max_gradient_error = std::fabs(core_max - scene_.max_gradient()) / scene_.max_gradient();
       scene_.use_max_gradient(core_max);
     }

@@ -58,7 +58,7 @@ class InvariantChecker : public TickObserver {
   uint64_t dac_ties = 0;            // reference exactly between two codes: +-1 allowed
   double worst_rendering = 0.0;     // max |A_float - A_double| (closed-form scenes)
   double worst_table = 0.0;         // the same for table scenes: tabulation error, reported only
-  double max_gradient_error = 0.0;  // |max|G|_core - max|G|_double| / max|G|_double (directional scenes)
+  double max_gradient_error = 0.0;  // |max|G|_core - max|G|_double| / max|G|_double (closed-form directional scenes)
   std::string first_violation;
 
  private:
