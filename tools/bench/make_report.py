@@ -79,6 +79,8 @@ def read_m4(path):
                 m4["trackers"][fields[1]] = {"mean": int(fields[2]) / int(fields[3]), "max": int(fields[4])}
             elif kind == "component":
                 m4["components"][fields[1]] = int(fields[2]) / int(fields[3])
+            elif kind == "stopwatch_overhead_milli":
+                m4["stopwatch"] = int(fields[1]) / 1000
             elif kind == "error":
                 m4["errors"].append(",".join(fields[1:]))
             elif kind == "done":
@@ -506,27 +508,39 @@ def report(rows, m4, host_trackers, args):
         w("## Where the time goes (M4 instructions per tick)")
         w("")
         comp = m4["components"]
-        tr = m4["trackers"]
         neutral = by_id.get("neutral/closed-form")
         heightmap = by_id.get("heightmap-top/closed-form")
-        idle = comp.get("HapticPipeline::tick without a finger")
-        nofilter = comp.get("tracker recommended() without filtering (on_sample + on_tick(need_filter=false))")
-        amap = comp.get("AmplitudeMap::scale + dac_code (strength 1 linear calibration)")
-        mailbox = comp.get("SampleMailbox post + take")
-        rec = tr.get("recommended()", {}).get("mean")
+        every = 10  # a report every 10th tick
+        on_sample = comp.get("Tracker::on_sample (recommended(); per report)", 0) / every
+        tick_nofilter = comp.get("Tracker::on_tick need_filter=false (finger present)", 0)
+        tick_filter = comp.get("Tracker::on_tick need_filter=true (recommended())", 0)
+        scale = comp.get("AmplitudeMap::scale (strength 1)", 0)
+        code = comp.get("AmplitudeMap::dac_code (linear calibration)", 0)
+        take = comp.get("SampleMailbox::take", 0)
+        w("Each piece timed alone on the same stroke (call by call, the stopwatch's own %s instructions "
+          "subtracted); the rest is the difference to the measured whole tick." % fmt(m4.get("stopwatch", 0)))
+        w("")
         w("| piece | neutral | heightmap-top |")
         w("|---|---|---|")
-        w("| whole tick (measured) | %s | %s |" % (fmt(neutral["m4_tick"]), fmt(heightmap["m4_tick"])))
-        w("| tracker: `on_sample` + `on_tick` (neutral: `need_filter = false`; heightmap: `recommended()` "
-          "filtering) | %s | %s |" % (fmt(nofilter), fmt(rec)))
-        w("| scene: `ScenePlan::amplitude` | %s | %s |" % (fmt(neutral["m4_eval"]), fmt(heightmap["m4_eval"])))
-        w("| `AmplitudeMap::scale` + `dac_code` (plus the harness loop) | %s | %s |" % (fmt(amap), fmt(amap)))
-        w("| rest: mailbox, slot selection, `TickOutput` (by difference) | %s | %s |" % (
-            fmt(neutral["m4_tick"] - nofilter - neutral["m4_eval"] - amap),
-            fmt(heightmap["m4_tick"] - rec - heightmap["m4_eval"] - amap)))
+        w("| `Tracker::on_sample` (%s per report, one report every %d ticks) | %s | %s |" % (
+            fmt(on_sample * every), every, fmt(on_sample), fmt(on_sample)))
+        w("| `Tracker::on_tick` (neutral: `need_filter = false`; heightmap: filtering, `recommended()`) | %s | %s |" % (
+            fmt(tick_nofilter), fmt(tick_filter)))
+        w("| `ScenePlan::amplitude` | %s | %s |" % (fmt(neutral["m4_eval"]), fmt(heightmap["m4_eval"])))
+        w("| `AmplitudeMap::scale` | %s | %s |" % (fmt(scale), fmt(scale)))
+        w("| `AmplitudeMap::dac_code` | %s | %s |" % (fmt(code), fmt(code)))
+        w("| `SampleMailbox::take` (about one per tick) | %s | %s |" % (fmt(take), fmt(take)))
+        parts_n = on_sample + tick_nofilter + neutral["m4_eval"] + scale + code + take
+        parts_h = on_sample + tick_filter + heightmap["m4_eval"] + scale + code + take
+        w("| rest: `HapticPipeline::tick` itself (slot selection, `TickOutput`, calls) | %s | %s |" % (
+            fmt(neutral["m4_tick"] - parts_n), fmt(heightmap["m4_tick"] - parts_h)))
+        w("| **whole tick (measured)** | **%s** | **%s** |" % (fmt(neutral["m4_tick"]), fmt(heightmap["m4_tick"])))
         w("")
-        w("For reference: a tick with no finger on the glass costs %s instructions, a mailbox post + take %s." % (
-            fmt(idle), fmt(mailbox)))
+        w("A tick with no finger on the glass: %s instructions (`Tracker::on_tick` without a finger alone: %s). "
+          "Field elements, one `element_gradient` call each: %s." % (
+              fmt(comp.get("HapticPipeline::tick without a finger")), fmt(comp.get("Tracker::on_tick without a finger")),
+              ", ".join("%s %s" % (k.replace("element_gradient ", ""), fmt(v)) for k, v in comp.items()
+                        if k.startswith("element_gradient"))))
         w("")
     # ---------------------------------------------------------- trackers
     w("## Tracker update cost")
@@ -563,11 +577,20 @@ def report(rows, m4, host_trackers, args):
     w("")
     closed = [r for r in rows if r["strategy"] == "closed-form" and r["m4_prepare"]]
     if closed:
-        w("Closed-form preparation per scene (M4 instructions, gradient evaluations, max|G| relative error "
-          "against the reference): " + "; ".join(
-              "%s %s (%s evals, %s)" % (r["scene"], fmt(r["m4_prepare"]), r["gradient_evaluations"],
-                                       ("%.1e" % r["max_g_rel_error"]) if r["max_g_rel_error"] is not None else "–")
-              for r in closed) + ".")
+        w("Closed forms: preparation is the max|G| scan alone (position-only and constant scenes need none). "
+          "Its cost is the number of field evaluations times the cost of one (the field's elements, see "
+          "*Where the time goes*, plus the overflow-safe magnitude: a division and a square root):")
+        w("")
+        w("| scene | M4 instructions | ms at 180 MHz | field evaluations | instructions per evaluation "
+          "| max\|G\| relative error | host µs |")
+        w("|---|---|---|---|---|---|---|")
+        for r in closed:
+            evals = int(r["gradient_evaluations"] or 0)
+            w("| %s | %s | %s | %s | %s | %s | %s |" % (
+                r["scene"], fmt(r["m4_prepare"]), fmt(ms_at_180(r["m4_prepare"])), evals or "–",
+                fmt(r["m4_prepare"] / evals) if evals else "–",
+                ("%.1e" % r["max_g_rel_error"]) if r["max_g_rel_error"] is not None else "–",
+                fmt(fnum(r["host_prepare_us"]))))
         w("")
 
     # ------------------------------------------------------------ full table

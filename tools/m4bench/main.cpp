@@ -10,6 +10,7 @@
 
 #include "bench_cases.hpp"
 #include "bench_workload.hpp"
+#include "frictionfield/core/field_element.hpp"
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scene_plan.hpp"
 #include "semihosting.hpp"
@@ -137,57 +138,161 @@ void measure_case(const BenchCase& c, int eval_repeats) {
       .print();
 }
 
+// Accumulates single measurements (each +-1 SysTick count = 40 instructions;
+// over hundreds of calls the quantisation averages out).
+struct Stopwatch {
+  uint64_t counts = 0;
+  int calls = 0;
+  uint64_t start_ = 0;
+  void start() { start_ = SystickCounter::counts(); }
+  void stop() {
+    counts += SystickCounter::counts() - start_;
+    ++calls;
+  }
+};
+
+// Instructions x 1000 that one empty start()/stop() pair adds (reading SysTick twice).
+int64_t g_stopwatch_overhead_milli = 0;
+
+void calibrate_stopwatch() {
+  constexpr int kPairs = 4096;
+  Stopwatch w;
+  for (int i = 0; i < kPairs; ++i) {
+    w.start();
+    w.stop();
+  }
+  g_stopwatch_overhead_milli = instructions(w.counts) * 1000 / kPairs;
+}
+
+// Timed call by call (per_call) or as one block of w.calls calls.
+void report_component(const char* name, const Stopwatch& w, bool per_call) {
+  int64_t total = instructions(w.counts);
+  if (per_call) total -= g_stopwatch_overhead_milli * w.calls / 1000;
+  Line().field("component").field(name).field(total).field(w.calls).print();
+}
+
 // The pieces of a tick, measured alone, to say where a whole tick's time goes.
 void measure_components() {
-  Line().text("# component,name,instr,count").print();
-  auto report = [](const char* name, int64_t instr, int count) {
-    Line().field("component").field(name).field(instr).field(count).print();
-  };
+  calibrate_stopwatch();
+  Line().text("# component,name,instr,count (timed one by one: minus the stopwatch's own instructions)").print();
+  Line().field("stopwatch_overhead_milli").field(g_stopwatch_overhead_milli).print();
   {
-    // What a scene that needs nothing still costs the tracker: presence and the last sample.
+    // The tracker as a scene that needs nothing uses it: presence and the last sample.
     Tracker tracker(TrackerConfig::recommended());
     const FingerStroke stroke(g_clock_us);
-    const uint64_t c0 = SystickCounter::counts();
+    Stopwatch on_sample, on_tick;
+    for (int k = 0; k < FingerStroke::kMovingTicks; ++k) {
+      SensorSample s;
+      if (stroke.report_before(k, s)) {
+        on_sample.start();
+        tracker.on_sample(s);
+        on_sample.stop();
+      }
+      on_tick.start();
+      const bool present = tracker.on_tick(stroke.tick_time(k), false).present;
+      on_tick.stop();
+      if (!present) ++g_failures;
+    }
+    report_component("Tracker::on_sample (recommended(); per report)", on_sample, true);
+    report_component("Tracker::on_tick need_filter=false (finger present)", on_tick, true);
+    g_clock_us += FingerStroke::kDurationUs;
+  }
+  {
+    Tracker tracker(TrackerConfig::recommended());
+    const FingerStroke stroke(g_clock_us);
+    Stopwatch on_tick;
     for (int k = 0; k < FingerStroke::kMovingTicks; ++k) {
       SensorSample s;
       if (stroke.report_before(k, s)) tracker.on_sample(s);
-      if (!tracker.on_tick(stroke.tick_time(k), false).present) ++g_failures;
+      on_tick.start();
+      const bool present = tracker.on_tick(stroke.tick_time(k), true).present;
+      on_tick.stop();
+      if (!present) ++g_failures;
     }
-    report("tracker recommended() without filtering (on_sample + on_tick(need_filter=false))",
-           instructions(SystickCounter::counts() - c0), FingerStroke::kMovingTicks);
+    report_component("Tracker::on_tick need_filter=true (recommended())", on_tick, true);
     g_clock_us += FingerStroke::kDurationUs;
+  }
+  {
+    Tracker tracker(TrackerConfig::recommended());
+    Stopwatch on_tick;
+    for (int k = 0; k < 256; ++k) {
+      on_tick.start();
+      const bool present = tracker.on_tick(g_clock_us + 500u * static_cast<uint32_t>(k), true).present;
+      on_tick.stop();
+      if (present) ++g_failures;
+    }
+    report_component("Tracker::on_tick without a finger", on_tick, true);
+    g_clock_us += 256u * 500u;
   }
   {
     AmplitudeMap map;
     map.configure(AmplitudeSettings{});
+    Stopwatch scale, code;
     uint32_t sum = 0;
-    const uint64_t c0 = SystickCounter::counts();
-    for (const EvalPoint& p : g_points) sum += map.dac_code(map.scale(p.position.x * (1.0f / kScreenMaxX)));
-    report("AmplitudeMap::scale + dac_code (strength 1 linear calibration)",
-           instructions(SystickCounter::counts() - c0), kEvalPoints);
+    for (const EvalPoint& p : g_points) {
+      const float raw = p.position.x * (1.0f / kScreenMaxX);
+      scale.start();
+      const float a = map.scale(raw);
+      scale.stop();
+      code.start();
+      sum += map.dac_code(a);
+      code.stop();
+    }
+    report_component("AmplitudeMap::scale (strength 1)", scale, true);
+    report_component("AmplitudeMap::dac_code (linear calibration)", code, true);
     if (sum == 0) ++g_failures;
   }
   {
     SampleMailbox mailbox;
     SensorSample s;
     s.touch = true;
-    int taken = 0;
-    const uint64_t c0 = SystickCounter::counts();
+    Stopwatch post, take;
     for (int i = 0; i < kEvalPoints; ++i) {
+      post.start();
       mailbox.post(s);
-      taken += mailbox.take(s) ? 1 : 0;
+      post.stop();
+      take.start();
+      const bool taken = mailbox.take(s);
+      take.stop();
+      if (!taken) ++g_failures;
     }
-    report("SampleMailbox post + take", instructions(SystickCounter::counts() - c0), kEvalPoints);
-    if (taken != kEvalPoints) ++g_failures;
+    report_component("SampleMailbox::post", post, true);
+    report_component("SampleMailbox::take", take, true);
+  }
+  {
+    // Field elements one by one (unit weight), as the closed form and the max|G| scan evaluate them.
+    const FieldElement elements[] = {
+        FieldElement::point_sink({700.0f, 40.0f}),
+        FieldElement::path_sink(PathCurve::cubic(-200.0f), 0.2f),
+        FieldElement::tunnel_valley(TunnelParams{}),
+        FieldElement::vortex({400.0f, 240.0f}),
+        FieldElement::saddle({400.0f, 240.0f}),
+        FieldElement::sine_texture(160.0f, 160.0f, 20.0f),
+    };
+    const char* names[] = {"element_gradient point sink", "element_gradient path sink (cubic)",
+                           "element_gradient tunnel", "element_gradient vortex", "element_gradient saddle",
+                           "element_gradient sine texture"};
+    for (int e = 0; e < 6; ++e) {
+      Stopwatch w;
+      float sink = 0.0f;
+      w.start();
+      for (const EvalPoint& p : g_points) sink += element_gradient(elements[e], p.position).x;
+      w.stop();
+      w.calls = kEvalPoints;
+      if (!(sink == sink)) ++g_failures;  // NaN check; keeps the loop
+      report_component(names[e], w, false);
+    }
   }
   {
     // An empty tick: no finger (idle code), the neutral scene.
     Condition neutral;
     if (g_pipeline.set_condition(neutral) != PrepareStatus::Ok) ++g_failures;
-    const uint64_t c0 = SystickCounter::counts();
+    Stopwatch w;
+    w.start();
     for (int k = 0; k < FingerStroke::kMovingTicks; ++k) g_pipeline.tick(g_clock_us + 500u * static_cast<uint32_t>(k));
-    report("HapticPipeline::tick without a finger", instructions(SystickCounter::counts() - c0),
-           FingerStroke::kMovingTicks);
+    w.stop();
+    w.calls = FingerStroke::kMovingTicks;
+    report_component("HapticPipeline::tick without a finger", w, false);
     g_clock_us += FingerStroke::kDurationUs;
   }
 }
