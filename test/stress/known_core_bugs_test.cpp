@@ -9,6 +9,8 @@
 
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scenes.hpp"
+#include "frictionfield/host/scene_file.hpp"
+#include "reference_model.hpp"
 
 namespace ff {
 namespace {
@@ -153,6 +155,33 @@ TEST(CoreRegressions, TickClockLeapOfAnHourKeepsTheStaleFinger) {
   const TickOutput t = s.pipeline->tick(later + 500u);  // the leap is confirmed here
   EXPECT_FALSE(t.present);       // was true
   EXPECT_EQ(t.amplitude, 0.0f);  // was 0.75 (the state of an hour ago)
+}
+
+// Bug 8, open (scene_plan.cpp, find_max_gradient): with several textures of
+// short wavelength |G| has many local maxima of nearly equal height; the
+// compass search from the best 4 nodes of the 16 px scan climbs a lower one.
+// This random general scene (from Precision.ClosedFormRenderingAgainstDouble
+// at 100 cases) gets max|G| 113.30 where a double 4 px scan with refinement
+// finds 122.76 (-7.7 %): G_norm reaches 0.54 and the amplitude saturates at
+// its clamp around the missed peaks. Safe (clamped), but not SPEC.md's
+// G / (2 max|G|). Expected within 0.1 %.
+TEST(KnownCoreBugs, DISABLED_MaxGradientMissesInterferingTexturePeaks) {
+  const char* text =
+      "rendering directional\n"
+      "element point_sink weight -0.0148578165 centre 499.452362 109.191261 radius 41.0368919 feather 25.3965054\n"
+      "element texture weight 60.1750526 wavelength 107.103798 100.37397 height -8.20213032\n"
+      "element saddle weight 0.0154737495 centre 515.412903 -61.5431175\n"
+      "element vortex weight 0.000321318454 centre 737.332214 186.662155\n"
+      "element texture weight 0.973061323 wavelength 382.124603 176.37915 height -20.1299171\n"
+      "element texture weight 20.6443539 wavelength 20.745903 35.8538437 height 12.9968691\n"
+      "element point_sink weight 4.59806776 centre 325.678223 -23.409893 radius 11.8105936 feather 46.1646957\n";
+  SceneDefinition s;
+  std::string error;
+  ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
+  auto plan = std::make_unique<ScenePlan>();
+  ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
+  const double truth = stress::ReferenceScene(s).max_gradient();  // 122.76
+  EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // got 113.30
 }
 
 }  // namespace

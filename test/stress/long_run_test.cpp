@@ -43,7 +43,7 @@ void check_long_run(const TrackerConfig& tracker, const char* label) {
   EXPECT_EQ(r.faults[Fault::SensorTimeout], 0u);
 }
 
-TEST(LongRun, ThreeHoursRecommendedTracker) { check_long_run(TrackerConfig::recommended(), "recommended (Kalman + fade)"); }
+TEST(LongRun, ThreeHoursRecommendedTracker) { check_long_run(TrackerConfig::recommended(), "recommended"); }
 TEST(LongRun, ThreeHoursThesisTracker) { check_long_run(TrackerConfig::thesis(), "thesis (ticks + 1-euro)"); }
 
 }  // namespace

@@ -144,10 +144,12 @@ ClassResult run_cases(const char* name, uint64_t base, int cases, Case (*make)(R
     if (c.compare_clean) {
       b = run_pipeline(c.config, c.clean, c.clean_ticks);
       if (failure.empty()) {
-        const int64_t rec = recovery_ticks(a.ticks, b.ticks, c.episode_end);
+        std::string last;
+        const bool fades = c.config.tracker.moving_speed_px_s > 0.0f;
+        const int64_t rec = recovery_ticks(a.ticks, b.ticks, c.episode_end, 0.5, kRecoveryAmplitudeTolerance, &last, fades);
         if (rec < 0 || rec > recovery_bound) {
-          failure = rec < 0 ? "did not recover: output still differs from the clean run at the end"
-                            : "recovered only after " + std::to_string(rec) + " ticks";
+          failure = (rec < 0 ? "did not recover: output still differs from the clean run at the end"
+                             : "recovered only after " + std::to_string(rec) + " ticks") + std::string("; last difference ") + last;
         }
         if (rec > res.worst_recovery) res.worst_recovery = rec;
         if (rec < 0) res.worst_recovery = std::numeric_limits<int64_t>::max();
@@ -160,7 +162,14 @@ ClassResult run_cases(const char* name, uint64_t base, int cases, Case (*make)(R
     }
     ++res.cases;
     if (!failure.empty()) {
-      if (res.failures++ == 0) res.first_failure = reproduce_hint(seed, name) + ": " + failure;
+      if (res.failures++ == 0) {
+        char what[96];
+        std::snprintf(what, sizeof what, " (tracker %s, rendering %d, evaluation %d, %d terms, strength %g)",
+                      to_string(c.config.tracker.estimator), static_cast<int>(c.config.condition.scene.rendering),
+                      static_cast<int>(c.config.condition.scene.evaluation), c.config.condition.scene.element_count,
+                      static_cast<double>(c.config.condition.amplitude.strength));
+        res.first_failure = reproduce_hint(seed, name) + ": " + failure + what;
+      }
     }
   }
   if (measure_label != nullptr) {

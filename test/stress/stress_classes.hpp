@@ -13,8 +13,9 @@ namespace ff::stress {
 constexpr double kRenderingBound = 2e-3;
 // Ticks (500 us) after the last bad input until the output agrees again with
 // a run that never saw it (same presence, position within 0.5 px, amplitude
-// within 0.02) for good.
-constexpr int64_t kRecoveryBoundTicks = 400;
+// within kRecoveryAmplitudeTolerance) for good.
+constexpr int64_t kRecoveryBoundTicks = 600;
+constexpr double kRecoveryAmplitudeTolerance = 0.05;
 // The core's max|G| search (coarse scan + compass search) against a double
 // 4 px scan with refinement, relative: it may miss a corner peak slightly.
 constexpr double kMaxGradientBound = 2e-2;

@@ -102,7 +102,7 @@ void InvariantChecker::on_tick(const HapticPipeline& pipeline, const Tick& t) {
 }
 
 int64_t recovery_ticks(const std::vector<Tick>& a, const std::vector<Tick>& b, uint64_t from_at, double pos_tol,
-                       double amp_tol) {
+                       double amp_tol, std::string* last_difference, bool amplitude_at_rest) {
   // Walk both by real time; remember the last disagreement after from_at.
   size_t i = 0, j = 0;
   int64_t counted = 0, last_bad = -1;
@@ -113,11 +113,28 @@ int64_t recovery_ticks(const std::vector<Tick>& a, const std::vector<Tick>& b, u
     if (a[i].at >= from_at) {
       const TickOutput& x = a[i].out;
       const TickOutput& y = b[j].out;
+      bool compare_amplitude = amplitude_at_rest || !y.present;
+      if (!compare_amplitude && j >= 20 && b[j - 20].out.present) {
+        const Vec2 moved = y.position - b[j - 20].out.position;
+        compare_amplitude = length(moved) > 0.5f;
+      }
       const bool same = x.present == y.present &&
                         (!x.present || (std::fabs(static_cast<double>(x.position.x) - static_cast<double>(y.position.x)) <= pos_tol &&
                                         std::fabs(static_cast<double>(x.position.y) - static_cast<double>(y.position.y)) <= pos_tol)) &&
-                        std::fabs(static_cast<double>(x.amplitude) - static_cast<double>(y.amplitude)) <= amp_tol;
-      if (!same) last_bad = counted;
+                        (!compare_amplitude || std::fabs(static_cast<double>(x.amplitude) - static_cast<double>(y.amplitude)) <= amp_tol);
+      if (!same) {
+        last_bad = counted;
+        if (last_difference != nullptr) {
+          char buf[320];
+          std::snprintf(buf, sizeof buf, "at %llu us (%lld us after the episode): %s %.3f,%.3f dir %.3f,%.3f A %.4f vs clean %s %.3f,%.3f dir %.3f,%.3f A %.4f",
+                        static_cast<unsigned long long>(a[i].at), static_cast<long long>(a[i].at - from_at),
+                        x.present ? "finger" : "none", static_cast<double>(x.position.x), static_cast<double>(x.position.y),
+                        static_cast<double>(x.direction.x), static_cast<double>(x.direction.y), static_cast<double>(x.amplitude),
+                        y.present ? "finger" : "none", static_cast<double>(y.position.x), static_cast<double>(y.position.y),
+                        static_cast<double>(y.direction.x), static_cast<double>(y.direction.y), static_cast<double>(y.amplitude));
+          *last_difference = buf;
+        }
+      }
       ++counted;
       any = true;
     }

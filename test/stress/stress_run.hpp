@@ -73,8 +73,14 @@ class InvariantChecker : public TickObserver {
 // Ticks after `from_at` until a and b agree (same presence, |dpos| <= pos_tol,
 // |damp| <= amp_tol) at every common tick to the end; -1 if they never do.
 // Ticks are matched by real time.
+// `last_difference` (optional) describes the last tick where they differed.
+// Without a rest fade (the thesis' v_hat = dxhat / |dxhat| at any speed) the
+// direction of a resting finger is whatever its last tiny motion left, so
+// `amplitude_at_rest = false` compares amplitudes only while b's finger
+// moves (over 50 px/s across the last 10 ms).
 int64_t recovery_ticks(const std::vector<Tick>& a, const std::vector<Tick>& b, uint64_t from_at,
-                       double pos_tol = 0.5, double amp_tol = 0.02);
+                       double pos_tol = 0.5, double amp_tol = 0.02, std::string* last_difference = nullptr,
+                       bool amplitude_at_rest = true);
 
 // Bit-for-bit equality of two runs' outputs; empty when equal.
 // `ignore_time`: compare everything but the reported tick time (shifted clocks).
