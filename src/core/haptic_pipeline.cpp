@@ -7,6 +7,8 @@ HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : tracker_(tracker)
   Condition boot;
   slots_[0].plan.prepare(boot.scene, slots_[0].table, sizeof(slots_[0].table));
   slots_[0].map.configure(boot.amplitude);
+  slots_[0].constant_amplitude = slots_[0].map.scale(0.5f);
+  slots_[0].constant_code = slots_[0].map.dac_code(slots_[0].constant_amplitude);
 }
 
 PrepareStatus HapticPipeline::set_condition(const Condition& condition) {
@@ -21,6 +23,8 @@ PrepareStatus HapticPipeline::set_condition(const Condition& condition) {
     if (!(in.strength > 0.0f && in.strength <= 1.0f)) main_faults_.add(Fault::BadStrength);
     if (!in.calibration.valid()) main_faults_.add(Fault::BadCalibration);
   }
+  slot.constant_amplitude = slot.map.scale(slot.plan.amplitude({}, {}));
+  slot.constant_code = slot.map.dac_code(slot.constant_amplitude);
   active_.store(next, std::memory_order_release);  // the next tick renders the new scene
   return PrepareStatus::Ok;
 }
@@ -33,12 +37,13 @@ bool HapticPipeline::post_sample(const SensorSample& s) {
 
 TickOutput HapticPipeline::tick(uint32_t now_us) {
   ++ticks_;
-  SensorSample s;
-  while (mailbox_.take(s)) tracker_.on_sample(s);
-
   const Slot& slot = slots_[active_.load(std::memory_order_acquire)];
   const Needs needs = slot.plan.needs();
-  const TrackState track = tracker_.on_tick(now_us, needs != Needs::Nothing);
+  const bool track_motion = needs != Needs::Nothing;
+
+  SensorSample s;
+  while (mailbox_.take(s)) tracker_.on_sample(s, track_motion);
+  const TrackState track = tracker_.on_tick(now_us, track_motion);
 
   TickOutput out;
   out.t_us = now_us;
@@ -47,6 +52,11 @@ TickOutput HapticPipeline::tick(uint32_t now_us) {
   if (!track.present) {
     out.amplitude = slot.map.idle_amplitude();
     out.dac = slot.map.idle_code();
+    return out;
+  }
+  if (!track_motion) {  // constant scene: output computed once, at preparation
+    out.amplitude = slot.constant_amplitude;
+    out.dac = slot.constant_code;
     return out;
   }
   if (needs == Needs::PositionAndDirection) out.direction = track.direction;

@@ -143,11 +143,18 @@ bool Tracker::is_jump(const SensorSample& s) const {
   return length(Vec2{s.x, s.y} - Vec2{last_.x, last_.y}) > allowed;
 }
 
-void Tracker::accept(const SensorSample& s) {
+void Tracker::accept(const SensorSample& s, bool need_filter) {
   const int32_t dt_us = elapsed_us(s.t_us, last_.t_us);
   const float inv_dt = 1.0f / static_cast<float>(dt_us);
   raw_velocity_ = {(s.x - last_.x) * inv_dt, (s.y - last_.y) * inv_dt};
   have_velocity_ = true;
+  last_ = s;
+  ticks_since_sample_ = 0;
+  lifting_ = false;
+  stale_reported_ = false;
+  const bool kalman = config_.estimator == Estimator::Kalman || config_.estimator == Estimator::SplitKalman;
+  if (!need_filter) filters_fresh_ = true;  // restart from this report when motion matters again
+  if (!need_filter || !kalman) return;      // the 1-euro estimators filter at the tick
   const float dt_s = static_cast<float>(dt_us) * 1e-6f;
   const float q = config_.kalman.accel_noise_px_s2 * config_.kalman.accel_noise_px_s2;
   const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
@@ -164,13 +171,9 @@ void Tracker::accept(const SensorSample& s) {
     px_.update(s.x, rp);
     py_.update(s.y, rp);
   }
-  last_ = s;
-  ticks_since_sample_ = 0;
-  lifting_ = false;
-  stale_reported_ = false;
 }
 
-void Tracker::on_sample(const SensorSample& in) {
+void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   if (!in.touch) {
     if (have_last_ && !lifting_) {
       lifting_ = true;
@@ -229,7 +232,7 @@ void Tracker::on_sample(const SensorSample& in) {
     faults_.add(Fault::JumpRejected);  // back on the old track: it was a glitch
     have_pending_jump_ = false;
   }
-  accept(s);
+  accept(s, need_filter);
 }
 
 uint32_t Tracker::extrapolation_us(uint32_t now_us) {

@@ -52,8 +52,8 @@ TEST(ScenePlan, DropsZeroWeightTermsAndReportsMemory) {
   EXPECT_EQ(max_lsb_difference(plan, reference), 0.0);
   EXPECT_EQ(plan.stats().table_bytes, 0u);
   EXPECT_EQ(plan.stats().plan_bytes, sizeof(ScenePlan));
-  EXPECT_GT(plan.stats().gradient_evaluations, 1000u);
-  EXPECT_LT(plan.stats().gradient_evaluations, 5000u);  // no full-screen scan
+  EXPECT_GT(plan.stats().gradient_evaluations, 400u);
+  EXPECT_LT(plan.stats().gradient_evaluations, 1500u);  // no full-screen scan: 2 ms on the M4
 }
 
 TEST(ScenePlan, RefusesBadScenesAndKeepsTheOldOne) {

@@ -165,7 +165,7 @@ TEST(CoreRegressions, TickClockLeapOfAnHourKeepsTheStaleFinger) {
 // finds 122.76 (-7.7 %): G_norm reaches 0.54 and the amplitude saturates at
 // its clamp around the missed peaks. Safe (clamped), but not SPEC.md's
 // G / (2 max|G|). Expected within 0.1 %.
-TEST(KnownCoreBugs, DISABLED_MaxGradientMissesInterferingTexturePeaks) {
+TEST(KnownCoreBugs, MaxGradientMissesInterferingTexturePeaks) {
   const char* text =
       "rendering directional\n"
       "element point_sink weight -0.0148578165 centre 499.452362 109.191261 radius 41.0368919 feather 25.3965054\n"

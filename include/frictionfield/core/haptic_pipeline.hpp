@@ -59,6 +59,8 @@ class HapticPipeline {
   struct Slot {
     ScenePlan plan;
     AmplitudeMap map;
+    float constant_amplitude = 0.5f;  // constant scenes: the output, computed once
+    uint16_t constant_code = 2048;
     alignas(4) unsigned char table[kTableSlotBytes];
   };
 

@@ -64,8 +64,10 @@ class Tracker {
   void configure(const TrackerConfig& config);
   void reset();
 
-  // A sensor report (any order of calls with tick() is allowed).
-  void on_sample(const SensorSample& s);
+  // A sensor report (any order of calls with tick() is allowed). With
+  // need_filter = false (the scene needs no motion) the filters are not fed;
+  // they restart from the newest report when needed again.
+  void on_sample(const SensorSample& s, bool need_filter = true);
   // Advances to the tick at now_us and returns the state there.
   // With need_filter = false only presence and the last sample are updated.
   TrackState on_tick(uint32_t now_us, bool need_filter = true);
@@ -77,7 +79,7 @@ class Tracker {
 
  private:
   void restart_at(const SensorSample& s);
-  void accept(const SensorSample& s);
+  void accept(const SensorSample& s, bool need_filter);
   bool is_jump(const SensorSample& s) const;
   void lose_finger();
   Vec2 estimate(uint32_t now_us, Vec2& velocity);
