@@ -157,7 +157,7 @@ TEST(CoreRegressions, TickClockLeapOfAnHourKeepsTheStaleFinger) {
   EXPECT_EQ(t.amplitude, 0.0f);  // was 0.75 (the state of an hour ago)
 }
 
-// Bug 8, open (scene_plan.cpp, find_max_gradient): with several textures of
+// Bug 8, fixed in 718ec94 (scene_plan.cpp, find_max_gradient): with several textures of
 // short wavelength |G| has many local maxima of nearly equal height; the
 // compass search from the best 4 nodes of the 16 px scan climbs a lower one.
 // This random general scene (from Precision.ClosedFormRenderingAgainstDouble
@@ -165,7 +165,7 @@ TEST(CoreRegressions, TickClockLeapOfAnHourKeepsTheStaleFinger) {
 // finds 122.76 (-7.7 %): G_norm reaches 0.54 and the amplitude saturates at
 // its clamp around the missed peaks. Safe (clamped), but not SPEC.md's
 // G / (2 max|G|). Expected within 0.1 %.
-TEST(KnownCoreBugs, MaxGradientMissesInterferingTexturePeaks) {
+TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
   const char* text =
       "rendering directional\n"
       "element point_sink weight -0.0148578165 centre 499.452362 109.191261 radius 41.0368919 feather 25.3965054\n"
@@ -181,7 +181,30 @@ TEST(KnownCoreBugs, MaxGradientMissesInterferingTexturePeaks) {
   auto plan = std::make_unique<ScenePlan>();
   ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
   const double truth = stress::ReferenceScene(s).max_gradient();  // 122.76
-  EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // got 113.30
+  EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 113.30
+}
+
+// Bug 9, open (scene_plan.cpp, find_max_gradient, after 718ec94): a
+// heavy texture (wavelengths 327 x 133 px) plus three faint terms; |G| has
+// a row of nearly equal peaks and the global one, at (571.5, 467) near the
+// bottom edge, is not among those the search climbs: max|G| 71.73 where the
+// core's own field reaches 77.37 (-7.3 %), so G_norm reaches 0.54 there.
+// From Precision.ClosedFormRenderingAgainstDouble at FF_STRESS_CASES=100.
+TEST(KnownCoreBugs, DISABLED_MaxGradientMissesATexturePeakNearTheEdge) {
+  const char* text =
+      "rendering directional\n"
+      "element tunnel weight 0.0177748222 x_start 214.570084 length 59.281723 width 98.4987335 28.4214668 scale 0.569582462 y_centre 185.408676\n"
+      "element texture weight 93.522789 wavelength 326.607788 133.437546 height 15.7681646\n"
+      "element path_sink weight 0.0205193441 a 0.0453976728 band 33.9885559 31.4133015 curve polyline 227.603165,275.615204 242.523911,78.8675537 344.108307,58.8125114\n"
+      "element saddle weight -0.0183024872 centre 75.393837 64.7268066\n";
+  SceneDefinition s;
+  std::string error;
+  ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
+  auto plan = std::make_unique<ScenePlan>();
+  ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
+  EXPECT_GE(static_cast<double>(length(plan->field({571.5f, 467.0f}))), 77.3);  // the core's own field there
+  const double truth = stress::ReferenceScene(s).max_gradient();                  // 77.375
+  EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // got 71.73
 }
 
 }  // namespace
