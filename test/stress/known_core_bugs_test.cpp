@@ -190,7 +190,7 @@ TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
 // bottom edge, is not among those the search climbs: max|G| 71.73 where the
 // core's own field reaches 77.37 (-7.3 %), so G_norm reaches 0.54 there.
 // From Precision.ClosedFormRenderingAgainstDouble at FF_STRESS_CASES=100.
-TEST(KnownCoreBugs, DISABLED_MaxGradientMissesATexturePeakNearTheEdge) {
+TEST(KnownCoreBugs, MaxGradientMissesATexturePeakNearTheEdge) {
   const char* text =
       "rendering directional\n"
       "element tunnel weight 0.0177748222 x_start 214.570084 length 59.281723 width 98.4987335 28.4214668 scale 0.569582462 y_centre 185.408676\n"
@@ -205,6 +205,26 @@ TEST(KnownCoreBugs, DISABLED_MaxGradientMissesATexturePeakNearTheEdge) {
   EXPECT_GE(static_cast<double>(length(plan->field({571.5f, 467.0f}))), 77.3);  // the core's own field there
   const double truth = stress::ReferenceScene(s).max_gradient();                  // 77.375
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // got 71.73
+}
+
+// Bug 10, open (field_element.cpp, valley_slope): d|g|/du = a^2 u^2 /
+// (1 + a^2 u^2) is inf / inf = NaN once (a u)^2 overflows float (|a u| >
+// 1.8e19), e.g. a valley whose path runs off to y = 4e33 (a finite scene-file
+// value). normalized_gradient() then returns NaN (its contract: |G_norm| <=
+// 0.5) and the amplitude falls back to 0.5 through clamp_finite: safe, but the
+// field should saturate at slope +-1. Found by fuzz/scene_file_fuzz.cpp
+// (corpus/scene_file_open/). The scene parser also took "24\0..." as 24 (the
+// NUL ends the C string strtof sees: host/scene_file.cpp Words::point).
+TEST(KnownCoreBugs, DISABLED_ValleyFarFromItsPathGivesANaNGradient) {
+  const Vec2 points[] = {{100.0f, 24.0f}, {700.0f, 4.04e33f}};
+  SceneDefinition s;
+  s.rendering = Rendering::Directional;
+  s.add(FieldElement::path_sink(PathCurve::polyline(points, 2), 0.2f));
+  auto plan = std::make_unique<ScenePlan>();
+  ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
+  const Vec2 g = plan->normalized_gradient({400.0f, 240.0f});  // u = 240 - 2e33
+  EXPECT_TRUE(is_finite(g));                     // got NaN
+  EXPECT_LE(length(g), 0.5f + 1e-6f);
 }
 
 }  // namespace
