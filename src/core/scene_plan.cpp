@@ -231,16 +231,24 @@ float ScenePlan::find_max_gradient() {
   // Coarse scan of the screen (edges included), then a compass search from
   // the best few nodes: ~700 field evaluations instead of 384k pixels, so a
   // closed-form scene prepares in under 2 ms on the M4 (docs/benchmarks.md).
-  // The scan must resolve the finest feature: a quarter of the shortest
-  // texture wavelength (built-in scenes: 32 px; a fine texture costs more).
+  // A lone texture (the bump map) has its maximum in closed form:
+  // |G| = |w h| 2 pi / lambda at a crest, if a whole period fits on the screen.
+  if (count_ == 1 && elements_[0].kind == ElementKind::Texture && evaluation_ == Evaluation::ClosedForm) {
+    const TextureParams& t = elements_[0].texture;
+    if (t.wavelength_x <= kScreenMaxY && t.wavelength_y <= kScreenMaxY) {
+      return std::fabs(elements_[0].weight * t.height) * 2.0f * kPi / std::fmin(t.wavelength_x, t.wavelength_y);
+    }
+  }
+  // The scan must resolve the finest feature: |G| of a texture peaks twice
+  // per wavelength, so an eighth of the shortest one (32 px without textures).
   float scan_step = 32.0f;
   for (int e = 0; e < count_; ++e) {
     if (elements_[e].kind != ElementKind::Texture) continue;
     const TextureParams& t = elements_[e].texture;
-    scan_step = std::fmin(scan_step, 0.25f * std::fmin(t.wavelength_x, t.wavelength_y));
+    scan_step = std::fmin(scan_step, 0.125f * std::fmin(t.wavelength_x, t.wavelength_y));
   }
   const float kStep = std::fmax(scan_step, 2.0f);
-  constexpr int kCandidates = 4;
+  constexpr int kCandidates = 6;
   Vec2 best_p[kCandidates];
   float best_m[kCandidates];  // |G| (not squared)
   for (int i = 0; i < kCandidates; ++i) best_m[i] = -1.0f;
@@ -254,12 +262,25 @@ float ScenePlan::find_max_gradient() {
     const Vec2 u = (1.0f / m) * g;
     return m * length(u);
   };
+  // Keep the best node of each hill: a node next to a kept one competes only
+  // with it, so the candidates spread over distinct peaks (textures have rows
+  // of nearly equal ones).
+  const float neighbourhood = 1.5f * kStep;
   auto consider = [&](Vec2 p, float m) {
-    int worst = 0;
-    for (int i = 1; i < kCandidates; ++i) worst = best_m[i] < best_m[worst] ? i : worst;
-    if (m > best_m[worst]) {
-      best_m[worst] = m;
-      best_p[worst] = p;
+    int slot = -1;
+    for (int i = 0; i < kCandidates && slot < 0; ++i) {
+      if (best_m[i] >= 0.0f && std::fabs(best_p[i].x - p.x) <= neighbourhood &&
+          std::fabs(best_p[i].y - p.y) <= neighbourhood) {
+        slot = i;
+      }
+    }
+    if (slot < 0) {
+      slot = 0;
+      for (int i = 1; i < kCandidates; ++i) slot = best_m[i] < best_m[slot] ? i : slot;
+    }
+    if (m > best_m[slot]) {
+      best_m[slot] = m;
+      best_p[slot] = p;
     }
   };
 
