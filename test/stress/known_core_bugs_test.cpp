@@ -184,13 +184,13 @@ TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 113.30
 }
 
-// Bug 9, open (scene_plan.cpp, find_max_gradient, after 718ec94): a
+// Bug 9, fixed in 5091243 (scene_plan.cpp, find_max_gradient, after 718ec94): a
 // heavy texture (wavelengths 327 x 133 px) plus three faint terms; |G| has
 // a row of nearly equal peaks and the global one, at (571.5, 467) near the
 // bottom edge, is not among those the search climbs: max|G| 71.73 where the
 // core's own field reaches 77.37 (-7.3 %), so G_norm reaches 0.54 there.
 // From Precision.ClosedFormRenderingAgainstDouble at FF_STRESS_CASES=100.
-TEST(KnownCoreBugs, MaxGradientMissesATexturePeakNearTheEdge) {
+TEST(CoreRegressions, MaxGradientMissesATexturePeakNearTheEdge) {
   const char* text =
       "rendering directional\n"
       "element tunnel weight 0.0177748222 x_start 214.570084 length 59.281723 width 98.4987335 28.4214668 scale 0.569582462 y_centre 185.408676\n"
@@ -204,7 +204,7 @@ TEST(KnownCoreBugs, MaxGradientMissesATexturePeakNearTheEdge) {
   ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
   EXPECT_GE(static_cast<double>(length(plan->field({571.5f, 467.0f}))), 77.3);  // the core's own field there
   const double truth = stress::ReferenceScene(s).max_gradient();                  // 77.375
-  EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // got 71.73
+  EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 71.73
 }
 
 // Bug 10, open (field_element.cpp, valley_slope): d|g|/du = a^2 u^2 /
