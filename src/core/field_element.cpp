@@ -17,7 +17,8 @@ float sign_of(float v) { return v > 0.0f ? 1.0f : (v < 0.0f ? -1.0f : 0.0f); }
 // Closed form: no atan on the tick path.
 float valley_slope(float u, float a) {
   const float au2 = (a * u) * (a * u);
-  return sign_of(u) * au2 / (1.0f + au2);
+  // Far from the path (a u)^2 overflows: the slope has saturated at 1 (inf / inf would be NaN).
+  return sign_of(u) * (au2 < 1e30f ? au2 / (1.0f + au2) : 1.0f);
 }
 
 float valley_height(float u, float a) { return std::fabs(std::atan(a * u) / a - u); }

@@ -27,7 +27,7 @@ class Words {
     const std::string& w = words_[next_];
     char* end = nullptr;
     const float v = std::strtof(w.c_str(), &end);
-    if (end == w.c_str() || *end != '\0' || !std::isfinite(v)) return false;
+    if (end == w.c_str() || end != w.c_str() + w.size() || !std::isfinite(v)) return false;
     out = v;
     ++next_;
     return true;
@@ -40,7 +40,7 @@ class Words {
     if (end == w.c_str() || *end != ',') return false;
     const char* ys = end + 1;
     const float y = std::strtof(ys, &end);
-    if (end == ys || *end != '\0' || !std::isfinite(x) || !std::isfinite(y)) return false;
+    if (end == ys || end != w.c_str() + w.size() || !std::isfinite(x) || !std::isfinite(y)) return false;
     out = {x, y};
     ++next_;
     return true;

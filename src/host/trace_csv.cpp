@@ -35,7 +35,7 @@ bool parse_u64(const std::string& text, uint64_t& out) {
   errno = 0;
   char* end = nullptr;
   const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (errno != 0 || end == text.c_str() || *end != '\0') return false;
+  if (errno != 0 || end == text.c_str() || end != text.c_str() + text.size()) return false;
   out = v;
   return true;
 }
@@ -44,7 +44,7 @@ bool parse_float(const std::string& text, float& out) {
   if (text.empty()) return false;
   char* end = nullptr;
   const float v = std::strtof(text.c_str(), &end);  // accepts nan, inf, overflow -> inf
-  if (end == text.c_str() || *end != '\0') return false;
+  if (end == text.c_str() || end != text.c_str() + text.size()) return false;
   out = v;
   return true;
 }

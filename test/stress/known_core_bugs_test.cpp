@@ -215,7 +215,7 @@ TEST(CoreRegressions, MaxGradientMissesATexturePeakNearTheEdge) {
 // field should saturate at slope +-1. Found by fuzz/scene_file_fuzz.cpp
 // (corpus/scene_file_open/). The scene parser also took "24\0..." as 24 (the
 // NUL ends the C string strtof sees: host/scene_file.cpp Words::point).
-TEST(KnownCoreBugs, DISABLED_ValleyFarFromItsPathGivesANaNGradient) {
+TEST(KnownCoreBugs, ValleyFarFromItsPathGivesANaNGradient) {
   const Vec2 points[] = {{100.0f, 24.0f}, {700.0f, 4.04e33f}};
   SceneDefinition s;
   s.rendering = Rendering::Directional;
