@@ -65,7 +65,7 @@ TEST(FuzzRegression, SceneFileCorpus) {
 TEST(FuzzRegression, DISABLED_TraceCsvOpenFinds) {
   replay_all(fs::path(FF_FUZZ_CORPUS_DIR) / "trace_csv_open", ff::fuzz::trace_csv_one_input);
 }
-TEST(FuzzRegression, DISABLED_SceneFileOpenFinds) {
+TEST(FuzzRegression, SceneFileOpenFinds) {
   EXPECT_GE(replay_all(fs::path(FF_FUZZ_CORPUS_DIR) / "scene_file_open", ff::fuzz::scene_file_one_input), 1u);
 }
 
