@@ -3,14 +3,16 @@
 // + serial emulation over HID as the host channel). This file only binds the
 // core's bus interfaces and the Board to Teensyduino; everything it runs is
 // in firmware/app (tested natively against emulated devices).
+// Our headers first: Arduino.h defines macros (bit, min, max, ...) that
+// would rewrite the portable code.
+#include "firmware/app/firmware_app.hpp"
+
 #include <Arduino.h>
 #include <Ethernet.h>
 #include <EthernetUdp.h>
 #include <IntervalTimer.h>
 #include <SPI.h>
 #include <Wire.h>
-
-#include "firmware/app/firmware_app.hpp"
 
 namespace {
 
