@@ -1,0 +1,33 @@
+#pragma once
+// The Teensy bootloader (HalfKay) protocol for the MK66FX1M0, as
+// teensy_loader_cli writes it: 1024-byte blocks, each sent as one HID report
+// of a 64-byte header (block address in bytes 0..2, little-endian) followed by
+// the 1024 data bytes; blank (all 0xFF) blocks are skipped except the first
+// (its write erases the chip); then a boot command: header 0xFF 0xFF 0xFF.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "intel_hex.hpp"
+
+namespace ff::ffctl {
+
+constexpr uint16_t kHalfKayVendor = 0x16C0;
+constexpr uint16_t kHalfKayProduct = 0x0478;
+constexpr size_t kHalfKayBlock = 1024;
+constexpr size_t kHalfKayHeader = 64;
+
+struct HalfKayWrite {
+  uint32_t address = 0;
+  std::vector<uint8_t> report;  // header + data (kHalfKayHeader + kHalfKayBlock), or the boot command
+};
+
+// Every report to send, in order; the last one boots the new firmware.
+std::vector<HalfKayWrite> halfkay_writes(const FlashImage& image);
+
+// Sends them over libusb; progress(done, total). false with a readable `error`.
+bool halfkay_flash(const std::vector<HalfKayWrite>& writes, const std::function<void(size_t, size_t)>& progress,
+                   std::string& error, int wait_for_device_s = 10);
+
+}  // namespace ff::ffctl

@@ -1,0 +1,91 @@
+#include "hid_transport.hpp"
+
+#include <hidapi.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include "frictionfield/protocol/hid_channel.hpp"
+
+namespace ff::ffctl {
+
+namespace {
+
+std::string narrow(const wchar_t* w) {
+  std::string s;
+  for (; w && *w; ++w) s += static_cast<char>(*w < 128 ? *w : '?');
+  return s;
+}
+
+struct HidInit {
+  HidInit() { hid_init(); }
+  ~HidInit() { hid_exit(); }
+};
+HidInit& hid() {
+  static HidInit init;
+  return init;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  hid();
+  std::vector<DeviceInfo> out;
+  hid_device_info* all = hid_enumerate(kTeensyVendor, kTeensyHidProduct);
+  for (hid_device_info* d = all; d; d = d->next) {
+    if (d->usage_page != kSeremuUsagePage) continue;
+    out.push_back({d->path, narrow(d->serial_number), narrow(d->product_string), d->vendor_id, d->product_id});
+  }
+  hid_free_enumeration(all);
+  return out;
+}
+
+HidTransport::HidTransport(const std::string& serial) {
+  for (const DeviceInfo& d : list_devices()) {
+    if (!serial.empty() && d.serial != serial) continue;
+    device_ = hid_open_path(d.path.c_str());
+    if (!device_) {
+      throw std::runtime_error("found " + d.path + " but cannot open it: permission denied? Install udev/49-frictionfield.rules "
+                               "(see docs/ffctl.md) and replug the device");
+    }
+    return;
+  }
+  throw std::runtime_error(serial.empty() ? "no frictionfield device on USB (vendor 16c0, product 0482): is it plugged in "
+                                            "and flashed with the USB_HID firmware? `ffctl list` shows what is there"
+                                          : "no frictionfield device with serial number " + serial);
+}
+
+HidTransport::~HidTransport() {
+  if (device_) hid_close(device_);
+}
+
+bool HidTransport::send(const uint8_t* frame, size_t size) {
+  uint8_t reports[protocol::kMaxHidReports][protocol::kHidReportBytes];
+  const size_t n = protocol::split_into_reports(frame, size, reports, protocol::kMaxHidReports);
+  for (size_t i = 0; i < n; ++i) {
+    uint8_t buf[1 + protocol::kHidReportBytes] = {0};  // report id 0
+    std::copy(reports[i], reports[i] + protocol::kHidReportBytes, buf + 1);
+    if (hid_write(device_, buf, sizeof buf) < 0) return false;
+  }
+  return n > 0;
+}
+
+ReceiveResult HidTransport::receive(std::vector<uint8_t>& frame, int timeout_ms) {
+  static protocol::HidReassembler reassembler;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  uint8_t report[protocol::kHidReportBytes];
+  for (;;) {
+    const int left = static_cast<int>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count());
+    if (left <= 0) return ReceiveResult::Timeout;
+    const int n = hid_read_timeout(device_, report, sizeof report, left);
+    if (n < 0) return ReceiveResult::Disconnected;
+    if (n == 0) return ReceiveResult::Timeout;
+    if (reassembler.push(report)) {
+      frame.assign(reassembler.frame(), reassembler.frame() + reassembler.size());
+      return ReceiveResult::Frame;
+    }
+  }
+}
+
+}  // namespace ff::ffctl

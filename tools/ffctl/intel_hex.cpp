@@ -1,0 +1,78 @@
+#include "intel_hex.hpp"
+
+#include <sstream>
+
+namespace ff::ffctl {
+
+namespace {
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
+}
+
+}  // namespace
+
+bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& error) {
+  std::istringstream in(text);
+  std::string line;
+  uint32_t base = 0;  // extended segment (type 02) or linear (type 04) address
+  int line_no = 0;
+  bool ended = false;
+  auto fail = [&](const std::string& why) {
+    error = "line " + std::to_string(line_no) + ": " + why;
+    return false;
+  };
+  while (std::getline(in, line)) {
+    ++line_no;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (line.empty()) continue;
+    if (ended) return fail("data after the end-of-file record");
+    if (line[0] != ':' || line.size() < 11 || (line.size() - 1) % 2 != 0) return fail("not an Intel HEX record");
+    std::vector<uint8_t> rec;
+    for (size_t i = 1; i + 1 < line.size(); i += 2) {
+      const int hi = hex_value(line[i]), lo = hex_value(line[i + 1]);
+      if (hi < 0 || lo < 0) return fail("not a hex digit");
+      rec.push_back(static_cast<uint8_t>(hi * 16 + lo));
+    }
+    const size_t count = rec[0];
+    if (rec.size() != count + 5) return fail("byte count does not match the record length");
+    uint8_t sum = 0;
+    for (uint8_t b : rec) sum = static_cast<uint8_t>(sum + b);
+    if (sum != 0) return fail("checksum mismatch");
+    const uint32_t offset = static_cast<uint32_t>(rec[1] << 8 | rec[2]);
+    const uint8_t type = rec[3];
+    switch (type) {
+      case 0x00: {
+        const uint32_t address = base + offset;
+        if (address + count > image.bytes.size()) return fail("data beyond the 1 MiB flash");
+        for (size_t i = 0; i < count; ++i) image.bytes[address + i] = rec[4 + i];
+        if (address + count > image.highest) image.highest = address + count;
+        break;
+      }
+      case 0x01:
+        ended = true;
+        break;
+      case 0x02:
+        if (count != 2) return fail("extended segment address needs 2 bytes");
+        base = static_cast<uint32_t>(rec[4] << 8 | rec[5]) << 4;
+        break;
+      case 0x04:
+        if (count != 2) return fail("extended linear address needs 2 bytes");
+        base = static_cast<uint32_t>(rec[4] << 8 | rec[5]) << 16;
+        break;
+      case 0x03:
+      case 0x05:
+        break;  // start address: the bootloader starts from the reset vector
+      default:
+        return fail("unknown record type " + std::to_string(type));
+    }
+  }
+  if (!ended) return fail("no end-of-file record (truncated file?)");
+  if (image.highest == 0) return fail("no data");
+  return true;
+}
+
+}  // namespace ff::ffctl
