@@ -2,6 +2,22 @@
 
 namespace ff::scenes {
 
+namespace {
+
+// A position-only scene of one slippery band along `curve`: fully slippery
+// for |u| <= 10 px, a 20 px quintic feather, sticky beyond (SPEC.md).
+SceneDefinition slippery_band(const PathCurve& curve) {
+  SceneDefinition s;
+  s.rendering = Rendering::PositionOnly;
+  FieldElement band = FieldElement::path_sink(curve, 0.2f, 1.0f);
+  band.valley.band_half_width = 10.0f;
+  band.valley.band_feather = 20.0f;
+  s.add(band);
+  return s;
+}
+
+}  // namespace
+
 SceneDefinition heightmap(Target target) {
   // Thesis eq. E.1-E.4: Z = 1/2 Z_path + 1/2 Z_cone, a = 1/5.
   SceneDefinition s;
@@ -13,13 +29,7 @@ SceneDefinition heightmap(Target target) {
 
 SceneDefinition frictionmap(Target target) {
   // A = S5((30 - |u|) / 20): slippery for |u| <= 10, sticky beyond 30.
-  SceneDefinition s;
-  s.rendering = Rendering::PositionOnly;
-  FieldElement band = FieldElement::path_sink(PathCurve::cubic(target_rise(target)), 0.2f, 1.0f);
-  band.valley.band_half_width = 10.0f;
-  band.valley.band_feather = 20.0f;
-  s.add(band);
-  return s;
+  return slippery_band(PathCurve::cubic(target_rise(target)));
 }
 
 SceneDefinition neutral() {
@@ -48,13 +58,7 @@ SceneDefinition pilot_c_valley(Target target) {
 }
 
 SceneDefinition familiarisation_path() {
-  SceneDefinition s;
-  s.rendering = Rendering::PositionOnly;
-  FieldElement band = FieldElement::path_sink(PathCurve::sine(240.0f, 120.0f, 400.0f, 0.0f), 0.2f);
-  band.valley.band_half_width = 10.0f;
-  band.valley.band_feather = 20.0f;
-  s.add(band);
-  return s;
+  return slippery_band(PathCurve::sine(240.0f, 120.0f, 400.0f, 0.0f));  // a winding low-friction path
 }
 
 SceneDefinition bump_map() {
