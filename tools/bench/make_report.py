@@ -163,6 +163,10 @@ def kib(b):
     return ("%.1f KiB" % (b / 1024)) if b < 1024 * 1024 else ("%.2f MiB" % (b / 1048576))
 
 
+def p99_text(v):
+    return "< 0.01" if v is not None and 0 < v < 0.01 else fmt(v)  # the histogram's resolution
+
+
 def ms_at_180(instr):
     return None if instr is None else instr / CLOCK_HZ * 1e3
 
@@ -351,7 +355,7 @@ def error_analysis(rows):
     if closed:
         worst = max(closed, key=lambda r: fnum(r["max_lsb"]) or 0)
         rel = max((r["max_g_rel_error"] or 0) for r in closed)
-        out.append("Closed forms: at most %s LSB (%s). The core's max|G| (16 px scan + compass search) "
+        out.append("Closed forms: at most %s LSB (%s). The core's max|G| (coarse scan + compass search) "
                    "is within %.1e of the reference's everywhere, worth at most %.3f LSB (0.5 x relative "
                    "error x 4095); the rest is float rounding." % (
                        fmt(fnum(worst["max_lsb"])), worst["scene"], rel, 0.5 * rel * 4095))
@@ -422,8 +426,8 @@ def report(rows, m4, host_trackers, args):
       (("%d instructions per count" % m4["calibration"]) if have_m4 else "not run"))
     w("- **Instructions are not cycles.** qemu counts instructions, not the M4's cycles: VDIV/VSQRT take "
       "14 cycles, loads 2, taken branches 2–4, and the Teensy's flash has wait states (cache-assisted). "
-      "The budget fraction below is instructions / 90,000 (one 500 µs tick at 180 MHz), a lower bound "
-      "on the real fraction; expect about 1.5–2× on hardware.")
+      "The budget fraction below is instructions / 90,000 (one 500 µs tick at 180 MHz): a lower bound "
+      "on the real fraction, to be confirmed with the DWT cycle counter on the Teensy.")
     w("- **Whole tick**: `HapticPipeline::tick()` (static pipeline, two 96 KiB table slots, `recommended()` "
       "tracker) while a finger strokes along heightmap-top's path at 600 px/s with a ±30 px wave, reports "
       "every 5 ms: mean over 2,000 ticks (`≈`: the table does not fit the slot, so the tick is estimated as "
@@ -528,11 +532,12 @@ def report(rows, m4, host_trackers, args):
             fmt(on_sample * every), every, fmt(on_sample), fmt(on_sample)))
         w("| `Tracker::on_tick` (neutral: `need_filter = false`; heightmap: filtering, `recommended()`) | %s | %s |" % (
             fmt(tick_nofilter), fmt(tick_filter)))
-        w("| `ScenePlan::amplitude` | %s | %s |" % (fmt(neutral["m4_eval"]), fmt(heightmap["m4_eval"])))
-        w("| `AmplitudeMap::scale` | %s | %s |" % (fmt(scale), fmt(scale)))
-        w("| `AmplitudeMap::dac_code` | %s | %s |" % (fmt(code), fmt(code)))
+        # A constant scene's amplitude and code are computed once, at preparation.
+        w("| `ScenePlan::amplitude` | — (at preparation) | %s |" % fmt(heightmap["m4_eval"]))
+        w("| `AmplitudeMap::scale` | — (at preparation) | %s |" % fmt(scale))
+        w("| `AmplitudeMap::dac_code` | — (at preparation) | %s |" % fmt(code))
         w("| `SampleMailbox::take` (about one per tick) | %s | %s |" % (fmt(take), fmt(take)))
-        parts_n = on_sample + tick_nofilter + neutral["m4_eval"] + scale + code + take
+        parts_n = on_sample + tick_nofilter + take
         parts_h = on_sample + tick_filter + heightmap["m4_eval"] + scale + code + take
         w("| rest: `HapticPipeline::tick` itself (slot selection, `TickOutput`, calls) | %s | %s |" % (
             fmt(neutral["m4_tick"] - parts_n), fmt(heightmap["m4_tick"] - parts_h)))
@@ -560,8 +565,9 @@ def report(rows, m4, host_trackers, args):
     # ---------------------------------------------------------- preparation
     w("## Scene preparation")
     w("")
-    w("`ScenePlan::prepare` (max|G| scan: a 16 px scan of the screen plus a compass search from the 4 best "
-      "nodes; tables: every node, twice for int16 because the scale needs the range first, then the max|G| "
+    w("`ScenePlan::prepare` (max|G| search: a 32 px scan of the screen — an eighth of the shortest texture "
+      "wavelength where there is one, a closed form for a lone texture — plus a compass search from the best "
+      "node of each of the 6 highest hills; tables: every node, twice for int16 because the scale needs the range first, then the max|G| "
       "scan on the table). heightmap-top, M4 instructions (ms at 180 MHz, 1 instruction = 1 cycle):")
     w("")
     w("| spacing | float gradient | int16 gradient | float height | int16 height | table bytes (int16 gradient) |")
@@ -609,7 +615,7 @@ def report(rows, m4, host_trackers, args):
     for r in rows:
         w("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             r["id"] + (" **(default)**" if r["default"] == "1" else ""), kib(r["memory_bytes"]),
-            "yes" if r["fits_teensy"] else "no", fmt(fnum(r["max_lsb"])), fmt(fnum(r["p99_lsb"])),
+            "yes" if r["fits_teensy"] else "no", fmt(fnum(r["max_lsb"])), p99_text(fnum(r["p99_lsb"])),
             fmt(fnum(r["rms_lsb"])), fmt(fnum(r["max_interior_lsb"])), r["where"], fmt(r["m4_eval"]),
             tick_text(r), fmt(r["m4_prepare"]), fmt(fnum(r["host_eval_ns"])), fmt(fnum(r["host_prepare_us"])),
             "–" if r["checksum_match"] is None else ("yes" if r["checksum_match"] else "no")))
