@@ -3,8 +3,11 @@
 // HID reports and advances simulated time while ffctl waits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <deque>
+#include <fstream>
 #include <memory>
+#include <sstream>
 
 #include "device_client.hpp"
 #include "firmware/app/firmware_app.hpp"
@@ -225,6 +228,33 @@ TEST(HalfKay, BlocksHaveTheMk66LayoutSkipBlanksButTheFirstAndEndWithBoot) {
   blank.highest = 2048;
   EXPECT_EQ(halfkay_writes(blank).size(), 2u);  // the first block is always written: it erases the chip
 }
+
+#ifdef FF_TOOLCHAIN_HEX
+std::string slurp(const char* path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(HalfKay, ImageFromTheCrossToolchainsObjcopy) {
+  // objcopy put intel_hex.cpp's bytes at 0x10000 (extended linear address records).
+  const std::string data = slurp(FF_TOOLCHAIN_HEX_SOURCE);
+  FlashImage image;
+  std::string error;
+  ASSERT_TRUE(parse_intel_hex(slurp(FF_TOOLCHAIN_HEX), image, error)) << error;
+  ASSERT_EQ(image.highest, 0x10000u + data.size());
+  EXPECT_TRUE(std::equal(data.begin(), data.end(), image.bytes.begin() + 0x10000));
+  const auto writes = halfkay_writes(image);
+  // Block 0 (blank, but written: it erases), every block under the data, the boot command.
+  const size_t data_blocks = (data.size() + kHalfKayBlock - 1) / kHalfKayBlock;
+  ASSERT_EQ(writes.size(), 1 + data_blocks + 1);
+  EXPECT_EQ(writes[0].address, 0u);
+  EXPECT_EQ(writes[1].address, 0x10000u);
+  EXPECT_EQ(writes[1].report[2], 0x01);  // 0x010000 little-endian: byte 2
+  EXPECT_EQ(writes[1].report[kHalfKayHeader], static_cast<uint8_t>(data[0]));
+}
+#endif
 
 }  // namespace
 }  // namespace ff::ffctl
