@@ -71,7 +71,6 @@ bool HidTransport::send(const uint8_t* frame, size_t size) {
 }
 
 ReceiveResult HidTransport::receive(std::vector<uint8_t>& frame, int timeout_ms) {
-  static protocol::HidReassembler reassembler;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
   uint8_t report[protocol::kHidReportBytes];
   for (;;) {
@@ -81,8 +80,8 @@ ReceiveResult HidTransport::receive(std::vector<uint8_t>& frame, int timeout_ms)
     const int n = hid_read_timeout(device_, report, sizeof report, left);
     if (n < 0) return ReceiveResult::Disconnected;
     if (n == 0) return ReceiveResult::Timeout;
-    if (reassembler.push(report)) {
-      frame.assign(reassembler.frame(), reassembler.frame() + reassembler.size());
+    if (reassembler_.push(report)) {
+      frame.assign(reassembler_.frame(), reassembler_.frame() + reassembler_.size());
       return ReceiveResult::Frame;
     }
   }

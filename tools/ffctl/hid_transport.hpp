@@ -4,6 +4,7 @@
 // 0xFFC9), 64-byte reports carrying our fragmented frames.
 #include <memory>
 
+#include "frictionfield/protocol/hid_channel.hpp"
 #include "transport.hpp"
 
 struct hid_device_;
@@ -27,6 +28,7 @@ class HidTransport final : public Transport {
 
  private:
   hid_device_* device_ = nullptr;
+  protocol::HidReassembler reassembler_;
 };
 
 }  // namespace ff::ffctl
