@@ -19,6 +19,10 @@ class Board {
   // Free-running cycle counter (DWT->CYCCNT at 180 MHz).
   virtual uint32_t cycles() = 0;
   virtual void reboot_to_bootloader() = 0;
+  // The MCU's hardware watchdog, kicked once per main-loop pass: the last
+  // resort (a reset) if the loop hangs for good. The tick's own 50 ms
+  // software watchdog rests the plate long before that.
+  virtual void watchdog_kick() {}  // default: a board without one
 
  protected:
   ~Board() = default;

@@ -27,8 +27,9 @@ void FirmwareApp::begin(uint32_t now_us) {
 
 void FirmwareApp::tick(uint32_t now_us) {
   const uint32_t start = board_.cycles();
-  const uint32_t silent = now_us - heartbeat_us_.load(std::memory_order_acquire);
-  if (silent > kWatchdogUs) {
+  // Signed: a heartbeat stamped a moment after `now_us` is fresh, not 71 minutes old.
+  const int32_t silent = static_cast<int32_t>(now_us - heartbeat_us_.load(std::memory_order_acquire));
+  if (silent > static_cast<int32_t>(kWatchdogUs)) {
     // The main loop stalled: no fresh reports, no host. Rest the plate.
     if (!watchdog_tripped_) ++counters_.watchdog_trips;
     watchdog_tripped_ = true;
@@ -57,6 +58,7 @@ uint32_t FirmwareApp::tick_cycles_mean() const {
 
 void FirmwareApp::loop(uint32_t now_us) {
   heartbeat_us_.store(now_us, std::memory_order_release);
+  board_.watchdog_kick();
 
   // Sensor: the DR interrupt only timestamped; the I2C read happens here.
   SensorSample s;
@@ -94,7 +96,7 @@ void FirmwareApp::loop(uint32_t now_us) {
   }
 
   SweepStep step;
-  if (sweep_.running()) sweep_.step(now_us, step);
+  if (sweep_.running() && sweep_.step(now_us, step)) carrier_hz_ = static_cast<uint32_t>((step.millihz + 500u) / 1000u);
 
   if (streaming_.load(std::memory_order_relaxed) && now_us - last_stream_flush_us_ >= 10000) flush_stream(now_us, false);
 }
@@ -207,6 +209,7 @@ void FirmwareApp::handle_frame(const uint8_t* frame, size_t size, Channel channe
       break;
     case MessageType::SetCarrier:
       if (in.carrier.frequency_hz >= 1000.0f && in.carrier.frequency_hz <= 1.0e6f) {
+        sweep_.stop();  // a fixed frequency ends a sweep
         set_carrier(static_cast<uint32_t>(in.carrier.frequency_hz + 0.5f));
       } else {
         r.ack.status = protocol::AckStatus::Refused;

@@ -23,7 +23,7 @@ using protocol::MessageType;
 
 class FakeBoard final : public Board {
  public:
-  void mouse_move_to(int x, int y) override { mouse.push_back({x, y}); }
+  void mouse_move_to(int x, int y) override { mouse.push_back({now_us, x, y}); }
   bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size) override {
     if (udp_in.empty() || udp_in.front().size() > capacity) return false;
     size = udp_in.front().size();
@@ -48,6 +48,7 @@ class FakeBoard final : public Board {
     ++reboots;
     dac_at_reboot = dac ? dac->last() : -1;
   }
+  void watchdog_kick() override { ++kicks; }
 
   void send(const Message& m) {
     std::vector<uint8_t> f(protocol::kMaxFrame);
@@ -60,13 +61,15 @@ class FakeBoard final : public Board {
     return n;
   }
 
-  struct Point { int x, y; };
+  struct Point { uint32_t t_us; int x, y; };
   std::vector<Point> mouse;
   std::deque<std::vector<uint8_t>> udp_in;
   std::vector<Message> udp_out, hid_out;
   protocol::HidReassembler hid;
   uint32_t cycle_counter = 0;
   int undecodable = 0, reboots = 0, dac_at_reboot = -1;
+  uint32_t kicks = 0;
+  uint32_t now_us = 0;  // the loop's time, for stamping what the host saw
   const emulated::RecordingDac* dac = nullptr;
 };
 
@@ -100,6 +103,7 @@ struct Device {
   void run(uint32_t from, uint32_t to, bool loop_alive = true) {
     for (uint32_t t = from; t < to; t += 100) {
       zforce_model.advance_to(t);
+      board.now_us = t;
       if (loop_alive) app->loop(t);
       if (t % 500 == 0) app->tick(t);
     }
@@ -145,10 +149,15 @@ TEST(FirmwareApp, RunsATrialScenesSwitchOverUdpMalformedPacketsAreRefused) {
   EXPECT_EQ(d.board.udp_out.front().sequence, 5);
   const uint16_t heightmap_code = d.dac.last();
   EXPECT_GT(heightmap_code, 2048);  // moving right towards the middle target: assisted
+  EXPECT_LT(heightmap_code, 4095);
 
-  // Frictionmap mid-trace: the finger is on the path, so the next ticks render A = 1.
+  // Frictionmap mid-trace: the loop at 1.5 s takes the datagram and prepares
+  // the scene; the very next tick (same instant) renders it: on the path, A = 1.
   d.board.send(condition(protocol::ConditionKind::Frictionmap));
+  const size_t writes_before = d.dac.writes().size();
   d.run(1500000, 1500600);
+  ASSERT_EQ(d.dac.writes().size(), writes_before + 2);  // ticks at 1.5 s and 1.5005 s
+  EXPECT_EQ(d.dac.writes()[writes_before].code, 4095);
   EXPECT_EQ(d.dac.last(), 4095);
   EXPECT_EQ(d.app->counters().conditions_set, 2u);
 
@@ -185,8 +194,22 @@ TEST(FirmwareApp, RunsATrialScenesSwitchOverUdpMalformedPacketsAreRefused) {
   EXPECT_GT(d.board.mouse.size(), 600u);
   EXPECT_LT(d.board.mouse.size(), 700u);
   EXPECT_NEAR(d.board.mouse.back().y, 240, 2);
+  for (size_t i = 1; i < d.board.mouse.size(); ++i) {
+    ASSERT_EQ(d.board.mouse[i].t_us - d.board.mouse[i - 1].t_us, kMouseIntervalUs) << i;
+  }
+  // Moving right at 300 px/s: 0.9 px per 3 ms on average over the stroke.
+  EXPECT_GT(d.board.mouse.back().x, d.board.mouse.front().x + 500);
   // Force telemetry every 30 ms over UDP: 1.0 .. 3.1 s / 30 ms = 70, +-1 for phase.
   EXPECT_NEAR(static_cast<double>(d.board.count(MessageType::Force)), 2100000.0 / 30000.0, 1.0);
+  uint32_t previous_force_t = 0;
+  for (const Message& m : d.board.udp_out) {
+    if (m.type != MessageType::Force) continue;
+    if (previous_force_t != 0) {
+      EXPECT_EQ(m.force.t_us - previous_force_t, 30000u);
+    }
+    previous_force_t = m.force.t_us;
+  }
+  EXPECT_EQ(d.board.undecodable, 0);
 }
 
 TEST(FirmwareApp, StalledLoopRestsThePlateUntilItRecovers) {
@@ -195,13 +218,50 @@ TEST(FirmwareApp, StalledLoopRestsThePlateUntilItRecovers) {
   d.board.send(condition(protocol::ConditionKind::Frictionmap));
   d.run(1000000, 1200000);
   EXPECT_EQ(d.dac.last(), 4095);
+  const uint32_t kicks = d.board.kicks;
   d.run(1200000, 1240000, false);  // 40 ms without the loop: still inside the watchdog
+  EXPECT_EQ(d.board.kicks, kicks);  // nor is the hardware watchdog kicked
   EXPECT_EQ(d.app->counters().watchdog_trips, 0u);
   d.run(1240000, 1300000, false);  // past 50 ms: idle
   EXPECT_EQ(d.dac.last(), 0);
   EXPECT_EQ(d.app->counters().watchdog_trips, 1u);
   d.run(1300000, 1400000);  // the loop is back: rendering again
   EXPECT_EQ(d.dac.last(), 4095);
+  EXPECT_EQ(d.board.kicks, kicks + 1000);  // once per loop pass: 100 ms / 100 us
+}
+
+TEST(FirmwareApp, SweepStepsTheCarrierAndStatusFollowsIt) {
+  Device d;
+  Message sweep;
+  sweep.type = MessageType::StartSweep;
+  sweep.sweep.start_hz = 30000.0f;
+  sweep.sweep.end_hz = 40000.0f;
+  sweep.sweep.duration_ms = 100;
+  d.board.send(sweep);
+  d.run(1000000, 1050000);
+  // Half way: 35 kHz within one step (1 ms of a 100 kHz/s chirp = 100 Hz).
+  EXPECT_NEAR(d.dds.output_hz(), 35000.0, 101.0);
+  d.run(1050000, 1200000);
+  EXPECT_NEAR(d.dds.output_hz(), 40000.0, 0.3);
+  Message q;
+  q.type = MessageType::QueryStatus;
+  d.board.send(q);
+  d.run(1200000, 1201000);
+  ASSERT_EQ(d.board.count(MessageType::Status), 1u);
+  for (const Message& m : d.board.udp_out) {
+    if (m.type == MessageType::Status) {
+      EXPECT_FLOAT_EQ(m.status.carrier_hz, 40000.0f);
+    }
+  }
+  EXPECT_EQ(d.dds.total_faults(), 0u);
+
+  // An out-of-range sweep is refused and changes nothing.
+  sweep.sweep.start_hz = 10.0f;
+  d.board.send(sweep);
+  d.run(1201000, 1202000);
+  EXPECT_EQ(d.board.udp_out.back().type, MessageType::Ack);
+  EXPECT_EQ(d.board.udp_out.back().ack.status, protocol::AckStatus::Refused);
+  EXPECT_NEAR(d.dds.output_hz(), 40000.0, 0.3);
 }
 
 TEST(FirmwareApp, StatusStreamingCarrierAndReboot) {
