@@ -136,11 +136,10 @@ void FirmwareApp::set_carrier(uint32_t hz) {
   carrier_hz_ = hz;
 }
 
-void FirmwareApp::reply(const Message& m, Channel channel) {
-  Message copy = m;
-  copy.sequence = sequence_;
+void FirmwareApp::reply(Message& m, Channel channel) {
+  m.sequence = sequence_;  // in place: a copy would put another 2.8 KB on the loop's stack
   uint8_t frame[protocol::kMaxFrame];
-  const size_t n = protocol::encode(copy, frame, sizeof frame);
+  const size_t n = protocol::encode(m, frame, sizeof frame);
   if (n == 0) return;
   if (channel == Channel::Udp) {
     board_.udp_send(frame, n);

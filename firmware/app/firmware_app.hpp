@@ -67,7 +67,7 @@ class FirmwareApp {
  private:
   enum class Channel : uint8_t { Udp, Hid };
   void handle_frame(const uint8_t* frame, size_t size, Channel channel, uint32_t now_us);
-  void reply(const protocol::Message& m, Channel channel);
+  void reply(protocol::Message& m, Channel channel);
   void send_force(uint32_t now_us);
   void flush_stream(uint32_t now_us, bool force);
   void set_carrier(uint32_t hz);
