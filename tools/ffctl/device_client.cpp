@@ -1,22 +1,45 @@
 #include "device_client.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <sstream>
+
+#include "frictionfield/host/scene_file.hpp"
 
 namespace ff::ffctl {
 
 using protocol::Message;
 using protocol::MessageType;
 
+// --- requests ----------------------------------------------------------------
+
+const char* to_string(protocol::ErrorCode code) {
+  switch (code) {
+    case protocol::ErrorCode::TooShort: return "frame too short";
+    case protocol::ErrorCode::BadMagic: return "bad magic";
+    case protocol::ErrorCode::BadVersion: return "unsupported protocol version";
+    case protocol::ErrorCode::BadLength: return "length does not match";
+    case protocol::ErrorCode::BadCrc: return "CRC mismatch";
+    case protocol::ErrorCode::UnknownType: return "unknown message type";
+    case protocol::ErrorCode::Malformed: return "malformed payload";
+    case protocol::ErrorCode::Busy: return "busy";
+  }
+  return "unknown error code";
+}
+
 ReceiveResult DeviceClient::next(Message& m, int timeout_ms) {
   std::vector<uint8_t> frame;
   for (;;) {
     const ReceiveResult r = transport_.receive(frame, timeout_ms);
     if (r != ReceiveResult::Frame) return r;
-    if (protocol::decode(frame.data(), frame.size(), m) == protocol::DecodeStatus::Ok) return r;
+    const protocol::DecodeStatus status = protocol::decode(frame.data(), frame.size(), m);
+    if (status == protocol::DecodeStatus::Ok) return r;
+    if (status == protocol::DecodeStatus::BadVersion) foreign_version_ = frame[2];
     ++malformed_;  // counted, skipped: the next frame may be fine
   }
 }
@@ -27,145 +50,336 @@ bool DeviceClient::request(Message command, Message& reply, std::string& error, 
   const size_t n = protocol::encode(command, frame, sizeof frame);
   if (n == 0) return error = "the command does not fit in one frame", false;
   if (!transport_.send(frame, n)) return error = "the device did not take the command (disconnected?)", false;
-  for (int waited = 0; waited < 50; ++waited) {
-    const ReceiveResult r = next(reply, timeout_ms);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const ReceiveResult r = left.count() > 0 ? next(reply, static_cast<int>(left.count())) : ReceiveResult::Timeout;
     if (r == ReceiveResult::Disconnected) return error = "the device disconnected", false;
-    if (r == ReceiveResult::Timeout) return error = "no reply from the device within " + std::to_string(timeout_ms) + " ms", false;
-    if (reply.type == MessageType::Error) {
-      return error = "the device refused the message (error code " + std::to_string(static_cast<int>(reply.error.code)) + ")", false;
+    if (r == ReceiveResult::Timeout) {
+      error = "no reply from the device within " + std::to_string(timeout_ms) + " ms";
+      if (foreign_version_ != 0) {
+        error += ": it speaks protocol version " + std::to_string(foreign_version_) + ", this ffctl version " +
+                 std::to_string(protocol::kVersion) + " (flash the matching firmware)";
+      }
+      return false;
     }
-    if ((reply.type == MessageType::Ack || reply.type == MessageType::Status) && reply.sequence == command.sequence) return true;
+    if (reply.sequence != command.sequence) continue;  // streamed traffic, or an older command's reply
+    if (reply.type == MessageType::Error) {
+      return error = std::string("the device refused the message: ") + to_string(reply.error.code), false;
+    }
+    if (reply.type == MessageType::Ack || reply.type == MessageType::Status) return true;
   }
-  return error = "no reply among the device's streamed messages", false;
 }
 
+// --- recording ---------------------------------------------------------------
+
+namespace {
+
+// The device's 32-bit microseconds as a 64-bit time, for values that arrive
+// nearly in order (reports are stamped a little before the ticks around them).
+class Unwrapper {
+ public:
+  uint64_t operator()(uint32_t t) {
+    if (!have_) {
+      have_ = true;
+      newest_ = t;
+      return t;
+    }
+    const int64_t v = static_cast<int64_t>(newest_) + static_cast<int32_t>(t - static_cast<uint32_t>(newest_));
+    if (v < 0) return 0;
+    if (static_cast<uint64_t>(v) > newest_) newest_ = static_cast<uint64_t>(v);
+    return static_cast<uint64_t>(v);
+  }
+
+ private:
+  bool have_ = false;
+  uint64_t newest_ = 0;
+};
+
+}  // namespace
+
 bool record(DeviceClient& client, double seconds, Recording& out, std::string& error,
-            const std::function<void(double, size_t, size_t)>& progress) {
+            const std::function<bool(double, size_t, size_t)>& progress) {
   Message start, reply;
   start.type = MessageType::StartStream;
   start.stream.tick_decimation = 1;
   if (!client.request(start, reply, error)) return false;
-  uint64_t high = 0;
-  uint32_t last32 = 0;
-  bool have = false;
-  auto unwrap = [&](uint32_t t) {  // 32-bit device micros to a monotonic 64-bit time
-    if (have && t < last32 && last32 - t > 0x80000000u) high += 0x100000000ull;
-    last32 = t;
-    have = true;
-    return high + t;
-  };
+  Unwrapper unwrap;
   uint64_t first = 0;
-  bool started = false;
+  bool ok = true;
   for (;;) {
     Message m;
     const ReceiveResult r = client.next(m, 1000);
-    if (r == ReceiveResult::Disconnected) return error = "the device disconnected while recording", false;
-    if (r == ReceiveResult::Timeout) return error = "the device stopped streaming", false;
-    uint64_t newest = 0;
+    if (r == ReceiveResult::Disconnected) {
+      error = "the device disconnected while recording";
+      return false;  // no StopStream: there is nobody to tell
+    }
+    if (r == ReceiveResult::Timeout) {
+      error = "the device stopped streaming";
+      ok = false;
+      break;
+    }
     if (m.type == MessageType::Samples) {
       for (int i = 0; i < m.samples.count; ++i) {
         const SensorSample& s = m.samples.samples[i];
-        newest = unwrap(s.t_us);
-        out.samples.push_back({newest, s.x, s.y, s.touch});
+        out.samples.push_back({{unwrap(s.t_us), s.x, s.y, s.touch}, false, 0});
       }
-    } else if (m.type == MessageType::Ticks) {
-      for (int i = 0; i < m.ticks.count; ++i) {
-        const protocol::TickRecord& t = m.ticks.ticks[i];
-        newest = unwrap(t.t_us);
-        out.ticks.push_back({newest, t.amplitude, t.dac, t.present});
-      }
-    } else {
       continue;
     }
-    if (!started) {
-      first = newest;
-      started = true;
+    if (m.type != MessageType::Ticks || m.ticks.count == 0) continue;
+    if (out.ticks.empty()) first = unwrap(m.ticks.ticks[0].t_us);
+    for (int i = 0; i < m.ticks.count; ++i) {
+      const protocol::TickRecord& t = m.ticks.ticks[i];
+      out.ticks.push_back({unwrap(t.t_us), t.amplitude, t.dac, t.present});
     }
-    const double done = static_cast<double>(newest - first) * 1e-6;
-    if (progress) progress(done, out.samples.size(), out.ticks.size());
-    if (done >= seconds) break;
+    const double done = static_cast<double>(out.ticks.back().t_us - first) * 1e-6;
+    if (progress && !progress(done, out.samples.size(), out.ticks.size())) break;
+    if (seconds > 0.0 && done >= seconds) break;
   }
   Message stop;
   stop.type = MessageType::StopStream;
   std::string ignored;
   client.request(stop, reply, ignored);
+  return ok;
+}
+
+std::string describe(const protocol::ConditionMessage& c) {
+  static const char* kinds[] = {"heightmap", "frictionmap", "neutral", "general scene"};
+  static const char* targets[] = {"top", "middle", "bottom"};
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "%s, target %s, strength %.3g, idle amplitude %.3g, S-curve %.3g%s",
+                kinds[static_cast<int>(c.kind)], targets[static_cast<int>(c.target)], static_cast<double>(c.strength),
+                static_cast<double>(c.idle_amplitude), static_cast<double>(c.s_curve),
+                c.inverted_dac ? ", inverted DAC" : "");
+  return buf;
+}
+
+namespace {
+
+std::string stem_of(const std::string& trace_path) {
+  const size_t dot = trace_path.rfind(".csv");
+  return dot == std::string::npos ? trace_path : trace_path.substr(0, dot);
+}
+
+// The condition as the SetCondition frame that sets it: exact, and the codec checks it on the way back.
+bool write_condition(const std::string& path, const protocol::ConditionMessage& c, std::string& error) {
+  Message m;
+  m.type = MessageType::SetCondition;
+  m.condition = c;
+  uint8_t frame[protocol::kMaxFrame];
+  const size_t n = protocol::encode(m, frame, sizeof frame);
+  std::ofstream out(path);
+  if (!out || n == 0) return error = "cannot write " + path, false;
+  out << "# The condition the device rendered while ffctl recorded (ffctl verify reads it).\n";
+  out << "# " << describe(c) << "\n";
+  if (c.kind == protocol::ConditionKind::General) {
+    std::istringstream scene(host::format_scene_text(c.scene));
+    for (std::string line; std::getline(scene, line);) out << "#   " << line << "\n";
+  }
+  out << "frame ";
+  char hex[3];
+  for (size_t i = 0; i < n; ++i) {
+    std::snprintf(hex, sizeof hex, "%02x", frame[i]);
+    out << hex;
+  }
+  out << "\n";
+  return static_cast<bool>(out) || (error = "writing " + path + " failed", false);
+}
+
+bool read_condition(const std::string& path, protocol::ConditionMessage& c, std::string& error) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("frame ", 0) != 0) continue;
+    std::vector<uint8_t> frame;
+    for (size_t i = 6; i + 1 < line.size() && line[i] != '\r'; i += 2) {
+      unsigned byte = 0;
+      if (std::sscanf(line.c_str() + i, "%2x", &byte) != 1) return error = path + ": bad hex in the frame line", false;
+      frame.push_back(static_cast<uint8_t>(byte));
+    }
+    Message m;
+    const protocol::DecodeStatus st = protocol::decode(frame.data(), frame.size(), m);
+    if (st != protocol::DecodeStatus::Ok || m.type != MessageType::SetCondition) {
+      return error = path + ": not a condition frame (" + protocol::to_string(st) + ")", false;
+    }
+    c = m.condition;
+    return true;
+  }
+  return error = path + ": no frame line", false;
+}
+
+// The device column of a trace ffctl wrote: taken_us per data row (-1: unknown).
+bool read_taken_column(const std::string& path, std::vector<DeviceSample>& samples, std::string& error) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  int column = -1, index = 0;
+  std::istringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) {
+    while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
+    if (name == "taken_us") column = index;
+    ++index;
+  }
+  if (column < 0) return true;  // a plain sensor trace: by timestamps
+  size_t row = 0;
+  for (int line_no = 2; std::getline(in, line); ++line_no) {
+    if (line.empty() || line == "\r") continue;
+    std::istringstream fields(line);
+    std::string field;
+    for (int i = 0; i <= column; ++i) std::getline(fields, field, ',');
+    char* end = nullptr;
+    const long long v = std::strtoll(field.c_str(), &end, 10);
+    if (end == field.c_str() || v < -1 || row >= samples.size()) {
+      return error = path + ":" + std::to_string(line_no) + ": taken_us must be a time in us or -1", false;
+    }
+    samples[row].taken_known = v >= 0;
+    samples[row].taken_us = v >= 0 ? static_cast<uint64_t>(v) : 0;
+    ++row;
+  }
   return true;
 }
 
-std::string ticks_path_for(const std::string& trace_path) {
-  const size_t dot = trace_path.rfind(".csv");
-  return (dot == std::string::npos ? trace_path : trace_path.substr(0, dot)) + ".ticks.csv";
-}
+}  // namespace
+
+std::string ticks_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".ticks.csv"; }
+std::string condition_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".condition"; }
 
 bool write_recording(const std::string& path, const Recording& r, std::string& error) {
   std::ofstream trace(path), ticks(ticks_path_for(path));
-  if (!trace || !ticks) return error = "cannot write " + path, false;
-  trace << "t_us,x,y,touch\n";
-  char buf[128];
-  for (const host::TraceRow& s : r.samples) {
-    std::snprintf(buf, sizeof buf, "%llu,%.3f,%.3f,%d\n", static_cast<unsigned long long>(s.t_us),
-                  static_cast<double>(s.x), static_cast<double>(s.y), s.touch ? 1 : 0);
-    trace << buf;
+  if (!trace || !ticks) return error = "cannot write " + path + " or " + ticks_path_for(path), false;
+  const bool taken = std::any_of(r.samples.begin(), r.samples.end(), [](const DeviceSample& s) { return s.taken_known; });
+  trace << (taken ? "t_us,x,y,touch,taken_us\n" : "t_us,x,y,touch\n");
+  char buf[160];
+  for (const DeviceSample& s : r.samples) {
+    int n = std::snprintf(buf, sizeof buf, "%llu,%.9g,%.9g,%d", static_cast<unsigned long long>(s.row.t_us),
+                          static_cast<double>(s.row.x), static_cast<double>(s.row.y), s.row.touch ? 1 : 0);
+    if (taken) {
+      std::snprintf(buf + n, sizeof buf - static_cast<size_t>(n), ",%lld",
+                    s.taken_known ? static_cast<long long>(s.taken_us) : -1LL);
+    }
+    trace << buf << "\n";
   }
   ticks << "t_us,amplitude,dac,present\n";
   for (const DeviceTick& t : r.ticks) {
-    std::snprintf(buf, sizeof buf, "%llu,%.7g,%u,%d\n", static_cast<unsigned long long>(t.t_us),
+    std::snprintf(buf, sizeof buf, "%llu,%.9g,%u,%d\n", static_cast<unsigned long long>(t.t_us),
                   static_cast<double>(t.amplitude), static_cast<unsigned>(t.dac), t.present ? 1 : 0);
     ticks << buf;
   }
+  if (!trace || !ticks) return error = "writing " + path + " failed (disk full?)", false;
+  if (r.has_condition) return write_condition(condition_path_for(path), r.condition, error);
+  std::remove(condition_path_for(path).c_str());  // a stale one would mislead verify
   return true;
 }
 
 bool read_recording(const std::string& path, Recording& r, std::string& error) {
+  std::vector<host::TraceRow> rows;
   host::TraceError terr;
-  if (!host::read_sensor_trace_file(path, r.samples, terr)) return error = terr.to_string(path), false;
+  if (!host::read_sensor_trace_file(path, rows, terr)) return error = terr.to_string(path), false;
+  for (const host::TraceRow& row : rows) r.samples.push_back({row, false, 0});
+  if (!read_taken_column(path, r.samples, error)) return false;
   const std::string tpath = ticks_path_for(path);
   std::ifstream in(tpath);
   if (!in) return error = tpath + ": cannot open (ffctl record writes it next to the trace)", false;
   std::string line;
   std::getline(in, line);
-  int line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    DeviceTick t;
+  for (int line_no = 2; std::getline(in, line); ++line_no) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
     unsigned long long time = 0;
     unsigned dac = 0;
     int present = 0;
     float amp = 0.0f;
-    if (std::sscanf(line.c_str(), "%llu,%f,%u,%d", &time, &amp, &dac, &present) != 4 || dac > 4095) {
+    char tail = 0;
+    if (std::sscanf(line.c_str(), "%llu,%f,%u,%d%c", &time, &amp, &dac, &present, &tail) != 4 || dac > 4095 ||
+        present < 0 || present > 1 || !std::isfinite(amp)) {
       return error = tpath + ":" + std::to_string(line_no) + ": expected t_us,amplitude,dac,present", false;
     }
-    t.t_us = time;
-    t.amplitude = amp;
-    t.dac = static_cast<uint16_t>(dac);
-    t.present = present != 0;
-    r.ticks.push_back(t);
+    if (!r.ticks.empty() && time <= r.ticks.back().t_us) {
+      return error = tpath + ":" + std::to_string(line_no) + ": tick times must increase", false;
+    }
+    r.ticks.push_back({time, amp, static_cast<uint16_t>(dac), present != 0});
   }
-  return true;
+  const std::string cpath = condition_path_for(path);
+  r.has_condition = std::ifstream(cpath).good();
+  return !r.has_condition || read_condition(cpath, r.condition, error);
 }
 
-VerifyResult verify(const Recording& r, const Condition& condition, const TrackerConfig& tracker) {
+// --- verification ------------------------------------------------------------
+
+namespace {
+
+VerifyResult replay(const Recording& r, const Condition& condition, const TrackerConfig& tracker, bool compare_all) {
   VerifyResult v;
   auto pipeline = std::make_unique<HapticPipeline>(tracker);
   if (pipeline->set_condition(condition) != PrepareStatus::Ok) return v;
+  v.prepared = true;
+  v.exact_alignment = !r.samples.empty();
+  for (const DeviceSample& s : r.samples) v.exact_alignment = v.exact_alignment && s.taken_known;
+
   size_t next = 0;
-  for (const DeviceTick& t : r.ticks) {
-    while (next < r.samples.size() && r.samples[next].t_us <= t.t_us) {
-      const host::TraceRow& s = r.samples[next++];
-      pipeline->post_sample({static_cast<uint32_t>(s.t_us), s.x, s.y, s.touch});
+  bool synchronised = false;
+  bool in_run = false;
+  uint64_t previous_t = 0;
+  for (size_t i = 0; i < r.ticks.size(); ++i) {
+    const DeviceTick& t = r.ticks[i];
+    if (i > 0 && t.t_us - previous_t > 3 * kTickPeriodUs / 2) {
+      // Ticks missing from the stream: the states may part; compare again
+      // once neither side has a finger.
+      v.missing_ticks += static_cast<size_t>((t.t_us - previous_t + kTickPeriodUs / 2) / kTickPeriodUs) - 1;
+      synchronised = false;
+    }
+    previous_t = t.t_us;
+    // Every report this tick (or a tick missing from the stream) took.
+    for (; next < r.samples.size(); ++next) {
+      const DeviceSample& s = r.samples[next];
+      if ((s.taken_known ? s.taken_us : s.row.t_us) > t.t_us) break;
+      pipeline->post_sample({static_cast<uint32_t>(s.row.t_us), s.row.x, s.row.y, s.row.touch});
     }
     const TickOutput out = pipeline->tick(static_cast<uint32_t>(t.t_us));
+    if (!synchronised && (compare_all || (!t.present && !out.present))) {
+      synchronised = true;
+      v.synchronised = !compare_all;
+    }
+    if (!synchronised) {
+      ++v.warm_up;
+      in_run = false;
+      continue;
+    }
     ++v.compared;
     const float da = std::fabs(out.amplitude - t.amplitude);
     const int dd = std::abs(static_cast<int>(out.dac) - static_cast<int>(t.dac));
     v.max_amplitude_difference = std::fmax(v.max_amplitude_difference, da);
     v.max_dac_difference = std::max(v.max_dac_difference, dd);
-    if (dd > 1) {
-      ++v.beyond_one_code;
-      if (v.first.size() < 10) v.first.push_back({t.t_us, t.amplitude, out.amplitude, t.dac, out.dac});
+    const bool presence = out.present != t.present;
+    if (dd <= 1 && !presence) {
+      in_run = false;
+      continue;
+    }
+    ++v.beyond_one_code;
+    if (presence) ++v.presence_mismatches;
+    const Mismatch m{t.t_us, t.amplitude, out.amplitude, t.dac, out.dac, t.present, out.present};
+    if (!in_run) {
+      in_run = true;
+      ++v.run_count;
+      if (v.runs.size() < kMaxRuns) v.runs.push_back({0, t.t_us, t.t_us, -1, m});
+    }
+    if (v.run_count <= kMaxRuns) {
+      MismatchRun& run = v.runs.back();
+      ++run.ticks;
+      run.last_t_us = t.t_us;
+      if (dd > run.max_dac_difference) {
+        run.max_dac_difference = dd;
+        run.worst = m;
+      }
     }
   }
   return v;
+}
+
+}  // namespace
+
+VerifyResult verify(const Recording& r, const Condition& condition, const TrackerConfig& tracker) {
+  const VerifyResult v = replay(r, condition, tracker, false);
+  return v.prepared && !v.synchronised ? replay(r, condition, tracker, true) : v;
 }
 
 }  // namespace ff::ffctl

@@ -26,7 +26,13 @@ struct HalfKayWrite {
 // Every report to send, in order; the last one boots the new firmware.
 std::vector<HalfKayWrite> halfkay_writes(const FlashImage& image);
 
-// Sends them over libusb; progress(done, total). false with a readable `error`.
+// Whether the bootloader is on the bus (openable or not).
+bool halfkay_present();
+
+// Waits up to `wait_for_device_s` for the bootloader, then sends the writes
+// over libusb with teensy_loader_cli's timing (45 s for each of the first five
+// blocks: they erase; 0.5 s after); progress(done, total). false with a
+// readable `error` (no bootloader, permissions, a failed block).
 bool halfkay_flash(const std::vector<HalfKayWrite>& writes, const std::function<void(size_t, size_t)>& progress,
                    std::string& error, int wait_for_device_s = 10);
 

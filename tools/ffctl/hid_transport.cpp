@@ -2,6 +2,7 @@
 
 #include <hidapi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -60,14 +61,24 @@ HidTransport::~HidTransport() {
 }
 
 bool HidTransport::send(const uint8_t* frame, size_t size) {
+  static_assert(2 * kSeremuOutReportBytes == protocol::kHidReportBytes, "a report is two OUT reports");
   uint8_t reports[protocol::kMaxHidReports][protocol::kHidReportBytes];
   const size_t n = protocol::split_into_reports(frame, size, reports, protocol::kMaxHidReports);
   for (size_t i = 0; i < n; ++i) {
-    uint8_t buf[1 + protocol::kHidReportBytes] = {0};  // report id 0
-    std::copy(reports[i], reports[i] + protocol::kHidReportBytes, buf + 1);
-    if (hid_write(device_, buf, sizeof buf) < 0) return false;
+    for (size_t half = 0; half < 2; ++half) {
+      uint8_t packet[1 + kSeremuOutReportBytes] = {0};  // report id 0
+      const uint8_t* from = reports[i] + half * kSeremuOutReportBytes;
+      std::copy(from, from + kSeremuOutReportBytes, packet + 1);
+      if (hid_write(device_, packet, sizeof packet) < 0) return false;
+    }
   }
   return n > 0;
+}
+
+bool HidTransport::request_bootloader() {
+  const uint8_t report[5] = {0, kSeremuRebootMagic[0], kSeremuRebootMagic[1], kSeremuRebootMagic[2],
+                             kSeremuRebootMagic[3]};  // report id 0: wValue 0x0300, wLength 4
+  return hid_send_feature_report(device_, report, sizeof report) >= 0;
 }
 
 ReceiveResult HidTransport::receive(std::vector<uint8_t>& frame, int timeout_ms) {

@@ -24,6 +24,10 @@ class Transport {
   virtual bool send(const uint8_t* frame, size_t size) = 0;
   // One whole frame into `frame`, or nothing within `timeout_ms`.
   virtual ReceiveResult receive(std::vector<uint8_t>& frame, int timeout_ms) = 0;
+  // Restart into the bootloader below the protocol (the USB stack's own
+  // request, answered even by a firmware whose main loop hangs); false if
+  // this transport has none or the device did not take it.
+  virtual bool request_bootloader() { return false; }
 };
 
 }  // namespace ff::ffctl

@@ -1,10 +1,13 @@
-// ffctl without hardware: the fake device is the firmware itself (firmware/app)
-// running on emulated peripherals, reached through a transport that moves
-// HID reports and advances simulated time while ffctl waits.
+// ffctl without hardware. Two fake devices: the firmware itself
+// (firmware/app) on emulated peripherals, reached through a transport that
+// moves USB packets as HidTransport writes them and advances simulated time
+// while ffctl waits; and a scripted device for replies the firmware would
+// never send.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <deque>
+#include <functional>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -17,8 +20,10 @@
 #include "frictionfield/emulated/recording_dac.hpp"
 #include "frictionfield/emulated/scripted_adc.hpp"
 #include "frictionfield/emulated/zforce_model.hpp"
+#include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
 #include "halfkay.hpp"
+#include "hid_transport.hpp"
 #include "intel_hex.hpp"
 
 namespace ff::ffctl {
@@ -46,12 +51,22 @@ class SimulatedDevice final : public Transport, public firmware::Board {
     zforce_.load_trace(trace);
   }
 
-  // Transport.
+  // Transport: as HidTransport writes them, each 64-byte report as two
+  // 32-byte OUT reports (SEREMU_RX_SIZE).
   bool send(const uint8_t* frame, size_t size) override {
     if (disconnected) return false;
     uint8_t reports[protocol::kMaxHidReports][protocol::kHidReportBytes];
     const size_t n = protocol::split_into_reports(frame, size, reports, protocol::kMaxHidReports);
-    for (size_t i = 0; i < n; ++i) to_device_.emplace_back(reports[i], reports[i] + protocol::kHidReportBytes);
+    for (size_t i = 0; i < n; ++i) {
+      for (size_t half = 0; half < 2; ++half) {
+        const uint8_t* p = reports[i] + half * kSeremuOutReportBytes;
+        packets_to_device_.emplace_back(p, p + kSeremuOutReportBytes);
+      }
+    }
+    return true;
+  }
+  bool request_bootloader() override {
+    ++feature_reboots;
     return true;
   }
   ReceiveResult receive(std::vector<uint8_t>& frame, int timeout_ms) override {
@@ -76,10 +91,14 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   void mouse_move_to(int, int) override {}
   bool udp_receive(uint8_t*, size_t, size_t&) override { return false; }
   void udp_send(const uint8_t*, size_t) override {}
+  // The Teensy binding's part: raw OUT packets joined in pairs.
   bool hid_receive(uint8_t* report) override {
-    if (to_device_.empty()) return false;
-    std::copy(to_device_.front().begin(), to_device_.front().end(), report);
-    to_device_.pop_front();
+    if (packets_to_device_.size() < 2) return false;
+    for (size_t half = 0; half < 2; ++half) {
+      std::copy(packets_to_device_.front().begin(), packets_to_device_.front().end(),
+                report + half * kSeremuOutReportBytes);
+      packets_to_device_.pop_front();
+    }
     return true;
   }
   void hid_send(const uint8_t* report) override {
@@ -92,6 +111,7 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   bool corrupt_next_reply = false;
   bool disconnected = false;
   int reboots = 0;
+  int feature_reboots = 0;
 
  private:
   void step() {  // 100 us of device time: loop every step, tick every 5th
@@ -109,7 +129,7 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   std::unique_ptr<HapticPipeline> pipeline_ = std::make_unique<HapticPipeline>();
   std::unique_ptr<firmware::FirmwareApp> app_;
   protocol::HidReassembler reassembler_;
-  std::deque<std::vector<uint8_t>> to_device_, from_device_;
+  std::deque<std::vector<uint8_t>> packets_to_device_, from_device_;
   uint32_t now_ = 0;
   uint32_t cycles_ = 0;
   int frames_delivered_ = 0;
@@ -131,13 +151,37 @@ TEST(Ffctl, StatusAndSceneOverTheHostChannel) {
   std::string error;
   ASSERT_TRUE(client.request(heightmap_top(), reply, error)) << error;
   EXPECT_EQ(reply.type, MessageType::Ack);
+  EXPECT_EQ(reply.ack.command, MessageType::SetCondition);
   EXPECT_EQ(reply.ack.status, protocol::AckStatus::Ok);
   Message q;
   q.type = MessageType::QueryStatus;
   ASSERT_TRUE(client.request(q, reply, error)) << error;
+  EXPECT_EQ(reply.type, MessageType::Status);
   EXPECT_EQ(reply.status.kind, protocol::ConditionKind::Heightmap);
+  EXPECT_EQ(reply.status.target, Target::Top);
   EXPECT_FLOAT_EQ(reply.status.strength, 0.66f);
-  EXPECT_EQ(reply.status.tick_cycles_mean, 700u);
+  EXPECT_EQ(reply.status.tick_cycles_mean, 700u);  // the fake cycle counter advances 700 a call
+  EXPECT_FLOAT_EQ(reply.status.carrier_hz, 34900.0f);
+  EXPECT_EQ(reply.status.protocol_errors, 0u);
+  EXPECT_EQ(client.malformed_replies(), 0u);
+}
+
+TEST(Ffctl, ARefusedSceneIsAnsweredNotApplied) {
+  SimulatedDevice device;
+  DeviceClient client(device);
+  Message m = heightmap_top();
+  m.condition.kind = protocol::ConditionKind::General;
+  m.condition.scene.rendering = Rendering::Directional;
+  m.condition.scene.add(FieldElement::point_sink({400.0f, 240.0f}));
+  m.condition.scene.elements[0].point.radius = -5.0f;  // prepare refuses it
+  Message reply;
+  std::string error;
+  ASSERT_TRUE(client.request(m, reply, error)) << error;
+  EXPECT_EQ(reply.ack.status, protocol::AckStatus::Refused);
+  Message q;
+  q.type = MessageType::QueryStatus;
+  ASSERT_TRUE(client.request(q, reply, error)) << error;
+  EXPECT_EQ(reply.status.kind, protocol::ConditionKind::Neutral);  // unchanged since boot
 }
 
 TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
@@ -148,9 +192,13 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   ASSERT_TRUE(client.request(heightmap_top(), reply, error)) << error;
   Recording r;
   int progress_calls = 0;
-  ASSERT_TRUE(record(client, 2.5, r, error, [&](double, size_t, size_t) { ++progress_calls; })) << error;
+  ASSERT_TRUE(record(client, 2.5, r, error, [&](double, size_t, size_t) {
+    ++progress_calls;
+    return true;
+  })) << error;
   EXPECT_GT(progress_calls, 10);
   EXPECT_NEAR(static_cast<double>(r.ticks.size()), 5000.0, 120.0);  // 2.5 s of 2 kHz
+  for (size_t i = 1; i < r.ticks.size(); ++i) ASSERT_EQ(r.ticks[i].t_us - r.ticks[i - 1].t_us, 500u) << i;
   // The finger arrives 1 s after the stream starts: ~1.5 s of 200 Hz reports.
   EXPECT_GT(r.samples.size(), 280u);
 
@@ -158,18 +206,41 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   ASSERT_TRUE(write_recording(path, r, error)) << error;
   Recording back;
   ASSERT_TRUE(read_recording(path, back, error)) << error;
+  ASSERT_EQ(back.samples.size(), r.samples.size());
+  ASSERT_EQ(back.ticks.size(), r.ticks.size());
   Condition c;
   c.scene = scenes::heightmap(Target::Top);
   c.amplitude.strength = 0.66f;
   const VerifyResult v = verify(back, c);
+  EXPECT_TRUE(v.synchronised);
+  EXPECT_EQ(v.warm_up, 0u);  // no finger at the start
   EXPECT_EQ(v.compared, r.ticks.size());
   EXPECT_EQ(v.beyond_one_code, 0u);
   EXPECT_LE(v.max_dac_difference, 1);
+  EXPECT_EQ(v.missing_ticks, 0u);
 
-  back.ticks[1000].dac = static_cast<uint16_t>(back.ticks[1000].dac ^ 0x400);
+  back.ticks[4000].dac = static_cast<uint16_t>(back.ticks[4000].dac ^ 0x400);
   const VerifyResult tampered = verify(back, c);
   ASSERT_EQ(tampered.beyond_one_code, 1u);
-  EXPECT_EQ(tampered.first[0].t_us, back.ticks[1000].t_us);
+  ASSERT_EQ(tampered.runs.size(), 1u);
+  EXPECT_EQ(tampered.runs[0].first_t_us, back.ticks[4000].t_us);
+  EXPECT_EQ(tampered.runs[0].max_dac_difference, 0x400);
+}
+
+TEST(Ffctl, RecordingEndsWhenProgressSaysSo) {
+  SimulatedDevice device;
+  DeviceClient client(device);
+  Recording r;
+  std::string error;
+  int calls = 0;
+  ASSERT_TRUE(record(client, 0.0, r, error, [&](double done, size_t, size_t) {
+    ++calls;
+    return done < 0.2;  // Ctrl-C after 0.2 s
+  })) << error;
+  EXPECT_NEAR(static_cast<double>(r.ticks.size()), 400.0, 40.0);
+  Message q, reply;
+  q.type = MessageType::QueryStatus;
+  ASSERT_TRUE(client.request(q, reply, error)) << error;  // the stream was stopped: a plain reply
 }
 
 TEST(Ffctl, MalformedRepliesAreCountedAndDisconnectIsReported) {
@@ -186,6 +257,207 @@ TEST(Ffctl, MalformedRepliesAreCountedAndDisconnectIsReported) {
   EXPECT_FALSE(record(client, 5.0, r, error));
   EXPECT_NE(error.find("disconnected"), std::string::npos) << error;
   EXPECT_GT(r.ticks.size(), 0u);  // what arrived is kept
+}
+
+TEST(Ffctl, TheRebootRequestGoesBelowTheProtocolAndTheMessageStillWorks) {
+  SimulatedDevice device;
+  EXPECT_TRUE(static_cast<Transport&>(device).request_bootloader());
+  EXPECT_EQ(device.feature_reboots, 1);
+  DeviceClient client(device);
+  Message m, reply;
+  m.type = MessageType::RebootToBootloader;
+  std::string error;
+  ASSERT_TRUE(client.request(m, reply, error)) << error;
+  EXPECT_EQ(reply.ack.command, MessageType::RebootToBootloader);
+  EXPECT_EQ(device.reboots, 1);
+}
+
+// --- a scripted device -----------------------------------------------------------
+
+// Answers each command with whatever the test queued for it (frames, already
+// encoded or deliberately broken), Pigweed-mock style: sent commands are kept.
+class ScriptedDevice final : public Transport {
+ public:
+  bool send(const uint8_t* frame, size_t size) override {
+    Message m;
+    EXPECT_EQ(protocol::decode(frame, size, m), protocol::DecodeStatus::Ok);
+    sent.push_back(m);
+    if (!replies.empty()) {
+      for (auto& f : replies.front()(m)) pending_.push_back(f);
+      replies.pop_front();
+    }
+    return true;
+  }
+  ReceiveResult receive(std::vector<uint8_t>& frame, int) override {
+    if (pending_.empty()) return ReceiveResult::Timeout;
+    frame = pending_.front();
+    pending_.pop_front();
+    return ReceiveResult::Frame;
+  }
+
+  using Script = std::function<std::vector<std::vector<uint8_t>>(const Message& command)>;
+  std::deque<Script> replies;
+  std::vector<Message> sent;
+
+ private:
+  std::deque<std::vector<uint8_t>> pending_;
+};
+
+std::vector<uint8_t> encoded(Message m, uint8_t sequence) {
+  m.sequence = sequence;
+  std::vector<uint8_t> f(protocol::kMaxFrame);
+  f.resize(protocol::encode(m, f.data(), f.size()));
+  return f;
+}
+
+Message ack_for(MessageType command) {
+  Message m;
+  m.type = MessageType::Ack;
+  m.ack.command = command;
+  return m;
+}
+
+TEST(Ffctl, RepliesAreMatchedBySequenceWhateverArrivesFirst) {
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back([](const Message& c) {
+    Message stale;
+    stale.type = MessageType::Error;  // an old command's error: not ours
+    stale.error = {protocol::ErrorCode::BadCrc, 0x02};
+    std::vector<uint8_t> broken = encoded(ack_for(c.type), c.sequence);
+    broken.pop_back();  // truncated: a length mismatch
+    Message ticks;
+    ticks.type = MessageType::Ticks;
+    return std::vector<std::vector<uint8_t>>{encoded(stale, static_cast<uint8_t>(c.sequence - 1)), broken,
+                                             encoded(ticks, c.sequence), encoded(ack_for(c.type), c.sequence)};
+  });
+  Message cmd, reply;
+  cmd.type = MessageType::StopStream;
+  std::string error;
+  ASSERT_TRUE(client.request(cmd, reply, error)) << error;
+  EXPECT_EQ(reply.type, MessageType::Ack);
+  EXPECT_EQ(client.malformed_replies(), 1u);
+}
+
+TEST(Ffctl, ErrorRepliesAndOtherVersionsReadPlainly) {
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back([](const Message& c) {
+    Message e;
+    e.type = MessageType::Error;
+    e.error = {protocol::ErrorCode::UnknownType, static_cast<uint8_t>(c.type)};
+    return std::vector<std::vector<uint8_t>>{encoded(e, c.sequence)};
+  });
+  device.replies.push_back([](const Message& c) {
+    std::vector<uint8_t> other = encoded(ack_for(c.type), c.sequence);
+    other[2] = static_cast<uint8_t>(protocol::kVersion + 1);  // a newer firmware
+    return std::vector<std::vector<uint8_t>>{other};
+  });
+  Message cmd, reply;
+  cmd.type = MessageType::StopStream;
+  std::string error;
+  EXPECT_FALSE(client.request(cmd, reply, error, 50));
+  EXPECT_EQ(error, "the device refused the message: unknown message type");
+  EXPECT_FALSE(client.request(cmd, reply, error, 50));
+  const std::string expected = "it speaks protocol version " + std::to_string(protocol::kVersion + 1) +
+                               ", this ffctl version " + std::to_string(protocol::kVersion);
+  EXPECT_NE(error.find(expected), std::string::npos) << error;
+  EXPECT_EQ(client.foreign_version(), protocol::kVersion + 1);
+}
+
+TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back([](const Message& c) {  // StartStream: ack, then 30 ms of data across a clock wrap
+    std::vector<std::vector<uint8_t>> out = {encoded(ack_for(c.type), c.sequence)};
+    uint32_t t = 0xFFFFFFFFu - 9999u;  // 10 ms before the wrap
+    for (int frame = 0; frame < 2; ++frame) {
+      Message s;
+      s.type = MessageType::Samples;
+      s.samples.count = 1;
+      s.samples.samples[0] = {t + 100u, 300.0f, 200.0f, true};
+      out.push_back(encoded(s, c.sequence));
+      Message k;
+      k.type = MessageType::Ticks;
+      k.ticks.count = 30;
+      for (int i = 0; i < 30; ++i) k.ticks.ticks[i] = {t + 500u * static_cast<uint32_t>(i + 1), 0.5f, 2048, true};
+      out.push_back(encoded(k, c.sequence));
+      t += 15000u;
+    }
+    return out;
+  });
+  device.replies.push_back([](const Message& c) {  // StopStream
+    return std::vector<std::vector<uint8_t>>{encoded(ack_for(c.type), c.sequence)};
+  });
+  Recording r;
+  std::string error;
+  ASSERT_TRUE(record(client, 0.02, r, error)) << error;
+  ASSERT_EQ(device.sent.size(), 2u);
+  EXPECT_EQ(device.sent[0].type, MessageType::StartStream);
+  EXPECT_EQ(device.sent[0].stream.tick_decimation, 1);  // every tick: verify needs them all
+  EXPECT_EQ(device.sent[1].type, MessageType::StopStream);
+  ASSERT_EQ(r.ticks.size(), 60u);
+  ASSERT_EQ(r.samples.size(), 2u);
+  // 64-bit times run on through the wrap.
+  const uint64_t t0 = 0xFFFFFFFFull - 9999u;
+  EXPECT_EQ(r.ticks[0].t_us, t0 + 500u);
+  EXPECT_EQ(r.ticks[59].t_us, t0 + 30000u);
+  EXPECT_EQ(r.samples[0].row.t_us, t0 + 100u);
+  EXPECT_EQ(r.samples[1].row.t_us, t0 + 15100u);
+  for (size_t i = 1; i < r.ticks.size(); ++i) EXPECT_EQ(r.ticks[i].t_us - r.ticks[i - 1].t_us, 500u);
+
+  // What ffctl record writes, read back: the condition set with the scene
+  // words, and which tick took each report when the firmware says.
+  r.has_condition = true;
+  r.condition.kind = protocol::ConditionKind::General;
+  r.condition.strength = 0.33f;
+  r.condition.scene = scenes::heightmap(Target::Bottom);
+  r.condition.scene.evaluation = Evaluation::Table;
+  r.samples[1].taken_known = true;
+  r.samples[1].taken_us = t0 + 16000u;
+  const std::string path = ::testing::TempDir() + "ffctl_scripted.csv";
+  ASSERT_TRUE(write_recording(path, r, error)) << error;
+  Recording back;
+  ASSERT_TRUE(read_recording(path, back, error)) << error;
+  ASSERT_TRUE(back.has_condition);
+  EXPECT_EQ(back.condition.kind, protocol::ConditionKind::General);
+  EXPECT_FLOAT_EQ(back.condition.strength, 0.33f);
+  EXPECT_EQ(host::format_scene_text(back.condition.scene), host::format_scene_text(r.condition.scene));
+  ASSERT_EQ(back.samples.size(), 2u);
+  EXPECT_FALSE(back.samples[0].taken_known);
+  EXPECT_TRUE(back.samples[1].taken_known);
+  EXPECT_EQ(back.samples[1].taken_us, t0 + 16000u);
+  EXPECT_EQ(back.ticks[59].t_us, r.ticks[59].t_us);
+  std::ifstream trace(path);
+  std::string header;
+  std::getline(trace, header);
+  EXPECT_EQ(header, "t_us,x,y,touch,taken_us");  // SPEC.md's columns, then the device's: ff-replay reads it
+  // Without a condition, a stale NAME.condition goes.
+  r.has_condition = false;
+  ASSERT_TRUE(write_recording(path, r, error)) << error;
+  EXPECT_FALSE(std::ifstream(condition_path_for(path)).good());
+}
+
+TEST(Ffctl, ARecordingWithBrokenTicksIsRefusedWithItsLine) {
+  const std::string path = ::testing::TempDir() + "ffctl_broken.csv";
+  std::ofstream(path) << "t_us,x,y,touch\n1000,10,10,1\n";
+  std::ofstream(ticks_path_for(path)) << "t_us,amplitude,dac,present\n500,0.5,2048,1\n1000,0.5,5000,1\n";
+  Recording r;
+  std::string error;
+  EXPECT_FALSE(read_recording(path, r, error));
+  EXPECT_NE(error.find("ffctl_broken.ticks.csv:3:"), std::string::npos) << error;
+  std::ofstream(ticks_path_for(path)) << "t_us,amplitude,dac,present\n500,0.5,2048,1\n500,0.5,2048,1\n";
+  Recording again;
+  EXPECT_FALSE(read_recording(path, again, error));
+  EXPECT_NE(error.find("must increase"), std::string::npos) << error;
+  std::ofstream(ticks_path_for(path)) << "t_us,amplitude,dac,present\n500,nan,2048,1\n";
+  Recording nan;
+  EXPECT_FALSE(read_recording(path, nan, error));
+  std::ofstream(ticks_path_for(path)) << "t_us,amplitude,dac,present\n500,0.5,2048,1\n";
+  Recording plain;  // a trace without the device column: fine, by timestamps
+  ASSERT_TRUE(read_recording(path, plain, error)) << error;
+  EXPECT_FALSE(plain.samples[0].taken_known);
+  EXPECT_FALSE(plain.has_condition);
 }
 
 TEST(IntelHex, ParsesWithExtendedAddressesAndRejectsBadRecords) {
