@@ -21,6 +21,7 @@
 #include "frictionfield/emulated/scripted_adc.hpp"
 #include "frictionfield/emulated/zforce_model.hpp"
 #include "frictionfield/host/scene_file.hpp"
+#include "frictionfield/host/trace_csv.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
 #include "halfkay.hpp"
 #include "hid_transport.hpp"
@@ -432,6 +433,14 @@ TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
   std::string header;
   std::getline(trace, header);
   EXPECT_EQ(header, "t_us,x,y,touch,taken_us");  // SPEC.md's columns, then the device's: ff-replay reads it
+  std::vector<host::TraceRow> replay_rows;  // what ff-replay's reader makes of it
+  host::TraceError trace_error;
+  ASSERT_TRUE(host::read_sensor_trace_file(path, replay_rows, trace_error)) << trace_error.to_string(path);
+  ASSERT_EQ(replay_rows.size(), 2u);
+  EXPECT_EQ(replay_rows[1].t_us, t0 + 15100u);
+  EXPECT_FLOAT_EQ(replay_rows[1].x, 300.0f);
+  EXPECT_FLOAT_EQ(replay_rows[1].y, 200.0f);
+  EXPECT_TRUE(replay_rows[1].touch);
   // Without a condition, a stale NAME.condition goes.
   r.has_condition = false;
   ASSERT_TRUE(write_recording(path, r, error)) << error;
@@ -499,6 +508,83 @@ TEST(HalfKay, BlocksHaveTheMk66LayoutSkipBlanksButTheFirstAndEndWithBoot) {
   FlashImage blank;
   blank.highest = 2048;
   EXPECT_EQ(halfkay_writes(blank).size(), 2u);  // the first block is always written: it erases the chip
+}
+
+// teensy_loader_cli's rule, modelled from the HEX records themselves (which
+// addresses a record wrote, and with what): write block 0 always, any other
+// block only if a record wrote into it and not only 0xFF.
+std::vector<uint32_t> loader_cli_blocks(const std::vector<std::pair<uint32_t, std::vector<uint8_t>>>& records,
+                                        uint32_t code_size) {
+  std::vector<uint32_t> blocks;
+  for (uint32_t addr = 0; addr < code_size; addr += 1024) {
+    bool within = false, blank = true;
+    for (const auto& rec : records) {
+      for (size_t i = 0; i < rec.second.size(); ++i) {
+        const uint32_t a = rec.first + static_cast<uint32_t>(i);
+        if (a < addr || a >= addr + 1024) continue;
+        within = true;
+        blank = blank && rec.second[i] == 0xFF;
+      }
+    }
+    if (addr == 0 || (within && !blank)) blocks.push_back(addr);
+  }
+  return blocks;
+}
+
+std::string hex_record(uint16_t offset, uint8_t type, const std::vector<uint8_t>& data) {
+  std::vector<uint8_t> rec = {static_cast<uint8_t>(data.size()), static_cast<uint8_t>(offset >> 8),
+                              static_cast<uint8_t>(offset), type};
+  rec.insert(rec.end(), data.begin(), data.end());
+  uint8_t sum = 0;
+  for (uint8_t b : rec) sum = static_cast<uint8_t>(sum + b);
+  rec.push_back(static_cast<uint8_t>(-sum));
+  std::string line = ":";
+  char buf[3];
+  for (uint8_t b : rec) {
+    std::snprintf(buf, sizeof buf, "%02X", b);
+    line += buf;
+  }
+  return line + "\n";
+}
+
+TEST(HalfKay, SameBlocksAsTeensyLoaderCliWouldWrite) {
+  // Records: data in block 0; only 0xFF in block 2; data and 0xFF in block 5;
+  // one byte at the very end of the flash (extended linear address 0x000F).
+  const std::vector<std::pair<uint32_t, std::vector<uint8_t>>> records = {
+      {0x0000, {0x00, 0x80, 0x00, 0x20}},
+      {0x0800, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}},
+      {0x1400, {0xFF, 0x12, 0xFF}},
+      {0xFFFFF, {0x5A}},
+  };
+  std::string text;
+  for (const auto& rec : records) {
+    if (rec.first > 0xFFFF) text += hex_record(0, 0x04, {0x00, static_cast<uint8_t>(rec.first >> 16)});
+    text += hex_record(static_cast<uint16_t>(rec.first), 0x00, rec.second);
+  }
+  text += hex_record(0, 0x01, {});
+  FlashImage image;
+  std::string error;
+  ASSERT_TRUE(parse_intel_hex(text, image, error)) << error;
+  EXPECT_EQ(image.highest, kMk66FlashBytes);
+  const auto writes = halfkay_writes(image);
+  std::vector<uint32_t> ours;
+  for (size_t i = 0; i + 1 < writes.size(); ++i) ours.push_back(writes[i].address);
+  const std::vector<uint32_t> expected = loader_cli_blocks(records, static_cast<uint32_t>(kMk66FlashBytes));
+  EXPECT_EQ(ours, expected);
+  EXPECT_EQ(expected, (std::vector<uint32_t>{0x0000, 0x1400, 0xFFC00}));
+  for (const auto& w : writes) {
+    ASSERT_EQ(w.report.size(), 1088u);  // teensy_loader_cli's write_size for 1024-byte blocks
+    EXPECT_TRUE(std::all_of(w.report.begin() + 3, w.report.begin() + 64, [](uint8_t b) { return b == 0; }));
+  }
+  EXPECT_EQ(writes[2].report[0], 0x00);  // 0x0FFC00 little-endian
+  EXPECT_EQ(writes[2].report[1], 0xFC);
+  EXPECT_EQ(writes[2].report[2], 0x0F);
+  EXPECT_EQ(writes[2].report[64 + 1023], 0x5A);
+  EXPECT_EQ(writes[1].report[64 + 1], 0x12);
+  EXPECT_EQ(writes[1].report[64 + 3], 0xFF);  // unwritten flash reads erased
+  const auto& boot = writes.back().report;  // FF FF FF, then zeros
+  EXPECT_TRUE(boot[0] == 0xFF && boot[1] == 0xFF && boot[2] == 0xFF);
+  EXPECT_TRUE(std::all_of(boot.begin() + 3, boot.end(), [](uint8_t b) { return b == 0; }));
 }
 
 #ifdef FF_TOOLCHAIN_HEX
