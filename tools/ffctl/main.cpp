@@ -12,6 +12,7 @@
 #include "frictionfield/host/scene_spec.hpp"
 #include "halfkay.hpp"
 #include "hid_transport.hpp"
+#include "scene_command.hpp"
 
 namespace {
 
@@ -26,34 +27,22 @@ int fail(const std::string& what) {
   return 1;
 }
 
-bool scene_words_given(const CLI::App& cmd) { return cmd.count("--scene") > 0 || cmd.count("--scene-file") > 0; }
-
-// Built-in thesis conditions travel as the three fields, anything else as a general scene.
-ff::protocol::ConditionMessage condition_message(const ff::host::SceneSpec& spec, const ff::Condition& c) {
-  ff::protocol::ConditionMessage m;
-  m.strength = c.amplitude.strength;
-  m.idle_amplitude = c.amplitude.idle_amplitude;
-  m.s_curve = c.amplitude.s_curve;
-  m.inverted_dac = spec.inverted_dac;
-  m.target = spec.target == "top" ? ff::Target::Top : spec.target == "bottom" ? ff::Target::Bottom : ff::Target::Middle;
-  const bool builtin = spec.evaluation == "closed";
-  if (builtin && spec.scene == "heightmap") m.kind = ff::protocol::ConditionKind::Heightmap;
-  else if (builtin && spec.scene == "frictionmap") m.kind = ff::protocol::ConditionKind::Frictionmap;
-  else if (spec.scene == "neutral") m.kind = ff::protocol::ConditionKind::Neutral;
-  else {
-    m.kind = ff::protocol::ConditionKind::General;
-    m.scene = c.scene;
+// Whether any of the shared scene words (--scene, --target, --strength, ...) was given.
+bool scene_words_given(const CLI::App& cmd) {
+  for (const CLI::Option* o : cmd.get_options()) {
+    const std::string name = o->get_name();
+    if (name == "--help" || name == "--output" || name == "--seconds" || name == "trace") continue;
+    if (o->count() > 0) return true;
   }
-  return m;
+  return false;
 }
 
 bool set_condition(ff::ffctl::DeviceClient& client, const ff::host::SceneSpec& spec,
                    ff::protocol::ConditionMessage& sent, std::string& error) {
-  ff::Condition c;
-  if (!ff::host::make_condition(spec, c, error)) return false;
   Message m, reply;
   m.type = MessageType::SetCondition;
-  m.condition = sent = condition_message(spec, c);
+  if (!ff::ffctl::condition_message(spec, m.condition, error)) return false;
+  sent = m.condition;
   if (!client.request(m, reply, error)) return false;
   if (reply.ack.status != ff::protocol::AckStatus::Ok) {
     error = std::string("the device refused the scene: ") + ff::to_string(static_cast<ff::PrepareStatus>(reply.ack.detail));
@@ -117,29 +106,37 @@ int main(int argc, char** argv) {
                "  ffctl list | status | scene --scene heightmap --target top --strength 0.66\n"
                "  ffctl record -o trace.csv [--seconds 30] [scene words] | verify trace.csv | reboot | flash firmware.hex"};
   app.require_subcommand(1);
+  app.footer(
+      "A session:\n"
+      "  ffctl list                          is the device on USB?\n"
+      "  ffctl status                        what it renders, how long a tick takes, what went wrong\n"
+      "  ffctl record -o run1.csv --seconds 30 --scene heightmap --target top --strength 0.66\n"
+      "  ffctl verify run1.csv               does the firmware render what the native core computes?\n"
+      "  ffctl flash firmware.hex            new firmware (a running device is restarted into its bootloader)\n"
+      "Permission denied? Install udev/49-frictionfield.rules (docs/ffctl.md).");
   std::string serial;
   app.add_option("--serial", serial, "the device's USB serial number (default: the first device)");
 
   auto* list = app.add_subcommand("list", "frictionfield devices on USB");
-  auto* status = app.add_subcommand("status", "firmware version, scene, tick cost, error counters, force");
+  auto* status = app.add_subcommand("status", "firmware version, condition, tick cost (CPU cycles per 500 us tick), fault counters, force");
   ff::host::SceneSpec scene_spec;
-  auto* scene = app.add_subcommand("scene", "set the rendered condition (the same words as ff-replay)");
+  auto* scene = app.add_subcommand("scene", "set the rendered condition: the same scene words as ff-replay");
   ff::host::add_scene_options(*scene, scene_spec);
   std::string record_out;
   double seconds = 0.0;
   ff::host::SceneSpec record_spec;
-  auto* rec = app.add_subcommand("record", "stream the raw sensor reports and the rendered ticks into a trace");
+  auto* rec = app.add_subcommand("record", "stream the raw sensor reports (SPEC.md trace, ff-replay reads it) and every rendered tick to files");
   rec->add_option("-o,--output", record_out, "trace CSV (ticks go to NAME.ticks.csv)")->required();
   rec->add_option("--seconds", seconds, "how long to record (default: until Ctrl-C)");
   ff::host::add_scene_options(*rec, record_spec);
   rec->footer("With scene words the condition is set first and kept in NAME.condition for `ffctl verify`.");
   std::string verify_in;
   ff::host::SceneSpec verify_spec;
-  auto* ver = app.add_subcommand("verify", "replay a recording natively and compare tick by tick with the device");
+  auto* ver = app.add_subcommand("verify", "replay a recording through the native core and compare it tick by tick with the device; exit 1 if any tick differs by more than one DAC code");
   ver->add_option("trace", verify_in, "trace CSV written by ffctl record")->required();
   ff::host::add_scene_options(*ver, verify_spec);
   ver->footer("Without scene words: the condition `ffctl record` kept in NAME.condition.");
-  auto* reboot = app.add_subcommand("reboot", "restart the device into its bootloader");
+  auto* reboot = app.add_subcommand("reboot", "restart the device into its bootloader (HalfKay), ready for flash");
   std::string hex;
   auto* flash = app.add_subcommand("flash", "write a firmware image (Intel HEX) through the Teensy bootloader");
   flash->add_option("firmware", hex, "firmware.hex from `pio run -e teensy36`")->required();
@@ -208,6 +205,12 @@ int main(int argc, char** argv) {
       return 0;
     }
 
+    // Scene words are checked before anything touches USB.
+    if (*scene || (*rec && scene_words_given(*rec))) {
+      ff::protocol::ConditionMessage unused;
+      std::string error;
+      if (!ff::ffctl::condition_message(*scene ? scene_spec : record_spec, unused, error)) return fail(error);
+    }
     ff::ffctl::HidTransport transport(serial);
     ff::ffctl::DeviceClient client(transport);
     Message reply;

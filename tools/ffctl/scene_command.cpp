@@ -1,0 +1,31 @@
+#include "scene_command.hpp"
+
+namespace ff::ffctl {
+
+bool condition_message(const host::SceneSpec& spec, protocol::ConditionMessage& out, std::string& error) {
+  Condition c;
+  if (!host::make_condition(spec, c, error)) return false;
+  protocol::ConditionMessage m;
+  m.strength = c.amplitude.strength;
+  m.idle_amplitude = c.amplitude.idle_amplitude;
+  m.s_curve = c.amplitude.s_curve;
+  m.inverted_dac = spec.inverted_dac;
+  // make_condition accepted the target word, so it is one of these three.
+  m.target = spec.target == "top" ? Target::Top : spec.target == "bottom" ? Target::Bottom : Target::Middle;
+  // A table-evaluated heightmap is a different rendering: it goes whole.
+  const bool closed_form = spec.evaluation == "closed";
+  if (closed_form && spec.scene == "heightmap") {
+    m.kind = protocol::ConditionKind::Heightmap;
+  } else if (closed_form && spec.scene == "frictionmap") {
+    m.kind = protocol::ConditionKind::Frictionmap;
+  } else if (spec.scene == "neutral") {
+    m.kind = protocol::ConditionKind::Neutral;
+  } else {
+    m.kind = protocol::ConditionKind::General;
+    m.scene = c.scene;
+  }
+  out = m;
+  return true;
+}
+
+}  // namespace ff::ffctl

@@ -1,0 +1,110 @@
+// The scene words of ffctl scene/record, as a researcher types them, into the
+// SetCondition message; and back through the wire into the condition the
+// firmware renders, which must be the one ff-replay builds from the same words.
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <vector>
+
+#include "frictionfield/host/scene_file.hpp"
+#include "frictionfield/protocol/codec.hpp"
+#include "scene_command.hpp"
+
+namespace ff::ffctl {
+namespace {
+
+struct Parsed {
+  bool ok = false;
+  protocol::ConditionMessage message;
+  std::string error;
+  host::SceneSpec spec;
+};
+
+Parsed parse(std::vector<std::string> words) {
+  Parsed p;
+  CLI::App app{"scene"};
+  host::add_scene_options(app, p.spec);
+  std::vector<std::string> reversed(words.rbegin(), words.rend());  // CLI11 takes them back to front
+  app.parse(reversed);
+  p.ok = condition_message(p.spec, p.message, p.error);
+  return p;
+}
+
+// What the firmware renders: the message encoded, decoded, turned into a condition.
+Condition over_the_wire(const protocol::ConditionMessage& c) {
+  protocol::Message m;
+  m.type = protocol::MessageType::SetCondition;
+  m.condition = c;
+  std::vector<uint8_t> frame(protocol::kMaxFrame);
+  frame.resize(protocol::encode(m, frame.data(), frame.size()));
+  EXPECT_GT(frame.size(), 0u);
+  protocol::Message back;
+  EXPECT_EQ(protocol::decode(frame.data(), frame.size(), back), protocol::DecodeStatus::Ok);
+  return back.condition.to_condition();
+}
+
+void expect_same_condition_as_ff_replay(const Parsed& p) {
+  Condition native;
+  std::string error;
+  ASSERT_TRUE(host::make_condition(p.spec, native, error)) << error;
+  const Condition device = over_the_wire(p.message);
+  EXPECT_EQ(host::format_scene_text(device.scene), host::format_scene_text(native.scene));
+  EXPECT_FLOAT_EQ(device.amplitude.strength, native.amplitude.strength);
+  EXPECT_FLOAT_EQ(device.amplitude.idle_amplitude, native.amplitude.idle_amplitude);
+  EXPECT_FLOAT_EQ(device.amplitude.s_curve, native.amplitude.s_curve);
+}
+
+TEST(SceneCommand, ThesisConditionsTravelAsKindTargetAndStrength) {
+  const Parsed h = parse({"--scene", "heightmap", "--target", "top", "--strength", "0.66"});
+  ASSERT_TRUE(h.ok) << h.error;
+  EXPECT_EQ(h.message.kind, protocol::ConditionKind::Heightmap);
+  EXPECT_EQ(h.message.target, Target::Top);
+  EXPECT_FLOAT_EQ(h.message.strength, 0.66f);
+  EXPECT_EQ(h.message.scene.element_count, 0u);  // the firmware builds it itself
+  expect_same_condition_as_ff_replay(h);
+
+  const Parsed f = parse({"--scene", "frictionmap", "--target", "bottom", "--strength", "0.33"});
+  ASSERT_TRUE(f.ok) << f.error;
+  EXPECT_EQ(f.message.kind, protocol::ConditionKind::Frictionmap);
+  EXPECT_EQ(f.message.target, Target::Bottom);
+  expect_same_condition_as_ff_replay(f);
+
+  const Parsed n = parse({"--scene", "neutral", "--idle-amplitude", "0.2"});
+  ASSERT_TRUE(n.ok) << n.error;
+  EXPECT_EQ(n.message.kind, protocol::ConditionKind::Neutral);
+  EXPECT_FLOAT_EQ(n.message.idle_amplitude, 0.2f);
+  expect_same_condition_as_ff_replay(n);
+}
+
+TEST(SceneCommand, EverythingElseTravelsWholeAsAGeneralScene) {
+  for (const char* scene : {"tunnel-converging", "tunnel-diverging", "pilot-c", "familiarisation-path", "bump-map",
+                            "vortex"}) {
+    const Parsed p = parse({"--scene", scene, "--strength", "0.5"});
+    ASSERT_TRUE(p.ok) << scene << ": " << p.error;
+    EXPECT_EQ(p.message.kind, protocol::ConditionKind::General) << scene;
+    EXPECT_GT(p.message.scene.element_count, 0u) << scene;
+    expect_same_condition_as_ff_replay(p);
+  }
+  // A table-evaluated heightmap is not the closed-form one the firmware would build.
+  const Parsed t = parse({"--scene", "heightmap", "--target", "middle", "--evaluation", "table", "--table-spacing", "8"});
+  ASSERT_TRUE(t.ok) << t.error;
+  EXPECT_EQ(t.message.kind, protocol::ConditionKind::General);
+  EXPECT_EQ(t.message.scene.evaluation, Evaluation::Table);
+  EXPECT_FLOAT_EQ(t.message.scene.table.spacing_px, 8.0f);
+  expect_same_condition_as_ff_replay(t);
+}
+
+TEST(SceneCommand, WordsThatMakeNoConditionSaySo) {
+  const Parsed target = parse({"--scene", "heightmap", "--target", "left"});
+  EXPECT_FALSE(target.ok);
+  EXPECT_NE(target.error.find("unknown target 'left'"), std::string::npos) << target.error;
+  const Parsed strength = parse({"--strength", "1.5"});
+  EXPECT_FALSE(strength.ok);
+  EXPECT_NE(strength.error.find("strength must be in (0, 1]"), std::string::npos) << strength.error;
+  const Parsed scene = parse({"--scene", "moon"});
+  EXPECT_FALSE(scene.ok);
+  EXPECT_NE(scene.error.find("unknown scene 'moon'"), std::string::npos) << scene.error;
+}
+
+}  // namespace
+}  // namespace ff::ffctl
