@@ -31,11 +31,11 @@ FirmwareApp::FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pi
   condition_.kind = protocol::ConditionKind::Neutral;
 }
 
-void FirmwareApp::begin(uint32_t now_us) {
+void FirmwareApp::begin(uint32_t now_us, const DacCalibration& wiring) {
   // The plate rests until a scene is set, in the board's own DAC direction.
   Condition resting;
   resting.scene = scenes::neutral();
-  resting.amplitude.calibration = wiring_calibration();
+  resting.amplitude.calibration = wiring;
   pipeline_.set_condition(resting);
   rest_plate();
   dds_.start(kDefaultCarrierHz);

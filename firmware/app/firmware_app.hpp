@@ -13,7 +13,6 @@
 
 #include "firmware/app/board.hpp"
 #include "firmware/app/cycle_histogram.hpp"
-#include "firmware/app/dac_wiring.hpp"
 #include "firmware/app/tick_ring.hpp"
 #include "firmware/app/udp_peer.hpp"
 #include "frictionfield/bus/adc.hpp"
@@ -78,7 +77,8 @@ class FirmwareApp {
  public:
   FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pipeline);
 
-  void begin(uint32_t now_us);  // plate idle, carrier at 34.9 kHz, sensor, tare
+  // Plate at rest in the board's DAC direction (`wiring`: dac_wiring.hpp), carrier at 34.9 kHz, sensor, tare.
+  void begin(uint32_t now_us, const DacCalibration& wiring = DacCalibration::linear());
   void loop(uint32_t now_us);   // main loop: call as often as possible
   void tick(uint32_t now_us);   // the 2 kHz interrupt
   // The whole interrupt handler's cost in DWT cycles, as the board measured
