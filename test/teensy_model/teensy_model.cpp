@@ -122,6 +122,7 @@ void observe_dac() {
   if (!st.dac.empty()) {
     const DacState& last = st.dac.back();
     if (last.enabled == d.enabled && last.internal_ref == d.internal_ref && last.code == d.code) return;
+    if (!st.options.keep_dac_history) st.dac.clear();
   }
   st.dac.push_back(d);
 }
@@ -319,6 +320,7 @@ size_t usb_buffers_free() {
   return static_cast<size_t>(std::count(st.buffer_free.begin(), st.buffer_free.end(), true));
 }
 const std::vector<DacState>& dac_history() { return s().dac; }
+DacState dac_now() { return s().dac.empty() ? DacState{} : s().dac.back(); }
 uint32_t interrupt_count() { return s().interrupts; }
 uint64_t longest_loop_pass_us() { return s().longest_pass; }
 uint32_t ethernet_chip_select() { return s().eth_cs; }

@@ -62,6 +62,7 @@ struct Options {
   uint32_t loop_pass_us = 20;        // simulated cost of one loop() pass beyond its calls
   uint32_t usb_host_attach_ms = 150; // when the host configures the device (usb_configuration)
   bool host_polls = true;            // the USB host reads IN endpoints every 1 ms
+  bool keep_dac_history = true;      // false (ff-sim): only the latest state, memory bounded
 };
 
 // ---- set-up ----
@@ -90,7 +91,8 @@ void set_host_polls(bool polls);
 size_t usb_buffers_free();
 
 // ---- observations ----
-const std::vector<DacState>& dac_history();  // every change, from reset
+const std::vector<DacState>& dac_history();  // every change, from reset (only the latest without keep_dac_history)
+DacState dac_now();
 uint32_t interrupt_count();
 uint64_t longest_loop_pass_us();          // the longest loop() call, interrupts included
 uint32_t ethernet_chip_select();
