@@ -60,8 +60,10 @@ def propose(folder):
         if len(jumps) == 0:
             continue
         j = int(jumps[0])
+        dx, dy = np.diff(x), np.diff(y)
+        # a second finger: a jump undone by an opposite jump soon after
         back = [k for k in jumps if j < k <= j + RETURN_FRAMES and
-                np.hypot(x[k + 1] - x[j], y[k + 1] - y[j]) < step[j] / 3]
+                np.hypot(dx[j] + dx[k], dy[j] + dy[k]) < step[j] / 2]
         if back:
             out.append((n, "two-finger", f"jump of {step[j]:.0f} px at t={t[j + 1]:.3f} s and back"))
         else:

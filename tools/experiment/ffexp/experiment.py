@@ -51,8 +51,8 @@ def parse(argv):
         return args
     if args.participant_number is None or args.participant_number < 1:
         ap.error("--participant-number N (a positive integer) is required")
-    if args.speed <= 0 or (args.speed != 1.0 and args.device != "sim"):
-        ap.error("--speed is for --device sim only (a real device runs in real time)")
+    if args.speed <= 0 or (args.speed != 1.0 and args.device not in ("sim", "fake")):
+        ap.error("--speed is for --device sim (or fake) only: a real device runs in real time")
     if not 1 <= args.trials <= design.TRIALS:
         ap.error(f"--trials must be in 1..{design.TRIALS}")
     return args
@@ -130,17 +130,19 @@ class Study:
         return float(x), float(y), bool(touch)
 
     def frame(self, trial_number):
-        """One paced frame: returns (now, x, y, touch, lateness)."""
+        """One paced frame: returns (now, x, y, touch, lateness), or None when
+        the device is lost (after pausing until it is back)."""
         lateness = self.pacer.wait()
         now = self.clock()
         x, y, touch = self.read_finger(now)
         changed = self.dev.poll()
+        if self.dev.lost():
+            return None  # stale force, no device: log nothing
         if changed:
             self.log.event(now, trial_number, "counters", " ".join(f"{k}={v}" for k, v in sorted(changed.items())))
         if self.participant is not None:
             self.participant.feel(x, y, self.dev.amplitude)
-        force = self.dev.force_n if self.participant is None else self.dev.force_n
-        self.log.frame(trial_number, now, x, y, touch, force, lateness * 1000.0)
+        self.log.frame(trial_number, now, x, y, touch, self.dev.force_n, lateness * 1000.0)
         return now, x, y, touch, lateness
 
     def flip(self):
@@ -171,6 +173,9 @@ class Study:
                     pass
         return False
 
+    def device_lost(self, trial_number):
+        return self.wait_for_device(trial_number, f"{self.dev.name} sent nothing for {devices.LOST_AFTER_S:.1f} s")
+
     def send(self, condition, trial_number):
         while not self.stop:
             try:
@@ -185,7 +190,11 @@ class Study:
         if condition is not None and self.send(condition, 0) is None:
             return False
         while not self.stop:
-            self.frame(0)
+            if self.frame(0) is None:
+                if not self.device_lost(0):
+                    return False
+                if condition is not None and self.send(condition, 0) is None:
+                    return False
             if self.keys():
                 return True
             self.screen.message(title, lines, self.dev.force_n)
@@ -229,15 +238,16 @@ class Study:
         if self.participant is not None:
             self.participant.begin_trial(self.clock())
         while not self.stop:
-            now, x, y, touch, lateness = self.frame(n)
-            if self.pacer.is_late(lateness):
-                late += 1
-            self.keys()
-            if self.dev.lost():
-                if not self.wait_for_device(n, f"{self.dev.name} sent nothing for {devices.LOST_AFTER_S:.1f} s"):
+            f = self.frame(n)
+            if f is None:
+                if not self.device_lost(n):
                     return False
                 self.log.event(self.clock(), n, "trial-restart", "device was lost")
                 return self.run_trial(trial)  # the condition again, from the start circle
+            now, x, y, touch, lateness = f
+            if self.pacer.is_late(lateness):
+                late += 1
+            self.keys()
             if touch and state == "wait-start" and geometry.in_start(x, y):
                 state, t_enter = "in-start", now
             elif state == "in-start" and touch and not geometry.in_start(x, y):
@@ -266,7 +276,8 @@ class Study:
         end = self.clock() + (SIM_FEEDBACK_S if self.participant is not None else FEEDBACK_S)
         field = self.field(trial)
         while not self.stop and self.clock() < end:
-            self.frame(trial["trial"])
+            if self.frame(trial["trial"]) is None and not self.device_lost(trial["trial"]):
+                return False
             self.keys()
             self.screen.feedback(trial["trial"], design.TRIALS, self.score, self.dev.force_n, hit, trial["target"], field)
             self.screenshot("feedback")
@@ -320,7 +331,7 @@ def prepare_folder(args):
     return folder, plan, 1, 0, None
 
 
-def run(argv):
+def run(argv, device_factory=None):
     args = parse(argv)
     if args.propose_exclusions:
         c = exclusions.propose(args.propose_exclusions)
@@ -343,7 +354,7 @@ def run(argv):
     def clock():
         return (time.monotonic() - origin) * speed
     try:
-        dev = devices.open_device(args.device, REPO_ROOT, speed, clock)
+        dev = (device_factory or devices.open_device)(args.device, REPO_ROOT, speed, clock)
     except ValueError as e:
         print(f"ff-experiment: {e}", file=sys.stderr)
         return 2
@@ -384,9 +395,9 @@ def run(argv):
     return code
 
 
-def main(argv=None):
+def main(argv=None, device_factory=None):
     try:
-        return run(sys.argv[1:] if argv is None else argv)
+        return run(sys.argv[1:] if argv is None else argv, device_factory)
     except logs.LogError as e:
         print(f"ff-experiment: {e}", file=sys.stderr)
         return 2
