@@ -8,7 +8,6 @@ the Ack. A device that has sent nothing for LOST_AFTER_S (Force arrives
 every 30 ms) is lost: the study pauses until it answers again."""
 import os
 import select
-import shutil
 import signal
 import socket
 import subprocess
@@ -94,6 +93,7 @@ class UdpDevice(Device):
         self.sock.setblocking(False)
         self.sequence = 0
         self.replies = {}
+        self.pending = {}   # sequence -> the reply type awaited
         self.errors = []
         self.status_every_s = 1.0
         self._next_status = 0.0
@@ -140,29 +140,41 @@ class UdpDevice(Device):
             elif isinstance(msg, protocol.Status):
                 changed.update(self._changed_counters(msg))
                 self.status = msg
-                self.replies[seq] = msg
-            elif isinstance(msg, (protocol.Ack, protocol.Error)):
-                self.replies[seq] = msg
+                if self.pending.get(seq) == protocol.STATUS:
+                    self.replies[seq] = msg
+            elif isinstance(msg, protocol.Ack):
+                if self.pending.get(seq) == protocol.ACK:
+                    self.replies[seq] = msg
+            elif isinstance(msg, protocol.Error):
+                if seq in self.pending:
+                    self.replies[seq] = msg
+                else:
+                    self.errors.append(msg.text())
             deadline = time.monotonic()  # after the first, only what is already there
 
-    def _request(self, build, what):
+    def _request(self, build, what, reply_type):
+        """Sends, and waits for the reply of that type echoing the sequence."""
         for _ in range(RETRIES):
             seq = self._send(build)
+            self.replies.pop(seq, None)
+            self.pending = {seq: reply_type}
             end = time.monotonic() + REPLY_TIMEOUT_S
             while time.monotonic() < end:
                 self._receive(end - time.monotonic())
                 if seq in self.replies:
+                    self.pending = {}
                     return self.replies.pop(seq)
+        self.pending = {}
         raise DeviceLost(f"{self.name} does not answer {what} ({RETRIES} tries, {REPLY_TIMEOUT_S * 1000:.0f} ms each)")
 
     def query_status(self):
-        reply = self._request(protocol.query_status, "QueryStatus")
+        reply = self._request(protocol.query_status, "QueryStatus", protocol.STATUS)
         if isinstance(reply, protocol.Error):
             raise DeviceRefused(reply.text())
         return reply
 
     def set_condition(self, condition):
-        reply = self._request(lambda s: protocol.set_condition(s, condition), "SetCondition")
+        reply = self._request(lambda s: protocol.set_condition(s, condition), "SetCondition", protocol.ACK)
         if isinstance(reply, protocol.Error):
             raise DeviceRefused(reply.text())
         if not reply.ok:
@@ -170,7 +182,7 @@ class UdpDevice(Device):
         return reply
 
     def start_stream(self):
-        self._request(lambda s: protocol.start_stream(s, TICK_DECIMATION), "StartStream")
+        self._request(lambda s: protocol.start_stream(s, TICK_DECIMATION), "StartStream", protocol.ACK)
 
     def poll(self):
         changed = self._receive(0.0)
@@ -300,6 +312,3 @@ def open_device(spec, repo_root, speed, clock, trace=None):
         return UdpDevice(host, int(port or DEFAULT_PORT), clock)
     raise ValueError(f"--device {spec}: expected sim, udp:HOST[:PORT] or fake")
 
-
-def which(name):
-    return shutil.which(name)

@@ -384,6 +384,9 @@ def run(argv, device_factory=None):
         study.log.event(clock(), first, "resume", f"firmware {status.firmware}")
     try:
         code = study.run()
+    except devices.DeviceRefused as e:
+        print(f"ff-experiment: {e}", file=sys.stderr)
+        code = 1
     finally:
         study.close()
         dev.close()

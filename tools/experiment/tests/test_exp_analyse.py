@@ -8,7 +8,7 @@ import sys
 import pytest
 
 from ffexp import analysis, analyse_cli, design
-from synthetic import write_participant
+from exp_synthetic import write_participant
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.join(HERE, "..", "ff-analyse")
