@@ -1,6 +1,8 @@
 #pragma once
 // What only the Teensy has, behind one small interface so that the firmware's
 // main loop and tick run natively against emulated devices in tests.
+// Everything here is called from the main loop except cycles(), which the
+// tick also calls. Nothing may block for long: the loop feeds the tracker.
 #include <cstddef>
 #include <cstdint>
 
@@ -16,9 +18,17 @@ class Board {
   // One 64-byte report of the USB HID host channel, if one is waiting.
   virtual bool hid_receive(uint8_t* report64) = 0;
   virtual void hid_send(const uint8_t* report64) = 0;
+  // Reports hid_send() can queue now without waiting for the host to read.
+  // The app sends a frame only when all its reports fit, so that a host that
+  // stopped reading costs dropped frames, never a blocked loop.
+  virtual size_t hid_tx_room() { return SIZE_MAX; }
   // Free-running cycle counter (DWT->CYCCNT at 180 MHz).
   virtual uint32_t cycles() = 0;
   virtual void reboot_to_bootloader() = 0;
+  // The MCU's hardware watchdog, kicked once per main-loop pass while the
+  // tick is alive too: the last resort (a reset) if either hangs for good.
+  // The software watchdogs rest the plate long before that.
+  virtual void watchdog_kick() {}  // default: a board without one
 
  protected:
   ~Board() = default;

@@ -1,9 +1,23 @@
 #include "firmware/app/firmware_app.hpp"
 
+#include "frictionfield/core/geometry.hpp"
+#include "frictionfield/drivers/ad9834_registers.hpp"
+
 namespace ff::firmware {
 
 using protocol::Message;
 using protocol::MessageType;
+
+namespace {
+
+// The filtered position as a mouse pixel: rounded, on screen whatever it is.
+int screen_pixel(float v, float max) {
+  if (!(v > 0.0f)) return 0;  // NaN too
+  if (v >= max) return static_cast<int>(max);
+  return static_cast<int>(v + 0.5f);
+}
+
+}  // namespace
 
 FirmwareApp::FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pipeline)
     : board_(board),
@@ -17,113 +31,228 @@ FirmwareApp::FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pi
 }
 
 void FirmwareApp::begin(uint32_t now_us) {
-  amplitude_.write_code(pipeline_.amplitude_map().idle_code());  // the plate rests until told otherwise
+  rest_plate();  // the plate rests until a scene is set
   dds_.start(kDefaultCarrierHz);
   zforce_.begin(now_us);
   load_cells_.start(now_us);
   heartbeat_us_.store(now_us, std::memory_order_release);
-  last_mouse_us_ = last_stream_flush_us_ = now_us;
+  last_mouse_us_ = ticks_seen_us_ = stream_due_since_us_ = now_us;
+  seen_ticks_ = pipeline_.ticks();
 }
+
+// ---- the 2 kHz interrupt ----------------------------------------------------
 
 void FirmwareApp::tick(uint32_t now_us) {
   const uint32_t start = board_.cycles();
-  const uint32_t silent = now_us - heartbeat_us_.load(std::memory_order_acquire);
-  if (silent > kWatchdogUs) {
-    // The main loop stalled: no fresh reports, no host. Rest the plate.
-    if (!watchdog_tripped_) ++counters_.watchdog_trips;
-    watchdog_tripped_ = true;
-    amplitude_.write_code(pipeline_.amplitude_map().idle_code());
-    return;
-  }
-  watchdog_tripped_ = false;
+  // Always run the pipeline, so that its clock stays continuous through a
+  // stall (no leap to confirm when the loop comes back); only the output
+  // is overridden.
   const TickOutput out = pipeline_.tick(now_us);
-  amplitude_.write_code(out.dac);
+  const uint32_t limit = preparing_.load(std::memory_order_acquire) ? kPreparationWatchdogUs : kWatchdogUs;
+  // Signed: a heartbeat stamped a moment after `now_us` is fresh, not 71 minutes old.
+  const int32_t silent = static_cast<int32_t>(now_us - heartbeat_us_.load(std::memory_order_acquire));
+  const bool stalled = silent > static_cast<int32_t>(limit);
+  if (stalled && !watchdog_tripped_) watchdog_trips_.fetch_add(1, std::memory_order_relaxed);
+  watchdog_tripped_ = stalled;
+  const bool rest = stalled || force_idle_.load(std::memory_order_acquire);
+  const uint16_t code = rest ? pipeline_.amplitude_map().idle_code() : out.dac;
+  amplitude_.write_code(code);
+
   mouse_x_.store(out.position.x, std::memory_order_relaxed);
   mouse_y_.store(out.position.y, std::memory_order_relaxed);
   present_.store(out.present, std::memory_order_release);
-  if (streaming_.load(std::memory_order_acquire) &&
-      ++tick_count_ % decimation_.load(std::memory_order_relaxed) == 0) {
-    if (!ring_.push({now_us, out.amplitude, out.dac, out.present})) ++counters_.stream_overruns;
+  if (streaming_.load(std::memory_order_acquire) && ++stream_tick_ >= decimation_.load(std::memory_order_relaxed)) {
+    stream_tick_ = 0;
+    const float amplitude = rest ? pipeline_.amplitude_map().idle_amplitude() : out.amplitude;
+    if (!ring_.push({now_us, amplitude, code, out.present})) ring_overruns_.fetch_add(1, std::memory_order_relaxed);
   }
+
   const uint32_t cycles = board_.cycles() - start;
+  if (cycles > cycles_max_.load(std::memory_order_relaxed)) cycles_max_.store(cycles, std::memory_order_relaxed);
   cycles_sum_ += cycles;
-  ++cycles_count_;
-  if (cycles > cycles_max_) cycles_max_ = cycles;
+  cycles_count_.fetch_add(1, std::memory_order_release);
 }
 
 uint32_t FirmwareApp::tick_cycles_mean() const {
-  return cycles_count_ == 0 ? 0u : static_cast<uint32_t>(cycles_sum_ / cycles_count_);
+  // The tick preempts the loop: a 64-bit sum read between two equal counts is whole.
+  for (;;) {
+    const uint32_t before = cycles_count_.load(std::memory_order_acquire);
+    const uint64_t sum = cycles_sum_;
+    if (cycles_count_.load(std::memory_order_acquire) != before) continue;
+    return before == 0 ? 0u : static_cast<uint32_t>(sum / before);
+  }
 }
+
+FirmwareCounters FirmwareApp::counters() const {
+  FirmwareCounters c = counters_;
+  c.watchdog_trips = watchdog_trips_.load(std::memory_order_relaxed);
+  c.stream_overruns += ring_overruns_.load(std::memory_order_relaxed);
+  return c;
+}
+
+float FirmwareApp::carrier_hz() const {
+  const uint32_t word = dds_.frequency_word_of(dds_.selected_frequency());
+  return static_cast<float>(ad9834::output_millihz(word, dds_.mclk_hz())) * 0.001f;
+}
+
+// ---- the main loop ----------------------------------------------------------
 
 void FirmwareApp::loop(uint32_t now_us) {
   heartbeat_us_.store(now_us, std::memory_order_release);
+  preparing_.store(false, std::memory_order_release);
 
-  // Sensor: the DR interrupt only timestamped; the I2C read happens here.
-  SensorSample s;
-  while (zforce_.poll(now_us, s)) {
-    pipeline_.post_sample(s);
-    if (streaming_.load(std::memory_order_relaxed)) {
-      pending_samples_.samples[pending_samples_.count++] = s;
-      if (pending_samples_.count == protocol::kMaxSamplesPerMessage) flush_stream(now_us, true);
-    }
-  }
-
-  // Host messages: UDP datagrams and HID reports.
-  size_t size = 0;
-  while (board_.udp_receive(frame_, sizeof frame_, size)) handle_frame(frame_, size, Channel::Udp, now_us);
-  uint8_t report[protocol::kHidReportBytes];
-  while (board_.hid_receive(report)) {
-    if (hid_in_.push(report)) handle_frame(hid_in_.frame(), hid_in_.size(), Channel::Hid, now_us);
-  }
-
-  // Cursor for the visual loop: absolute mouse every 3 ms.
-  if (now_us - last_mouse_us_ >= kMouseIntervalUs) {
-    last_mouse_us_ += kMouseIntervalUs;
-    if (now_us - last_mouse_us_ >= kMouseIntervalUs) last_mouse_us_ = now_us;  // after a stall: no burst
-    if (present_.load(std::memory_order_acquire)) {
-      board_.mouse_move_to(static_cast<int>(mouse_x_.load(std::memory_order_relaxed) + 0.5f),
-                           static_cast<int>(mouse_y_.load(std::memory_order_relaxed) + 0.5f));
-    }
-  }
+  const bool ticking = tick_alive(now_us);
+  read_sensor(now_us);
+  read_host(now_us);
+  move_mouse(now_us);
 
   // Force every 30 ms (5-reading average inside the monitor).
-  LoadReading reading;
-  if (load_cells_.step(now_us, zforce_.finger_present(), reading)) {
-    force_ = reading;
-    send_force(now_us);
-  }
+  if (load_cells_.step(now_us, zforce_.finger_present(), force_)) send_force();
 
   SweepStep step;
   if (sweep_.running()) sweep_.step(now_us, step);
 
-  if (streaming_.load(std::memory_order_relaxed) && now_us - last_stream_flush_us_ >= 10000) flush_stream(now_us, false);
+  if (streaming_.load(std::memory_order_relaxed)) stream(now_us, false);
+  if (ticking) board_.watchdog_kick();
 }
 
-void FirmwareApp::flush_stream(uint32_t now_us, bool /*force*/) {
-  last_stream_flush_us_ = now_us;
-  if (pending_samples_.count > 0) {
-    out_ = Message{};
+bool FirmwareApp::tick_alive(uint32_t now_us) {
+  const uint32_t ticks = pipeline_.ticks();
+  if (ticks != seen_ticks_) {
+    seen_ticks_ = ticks;
+    ticks_seen_us_ = now_us;
+    tick_stalled_ = false;
+    return true;
+  }
+  if (now_us - ticks_seen_us_ <= kTickStallUs) return true;
+  if (!tick_stalled_) {
+    // Nothing else will write the DAC: the last code would play on.
+    tick_stalled_ = true;
+    ++counters_.tick_stalls;
+    rest_plate();
+  }
+  return false;
+}
+
+void FirmwareApp::read_sensor(uint32_t now_us) {
+  // The DR interrupt only timestamped; the I2C read happens here.
+  SensorSample s;
+  while (zforce_.poll(now_us, s)) {
+    pipeline_.post_sample(s);
+    if (!streaming_.load(std::memory_order_relaxed)) continue;
+    if (pending_samples_.count < protocol::kMaxSamplesPerMessage) {
+      pending_samples_.samples[pending_samples_.count++] = s;
+    } else {
+      ++counters_.stream_overruns;
+    }
+    if (pending_samples_.count == protocol::kMaxSamplesPerMessage) stream(now_us, false);
+  }
+  if (zforce_.state() != ZforceState::Failed) {
+    sensor_failed_ = false;
+  } else if (!sensor_failed_) {
+    sensor_failed_ = true;
+    sensor_failed_us_ = now_us;
+  } else if (now_us - sensor_failed_us_ >= kSensorRetryUs) {
+    // Unplugged or powered late: no samples, so the pipeline is idle; try again.
+    sensor_failed_ = false;
+    ++counters_.sensor_restarts;
+    zforce_.begin(now_us);
+  }
+}
+
+void FirmwareApp::read_host(uint32_t now_us) {
+  size_t size = 0;
+  for (int i = 0; i < kMaxDatagramsPerLoop && board_.udp_receive(frame_, sizeof frame_, size); ++i) {
+    handle_frame(frame_, size, Channel::Udp, now_us);
+  }
+  uint8_t report[protocol::kHidReportBytes];
+  for (int i = 0; i < kMaxReportsPerLoop && board_.hid_receive(report); ++i) {
+    if (hid_in_.push(report)) handle_frame(hid_in_.frame(), hid_in_.size(), Channel::Hid, now_us);
+  }
+}
+
+void FirmwareApp::move_mouse(uint32_t now_us) {
+  // Cursor for the visual loop: absolute mouse every 3 ms while a finger is down.
+  if (now_us - last_mouse_us_ < kMouseIntervalUs) return;
+  last_mouse_us_ += kMouseIntervalUs;
+  if (now_us - last_mouse_us_ >= kMouseIntervalUs) last_mouse_us_ = now_us;  // after a stall: no burst
+  if (!present_.load(std::memory_order_acquire)) return;
+  board_.mouse_move_to(screen_pixel(mouse_x_.load(std::memory_order_relaxed), kScreenMaxX),
+                       screen_pixel(mouse_y_.load(std::memory_order_relaxed), kScreenMaxY));
+}
+
+// Raw sensor reports and rendered ticks for `ffctl record`, over USB only.
+// A record waits until its message is full or kStreamFlushUs passed; a
+// message waits (in the ring) while the host channel has no room.
+void FirmwareApp::stream(uint32_t now_us, bool final) {
+  const bool due = final || now_us - stream_due_since_us_ >= kStreamFlushUs;
+  bool sent_all = true;
+  if (pending_samples_.count > 0 && (due || pending_samples_.count == protocol::kMaxSamplesPerMessage)) {
     out_.type = MessageType::Samples;
+    out_.sequence = 0;
     out_.samples = pending_samples_;
-    reply(out_, Channel::Hid);
-    pending_samples_.count = 0;
+    if (send(Channel::Hid)) {
+      pending_samples_.count = 0;
+    } else {
+      sent_all = false;
+    }
   }
   for (;;) {
-    out_ = Message{};
-    out_.type = MessageType::Ticks;
     protocol::TickRecord r;
-    while (out_.ticks.count < protocol::kMaxTicksPerMessage && ring_.pop(r)) out_.ticks.ticks[out_.ticks.count++] = r;
-    if (out_.ticks.count == 0) break;
-    reply(out_, Channel::Hid);
+    while (pending_ticks_.count < protocol::kMaxTicksPerMessage && ring_.pop(r)) {
+      pending_ticks_.ticks[pending_ticks_.count++] = r;
+    }
+    if (pending_ticks_.count == 0) break;
+    if (!due && pending_ticks_.count < protocol::kMaxTicksPerMessage) {
+      sent_all = false;
+      break;
+    }
+    out_.type = MessageType::Ticks;
+    out_.sequence = 0;
+    out_.ticks = pending_ticks_;
+    if (!send(Channel::Hid)) {
+      sent_all = false;
+      break;
+    }
+    pending_ticks_.count = 0;
+  }
+  if (sent_all) stream_due_since_us_ = now_us;
+  if (final && !sent_all) {  // the host stopped the stream but has no room: drop the rest
+    counters_.stream_overruns += pending_samples_.count + pending_ticks_.count + ring_.size();
+    pending_samples_.count = 0;
+    pending_ticks_.count = 0;
+    protocol::TickRecord r;
+    while (ring_.pop(r)) {
+    }
   }
 }
 
-void FirmwareApp::send_force(uint32_t now_us) {
-  out_ = Message{};
+void FirmwareApp::send_force() {
   out_.type = MessageType::Force;
-  out_.force = {now_us, force_.force_mN, force_.over_force};
-  reply(out_, Channel::Udp);
-  if (streaming_.load(std::memory_order_relaxed)) reply(out_, Channel::Hid);
+  out_.sequence = 0;
+  out_.force = {force_.t_us, force_.force_mN, force_.over_force};
+  send(Channel::Udp);
+  if (streaming_.load(std::memory_order_relaxed) && !send(Channel::Hid)) ++counters_.hid_frames_dropped;
+}
+
+bool FirmwareApp::send(Channel channel) {
+  const size_t n = protocol::encode(out_, frame_, sizeof frame_);
+  if (n == 0) {  // cannot happen for the device's messages; never retried
+    ++counters_.hid_frames_dropped;
+    return true;
+  }
+  if (channel == Channel::Udp) {
+    board_.udp_send(frame_, n);
+    return true;
+  }
+  const size_t count = protocol::split_into_reports(frame_, n, reports_, protocol::kMaxHidReports);
+  if (board_.hid_tx_room() < count) return false;  // whole frames or nothing: the host reassembles
+  for (size_t i = 0; i < count; ++i) board_.hid_send(reports_[i]);
+  return true;
+}
+
+void FirmwareApp::reply(Channel channel) {
+  if (!send(channel)) ++counters_.hid_frames_dropped;
 }
 
 void FirmwareApp::set_carrier(uint32_t hz) {
@@ -131,111 +260,126 @@ void FirmwareApp::set_carrier(uint32_t hz) {
   const uint8_t next = static_cast<uint8_t>(dds_.selected_frequency() ^ 1u);
   dds_.set_frequency_hz(next, hz);
   dds_.select(next, dds_.selected_phase());
-  carrier_hz_ = hz;
 }
 
-void FirmwareApp::reply(const Message& m, Channel channel) {
-  Message copy = m;
-  copy.sequence = sequence_;
-  uint8_t frame[protocol::kMaxFrame];
-  const size_t n = protocol::encode(copy, frame, sizeof frame);
-  if (n == 0) return;
-  if (channel == Channel::Udp) {
-    board_.udp_send(frame, n);
-    return;
-  }
-  uint8_t reports[protocol::kMaxHidReports][protocol::kHidReportBytes];
-  const size_t count = protocol::split_into_reports(frame, n, reports, protocol::kMaxHidReports);
-  for (size_t i = 0; i < count; ++i) board_.hid_send(reports[i]);
-}
+void FirmwareApp::rest_plate() { amplitude_.write_code(pipeline_.amplitude_map().idle_code()); }
+
+// ---- host messages ------------------------------------------------------------
 
 void FirmwareApp::handle_frame(const uint8_t* frame, size_t size, Channel channel, uint32_t now_us) {
-  static Message in;  // large: not on the main loop's stack
-  const protocol::DecodeStatus status = protocol::decode(frame, size, in);
-  sequence_ = size > 4 ? frame[4] : 0;
-  Message& r = out_;
-  r = Message{};
+  // Header fields first: `frame` may be frame_, which the reply overwrites.
+  const uint8_t sequence = size > 4 ? frame[4] : 0;
+  const uint8_t type = size > 3 ? frame[3] : 0;
+  const protocol::DecodeStatus status = protocol::decode(frame, size, in_);
+  out_.sequence = sequence;
   if (status != protocol::DecodeStatus::Ok) {
     ++counters_.protocol_errors;
-    r.type = MessageType::Error;
-    r.error.code = protocol::error_code_for(status);
-    r.error.type = size > 3 ? frame[3] : 0;
-    reply(r, channel);
+    out_.type = MessageType::Error;
+    out_.error = {protocol::error_code_for(status), type};
+    reply(channel);
     return;
   }
-  r.type = MessageType::Ack;
-  r.ack.command = in.type;
-  switch (in.type) {
+  handle_command(channel, now_us);
+}
+
+void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
+  out_.type = MessageType::Ack;
+  out_.ack = {in_.type, protocol::AckStatus::Ok, 0};
+  switch (in_.type) {
     case MessageType::SetCondition: {
-      // Prepared here, in the main loop; the tick switches atomically.
-      const PrepareStatus st = pipeline_.set_condition(in.condition.to_condition());
-      r.ack.detail = static_cast<uint8_t>(st);
+      // Prepared here, in the main loop, while the tick renders the old
+      // scene; the tick switches atomically. The watchdog allows for it.
+      preparing_.store(true, std::memory_order_release);
+      const PrepareStatus st = pipeline_.set_condition(in_.condition.to_condition());
+      out_.ack.detail = static_cast<uint8_t>(st);
       if (st == PrepareStatus::Ok) {
-        condition_ = in.condition;
+        condition_ = in_.condition;
         ++counters_.conditions_set;
       } else {
-        r.ack.status = protocol::AckStatus::Refused;
+        out_.ack.status = protocol::AckStatus::Refused;
         ++counters_.conditions_refused;
       }
       break;
     }
     case MessageType::QueryStatus: {
-      r.type = MessageType::Status;
-      protocol::StatusMessage& st = r.status;
+      out_.type = MessageType::Status;
+      protocol::StatusMessage& st = out_.status;
       st.firmware_version = kFirmwareVersion;
       st.kind = condition_.kind;
       st.target = condition_.target;
       st.strength = condition_.strength;
       st.ticks = pipeline_.ticks();
       st.tick_cycles_mean = tick_cycles_mean();
-      st.tick_cycles_max = cycles_max_;
+      st.tick_cycles_max = tick_cycles_max();
       st.protocol_errors = counters_.protocol_errors;
       st.force_mN = force_.force_mN;
       st.over_force = force_.over_force;
       st.finger_present = present_.load(std::memory_order_acquire);
-      st.carrier_hz = static_cast<float>(carrier_hz_);
+      st.carrier_hz = carrier_hz();
       st.faults = pipeline_.faults();
       break;
     }
-    case MessageType::StartStream:
-      decimation_.store(in.stream.tick_decimation, std::memory_order_relaxed);
+    case MessageType::StartStream: {
+      pending_samples_.count = 0;
+      pending_ticks_.count = 0;
+      protocol::TickRecord r;
+      while (ring_.pop(r)) {
+      }
+      stream_due_since_us_ = now_us;
+      decimation_.store(in_.stream.tick_decimation, std::memory_order_relaxed);  // >= 1: the codec checks
       streaming_.store(true, std::memory_order_release);
       break;
-    case MessageType::StopStream:
+    }
+    case MessageType::StopStream: {
       streaming_.store(false, std::memory_order_release);
-      flush_stream(now_us, true);
+      const uint8_t sequence = out_.sequence;
+      stream(now_us, true);  // uses out_ for what is left
+      out_.type = MessageType::Ack;
+      out_.sequence = sequence;
+      out_.ack = {MessageType::StopStream, protocol::AckStatus::Ok, 0};
       break;
-    case MessageType::SetCarrier:
-      if (in.carrier.frequency_hz >= 1000.0f && in.carrier.frequency_hz <= 1.0e6f) {
-        set_carrier(static_cast<uint32_t>(in.carrier.frequency_hz + 0.5f));
+    }
+    case MessageType::SetCarrier: {
+      const float hz = in_.carrier.frequency_hz;
+      if (hz >= static_cast<float>(kCarrierMinHz) && hz <= static_cast<float>(kCarrierMaxHz)) {
+        sweep_.stop();
+        set_carrier(static_cast<uint32_t>(hz + 0.5f));
       } else {
-        r.ack.status = protocol::AckStatus::Refused;
-      }
-      break;
-    case MessageType::StartSweep: {
-      SweepConfig c;
-      c.start_hz = static_cast<uint32_t>(in.sweep.start_hz);
-      c.stop_hz = static_cast<uint32_t>(in.sweep.end_hz);
-      c.duration_us = in.sweep.duration_ms * 1000u;
-      if (!(in.sweep.start_hz >= 1000.0f && in.sweep.end_hz >= 1000.0f && in.sweep.start_hz <= 1.0e6f &&
-            in.sweep.end_hz <= 1.0e6f) || !sweep_.begin(c, now_us)) {
-        r.ack.status = protocol::AckStatus::Refused;
+        out_.ack.status = protocol::AckStatus::Refused;
       }
       break;
     }
+    case MessageType::StartSweep: {
+      const protocol::SweepMessage& s = in_.sweep;
+      const auto in_range = [](float hz) {
+        return hz >= static_cast<float>(kCarrierMinHz) && hz <= static_cast<float>(kCarrierMaxHz);
+      };
+      SweepConfig c;
+      bool ok = in_range(s.start_hz) && in_range(s.end_hz) && s.duration_ms > 0 && s.duration_ms <= kSweepMaxMs;
+      if (ok) {
+        c.start_hz = static_cast<uint32_t>(s.start_hz + 0.5f);
+        c.stop_hz = static_cast<uint32_t>(s.end_hz + 0.5f);
+        c.duration_us = s.duration_ms * 1000u;
+        ok = sweep_.begin(c, now_us);
+      }
+      if (!ok) out_.ack.status = protocol::AckStatus::Refused;
+      break;
+    }
     case MessageType::RebootToBootloader:
-      amplitude_.write_code(pipeline_.amplitude_map().idle_code());
-      reply(r, channel);
+      // The plate rests first, and the tick keeps it resting until the reset.
+      force_idle_.store(true, std::memory_order_release);
+      rest_plate();
+      reply(channel);
       board_.reboot_to_bootloader();
+      force_idle_.store(false, std::memory_order_release);  // a board without a bootloader returns
       return;
     default:  // device-to-host types sent to the device
       ++counters_.protocol_errors;
-      r.type = MessageType::Error;
-      r.error.code = protocol::ErrorCode::UnknownType;
-      r.error.type = static_cast<uint8_t>(in.type);
+      out_.type = MessageType::Error;
+      out_.error = {protocol::ErrorCode::UnknownType, static_cast<uint8_t>(in_.type)};
       break;
   }
-  reply(r, channel);
+  reply(channel);
 }
 
 }  // namespace ff::firmware

@@ -4,8 +4,10 @@
 // interfaces and a Board. firmware/src/main.cpp binds it to the Teensy.
 //
 // Threading: loop() runs in the main loop, tick() in the IntervalTimer
-// interrupt (priority above USB). They share the pipeline (its own SPSC
-// mailbox and atomic scene swap), the heartbeat and the tick ring.
+// interrupt (priority above USB), which preempts the loop but never the
+// other way round. They share the pipeline (its own SPSC mailbox and atomic
+// scene swap), the heartbeat, the mouse position, the tick ring and a few
+// counters, all atomics written by one side only.
 #include <atomic>
 #include <cstdint>
 
@@ -27,10 +29,25 @@
 
 namespace ff::firmware {
 
-constexpr uint16_t kFirmwareVersion = 0x0100;  // 1.0
-constexpr uint32_t kDefaultCarrierHz = 34900;   // plate mode (0;12)
-constexpr uint32_t kMouseIntervalUs = 3000;     // thesis: cursor every 3 ms
-constexpr uint32_t kWatchdogUs = 50000;         // main loop silent this long: plate to idle
+constexpr uint16_t kFirmwareVersion = 0x0100;    // 1.0
+constexpr uint32_t kDefaultCarrierHz = 34900;    // plate mode (0;12)
+constexpr uint32_t kMouseIntervalUs = 3000;      // thesis: cursor every 3 ms
+// Main loop silent this long: the tick rests the plate. Ten sensor periods;
+// a healthy loop comes round every few hundred microseconds.
+constexpr uint32_t kWatchdogUs = 50000;
+// ... while it prepares a scene (a 96 KiB table takes ~70 ms on the M4).
+constexpr uint32_t kPreparationWatchdogUs = 1000000;
+// No tick for this long: the loop rests the plate itself (20 missed ticks).
+constexpr uint32_t kTickStallUs = 10000;
+// The zForce gave up configuring: start it again after this long.
+constexpr uint32_t kSensorRetryUs = 2000000;
+constexpr uint32_t kStreamFlushUs = 10000;       // streamed records wait at most this long
+// Host input handled per loop, so that a flood cannot starve the sensor.
+constexpr int kMaxDatagramsPerLoop = 4;
+constexpr int kMaxReportsPerLoop = 2 * static_cast<int>(protocol::kMaxHidReports);
+constexpr uint32_t kCarrierMinHz = 1000;
+constexpr uint32_t kCarrierMaxHz = 1000000;
+constexpr uint32_t kSweepMaxMs = 600000;         // 10 min
 
 struct Peripherals {
   SpiBus16& spi;
@@ -42,69 +59,94 @@ struct Peripherals {
 };
 
 struct FirmwareCounters {
-  uint32_t protocol_errors = 0;   // malformed or unknown messages (answered with Error)
-  uint32_t watchdog_trips = 0;    // ticks forced idle because the loop stalled
+  uint32_t protocol_errors = 0;     // malformed or unknown messages (answered with Error)
   uint32_t conditions_set = 0;
   uint32_t conditions_refused = 0;
-  uint32_t stream_overruns = 0;   // tick records dropped: the loop did not drain in time
+  uint32_t watchdog_trips = 0;      // the loop stalled: the tick rested the plate
+  uint32_t tick_stalls = 0;         // the tick stopped: the loop rested the plate
+  uint32_t stream_overruns = 0;     // streamed records dropped: the host did not read in time
+  uint32_t hid_frames_dropped = 0;  // replies or telemetry the USB host channel had no room for
+  uint32_t sensor_restarts = 0;     // zForce configuration started again after it failed
 };
 
 class FirmwareApp {
  public:
   FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pipeline);
 
-  void begin(uint32_t now_us);  // carrier at 34.9 kHz, sensor, tare, plate idle
+  void begin(uint32_t now_us);  // plate idle, carrier at 34.9 kHz, sensor, tare
   void loop(uint32_t now_us);   // main loop: call as often as possible
   void tick(uint32_t now_us);   // the 2 kHz interrupt
 
-  const FirmwareCounters& counters() const { return counters_; }
+  FirmwareCounters counters() const;
   uint32_t tick_cycles_mean() const;
-  uint32_t tick_cycles_max() const { return cycles_max_; }
+  uint32_t tick_cycles_max() const { return cycles_max_.load(std::memory_order_relaxed); }
+  // The code that rests the plate (the active scene's idle amplitude): for
+  // the board's fault handlers.
+  uint16_t rest_code() const { return pipeline_.amplitude_map().idle_code(); }
+  float carrier_hz() const;
   const Ad9834& carrier() const { return dds_; }
   const ZforceSensor& sensor() const { return zforce_; }
   const LoadReading& last_force() const { return force_; }
 
  private:
   enum class Channel : uint8_t { Udp, Hid };
+  bool tick_alive(uint32_t now_us);
+  void read_sensor(uint32_t now_us);
+  void read_host(uint32_t now_us);
+  void move_mouse(uint32_t now_us);
+  void stream(uint32_t now_us, bool final);
   void handle_frame(const uint8_t* frame, size_t size, Channel channel, uint32_t now_us);
-  void reply(const protocol::Message& m, Channel channel);
-  void send_force(uint32_t now_us);
-  void flush_stream(uint32_t now_us, bool force);
+  void handle_command(Channel channel, uint32_t now_us);
+  bool send(Channel channel);   // out_; false: the HID channel had no room
+  void reply(Channel channel);  // send(), a dropped reply counted
+  void send_force();
   void set_carrier(uint32_t hz);
+  void rest_plate();
 
   Board& board_;
   HapticPipeline& pipeline_;
   Ad9834 dds_;
   FrequencySweep sweep_;
-  FsAdjustAmplitude amplitude_;
+  FsAdjustAmplitude amplitude_;  // written by the tick, and by the loop only when the tick is stopped or held idle
   ZforceSensor zforce_;
   LoadCellMonitor load_cells_;
   protocol::HidReassembler hid_in_;
 
-  // Shared with the tick.
+  // Written by the loop, read by the tick.
   std::atomic<uint32_t> heartbeat_us_{0};
+  std::atomic<bool> preparing_{false};  // set before a preparation, cleared at the next loop
+  std::atomic<bool> force_idle_{false};
   std::atomic<bool> streaming_{false};
   std::atomic<uint8_t> decimation_{1};
+  // Written by the tick, read by the loop.
   TickRing ring_;
   std::atomic<float> mouse_x_{0.0f}, mouse_y_{0.0f};
   std::atomic<bool> present_{false};
-  bool watchdog_tripped_ = false;
-  uint32_t tick_count_ = 0;
+  std::atomic<uint32_t> watchdog_trips_{0};
+  std::atomic<uint32_t> ring_overruns_{0};
+  std::atomic<uint32_t> cycles_max_{0};
+  std::atomic<uint32_t> cycles_count_{0};  // also the sequence that makes cycles_sum_ readable
   uint64_t cycles_sum_ = 0;
-  uint32_t cycles_count_ = 0;
-  uint32_t cycles_max_ = 0;
+  bool watchdog_tripped_ = false;  // tick only
+  uint32_t stream_tick_ = 0;       // tick only
 
   // Main loop only.
   FirmwareCounters counters_;
   protocol::ConditionMessage condition_;  // what the host last set (status)
   LoadReading force_;
   uint32_t last_mouse_us_ = 0;
-  uint32_t last_stream_flush_us_ = 0;
-  uint32_t carrier_hz_ = kDefaultCarrierHz;
-  uint8_t sequence_ = 0;
+  uint32_t seen_ticks_ = 0;
+  uint32_t ticks_seen_us_ = 0;
+  bool tick_stalled_ = false;
+  bool sensor_failed_ = false;
+  uint32_t sensor_failed_us_ = 0;
+  uint32_t stream_due_since_us_ = 0;
   protocol::SamplesMessage pending_samples_;
-  protocol::Message out_;  // reused: large
-  uint8_t frame_[protocol::kMaxFrame];
+  protocol::TicksMessage pending_ticks_;
+  protocol::Message in_;   // large: members, not on the loop's stack
+  protocol::Message out_;
+  uint8_t frame_[protocol::kMaxFrame];  // a datagram in, then any frame out
+  uint8_t reports_[protocol::kMaxHidReports][protocol::kHidReportBytes];
 };
 
 }  // namespace ff::firmware

@@ -120,10 +120,23 @@ class TeensyBoard final : public ff::firmware::Board {
   void hid_send(const uint8_t* report) override { Serial.write(report, 64); }
   uint32_t cycles() override { return ARM_DWT_CYCCNT; }
   void reboot_to_bootloader() override { _reboot_Teensyduino_(); }
+  void watchdog_kick() override {
+    // The loop passes every few microseconds; a refresh every 100 ms is plenty
+    // for a 1 s timeout and keeps the interrupts-off window rare.
+    const uint32_t now_ms = millis();
+    if (now_ms - last_kick_ms_ < 100) return;
+    last_kick_ms_ = now_ms;
+    // The refresh sequence must not be split by an interrupt (K66 manual 23.3.2).
+    __disable_irq();
+    WDOG_REFRESH = 0xA602;
+    WDOG_REFRESH = 0xB480;
+    __enable_irq();
+  }
 
  private:
   IPAddress reply_ip_;
   uint16_t reply_port_ = 0;
+  uint32_t last_kick_ms_ = 0;
 };
 
 TeensySpi spi_bus;
@@ -138,6 +151,25 @@ IntervalTimer tick_timer;
 
 uint32_t micros_for_core() { return micros(); }
 void on_tick() { app.tick(micros()); }
+
+// The K66's hardware watchdog as the last resort: a main loop that hangs for a
+// second resets the MCU (setup() rests the plate first thing). The tick's 50 ms
+// software watchdog has rested the plate long before. Teensyduino's startup
+// disables the WDOG but leaves ALLOWUPDATE set, so it can be armed here.
+constexpr uint32_t kHardwareWatchdogMs = 1000;
+void arm_hardware_watchdog() {
+  __disable_irq();
+  WDOG_UNLOCK = WDOG_UNLOCK_SEQ1;  // then 20 bus clocks to start the update
+  WDOG_UNLOCK = WDOG_UNLOCK_SEQ2;
+  __asm__ volatile("nop");
+  __asm__ volatile("nop");
+  // LPO clock (1 kHz), prescaler 1: the timeout is in milliseconds.
+  WDOG_TOVALH = static_cast<uint16_t>(kHardwareWatchdogMs >> 16);
+  WDOG_TOVALL = static_cast<uint16_t>(kHardwareWatchdogMs & 0xFFFF);
+  WDOG_PRESC = 0;
+  WDOG_STCTRLH = WDOG_STCTRLH_ALLOWUPDATE | WDOG_STCTRLH_WDOGEN;
+  __enable_irq();
+}
 
 }  // namespace
 
@@ -163,6 +195,7 @@ void setup() {
   // Above USB (112): with the default 128, USB traffic would delay every tick.
   tick_timer.priority(64);
   tick_timer.begin(on_tick, ff::kTickPeriodUs);
+  arm_hardware_watchdog();  // last: Ethernet.begin() may take its time
 }
 
 void loop() { app.loop(micros()); }

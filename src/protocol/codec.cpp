@@ -19,6 +19,20 @@ const char* to_string(DecodeStatus s) {
   return "?";
 }
 
+const char* to_string(ErrorCode c) {
+  switch (c) {
+    case ErrorCode::TooShort: return "frame too short";
+    case ErrorCode::BadMagic: return "bad magic";
+    case ErrorCode::BadVersion: return "unsupported protocol version";
+    case ErrorCode::BadLength: return "length does not match";
+    case ErrorCode::BadCrc: return "CRC mismatch";
+    case ErrorCode::UnknownType: return "unknown message type";
+    case ErrorCode::Malformed: return "malformed payload";
+    case ErrorCode::Busy: return "busy";
+  }
+  return "unknown error code";
+}
+
 ErrorCode error_code_for(DecodeStatus s) {
   switch (s) {
     case DecodeStatus::TooShort: return ErrorCode::TooShort;
@@ -50,7 +64,7 @@ Condition ConditionMessage::to_condition() const {
   c.amplitude.strength = strength;
   c.amplitude.idle_amplitude = idle_amplitude;
   c.amplitude.s_curve = s_curve;
-  if (inverted_dac) c.amplitude.calibration = DacCalibration::inverted();
+  c.amplitude.calibration = calibration;
   return c;
 }
 
@@ -175,24 +189,63 @@ bool get_scene(WireReader& r, SceneDefinition& s) {
   return r.ok();
 }
 
+// --- conditions --------------------------------------------------------------
+
+void put_condition(WireWriter& w, const ConditionMessage& c) {
+  w.u8(static_cast<uint8_t>(c.kind));
+  w.u8(static_cast<uint8_t>(c.target));
+  w.f32(c.strength);
+  w.f32(c.idle_amplitude);
+  w.f32(c.s_curve);
+  const DacCalibration& cal = c.calibration;
+  w.u8(cal.count);
+  for (int i = 0; i < cal.count && i < kMaxCalibrationPoints; ++i) {
+    w.f32(cal.amplitude[i]);
+    w.f32(cal.code[i]);
+  }
+  if (c.kind == ConditionKind::General) put_scene(w, c.scene);
+}
+
+// Values the core would have to repair (strength outside (0, 1], a
+// non-monotonic calibration) make the message malformed: refused, not repaired.
+bool get_condition(WireReader& r, ConditionMessage& c) {
+  c = ConditionMessage();  // not `{}`: arm-none-eabi-g++ 12.2 hits an internal compiler error on it
+  const uint8_t kind = r.u8(), target = r.u8();
+  if (kind > 3 || target > 2) return false;
+  c.kind = static_cast<ConditionKind>(kind);
+  c.target = static_cast<Target>(target);
+  c.strength = r.f32();
+  c.idle_amplitude = r.f32();
+  c.s_curve = r.f32();
+  const uint8_t points = r.u8();
+  if (points < 2 || points > kMaxCalibrationPoints) return false;
+  c.calibration = DacCalibration{};
+  c.calibration.count = points;
+  for (int i = 0; i < points; ++i) {
+    c.calibration.amplitude[i] = r.f32();
+    c.calibration.code[i] = r.f32();
+  }
+  if (!r.ok()) return false;
+  if (!(c.strength > 0.0f && c.strength <= 1.0f) || !(c.idle_amplitude >= 0.0f && c.idle_amplitude <= 1.0f) ||
+      !(c.s_curve >= 0.0f && c.s_curve <= 1.0f) || !c.calibration.valid()) {
+    return false;
+  }
+  if (c.kind == ConditionKind::General && !get_scene(r, c.scene)) return false;
+  return r.ok();
+}
+
 // --- payloads ----------------------------------------------------------------
 
 void put_payload(WireWriter& w, const Message& m) {
   switch (m.type) {
-    case MessageType::SetCondition: {
-      const ConditionMessage& c = m.condition;
-      w.u8(static_cast<uint8_t>(c.kind));
-      w.u8(static_cast<uint8_t>(c.target));
-      w.f32(c.strength);
-      w.f32(c.idle_amplitude);
-      w.f32(c.s_curve);
-      w.u8(c.inverted_dac ? 1 : 0);
-      if (c.kind == ConditionKind::General) put_scene(w, c.scene);
+    case MessageType::SetCondition:
+    case MessageType::Condition:
+      put_condition(w, m.condition);
       break;
-    }
     case MessageType::QueryStatus:
     case MessageType::StopStream:
     case MessageType::RebootToBootloader:
+    case MessageType::QueryCondition:
       break;
     case MessageType::StartStream:
       w.u8(m.stream.tick_decimation);
@@ -220,6 +273,8 @@ void put_payload(WireWriter& w, const Message& m) {
       w.u32(s.tick_cycles_mean);
       w.u32(s.tick_cycles_max);
       w.u32(s.protocol_errors);
+      w.u32(s.watchdog_trips);
+      w.u32(s.stream_overruns);
       w.f32(s.force_mN);
       w.u8(static_cast<uint8_t>((s.over_force ? 1 : 0) | (s.finger_present ? 2 : 0)));
       w.f32(s.carrier_hz);
@@ -234,12 +289,14 @@ void put_payload(WireWriter& w, const Message& m) {
       break;
     case MessageType::Samples:
       w.u8(m.samples.count);
+      w.u8(m.samples.has_taken_times ? 1 : 0);
       for (int i = 0; i < m.samples.count && i < kMaxSamplesPerMessage; ++i) {
         const SensorSample& s = m.samples.samples[i];
         w.u32(s.t_us);
         w.f32(s.x);
         w.f32(s.y);
         w.u8(s.touch ? 1 : 0);
+        if (m.samples.has_taken_times) w.u32(m.samples.taken_us[i]);
       }
       break;
     case MessageType::Ticks:
@@ -248,7 +305,7 @@ void put_payload(WireWriter& w, const Message& m) {
         const TickRecord& t = m.ticks.ticks[i];
         w.u32(t.t_us);
         w.f32(t.amplitude);
-        w.u16(static_cast<uint16_t>(t.dac | (t.present ? 0x8000u : 0u)));
+        w.u16(static_cast<uint16_t>((t.dac & 0x0FFFu) | (t.present ? 0x8000u : 0u)));
       }
       break;
     case MessageType::Error:
@@ -262,8 +319,9 @@ bool known_type(uint8_t t) {
   switch (static_cast<MessageType>(t)) {
     case MessageType::SetCondition: case MessageType::QueryStatus: case MessageType::StartStream:
     case MessageType::StopStream: case MessageType::SetCarrier: case MessageType::StartSweep:
-    case MessageType::RebootToBootloader: case MessageType::Ack: case MessageType::Status:
-    case MessageType::Force: case MessageType::Samples: case MessageType::Ticks: case MessageType::Error:
+    case MessageType::RebootToBootloader: case MessageType::QueryCondition: case MessageType::Ack:
+    case MessageType::Status: case MessageType::Force: case MessageType::Samples: case MessageType::Ticks:
+    case MessageType::Condition: case MessageType::Error:
       return true;
   }
   return false;
@@ -271,24 +329,13 @@ bool known_type(uint8_t t) {
 
 bool get_payload(WireReader& r, Message& m) {
   switch (m.type) {
-    case MessageType::SetCondition: {
-      ConditionMessage& c = m.condition;
-      const uint8_t kind = r.u8(), target = r.u8();
-      if (kind > 3 || target > 2) return false;
-      c.kind = static_cast<ConditionKind>(kind);
-      c.target = static_cast<Target>(target);
-      c.strength = r.f32();
-      c.idle_amplitude = r.f32();
-      c.s_curve = r.f32();
-      const uint8_t inverted = r.u8();
-      if (inverted > 1) return false;
-      c.inverted_dac = inverted == 1;
-      if (c.kind == ConditionKind::General && !get_scene(r, c.scene)) return false;
-      return true;
-    }
+    case MessageType::SetCondition:
+    case MessageType::Condition:
+      return get_condition(r, m.condition);
     case MessageType::QueryStatus:
     case MessageType::StopStream:
     case MessageType::RebootToBootloader:
+    case MessageType::QueryCondition:
       return true;
     case MessageType::StartStream:
       m.stream.tick_decimation = r.u8();
@@ -301,11 +348,13 @@ bool get_payload(WireReader& r, Message& m) {
       m.sweep.end_hz = r.f32();
       m.sweep.duration_ms = r.u32();
       return true;
-    case MessageType::Ack:
-      m.ack.command = static_cast<MessageType>(r.u8());
-      m.ack.status = static_cast<AckStatus>(r.u8());
+    case MessageType::Ack: {
+      const uint8_t command = r.u8(), status = r.u8();
+      m.ack.command = static_cast<MessageType>(command);
+      m.ack.status = static_cast<AckStatus>(status);
       m.ack.detail = r.u8();
-      return static_cast<uint8_t>(m.ack.status) <= 1;
+      return known_type(command) && status <= 1;
+    }
     case MessageType::Status: {
       StatusMessage& s = m.status;
       s.firmware_version = r.u16();
@@ -318,8 +367,11 @@ bool get_payload(WireReader& r, Message& m) {
       s.tick_cycles_mean = r.u32();
       s.tick_cycles_max = r.u32();
       s.protocol_errors = r.u32();
+      s.watchdog_trips = r.u32();
+      s.stream_overruns = r.u32();
       s.force_mN = r.f32();
       const uint8_t flags = r.u8();
+      if (flags > 3) return false;
       s.over_force = flags & 1;
       s.finger_present = flags & 2;
       s.carrier_hz = r.f32();
@@ -331,22 +383,30 @@ bool get_payload(WireReader& r, Message& m) {
       }
       return true;
     }
-    case MessageType::Force:
+    case MessageType::Force: {
       m.force.t_us = r.u32();
       m.force.force_mN = r.f32();
-      m.force.over_force = r.u8() != 0;
-      return true;
-    case MessageType::Samples:
+      const uint8_t over = r.u8();
+      m.force.over_force = over == 1;
+      return over <= 1;
+    }
+    case MessageType::Samples: {
       m.samples.count = r.u8();
-      if (m.samples.count > kMaxSamplesPerMessage) return false;
+      const uint8_t flags = r.u8();
+      if (m.samples.count > kMaxSamplesPerMessage || flags > 1) return false;
+      m.samples.has_taken_times = flags == 1;
       for (int i = 0; i < m.samples.count; ++i) {
         SensorSample& s = m.samples.samples[i];
         s.t_us = r.u32();
         s.x = r.f32();
         s.y = r.f32();
-        s.touch = r.u8() != 0;
+        const uint8_t touch = r.u8();
+        if (touch > 1) return false;
+        s.touch = touch == 1;
+        if (m.samples.has_taken_times) m.samples.taken_us[i] = r.u32();
       }
       return true;
+    }
     case MessageType::Ticks:
       m.ticks.count = r.u8();
       if (m.ticks.count > kMaxTicksPerMessage) return false;
@@ -360,10 +420,12 @@ bool get_payload(WireReader& r, Message& m) {
         if ((d & 0x7000u) != 0) return false;
       }
       return true;
-    case MessageType::Error:
-      m.error.code = static_cast<ErrorCode>(r.u8());
+    case MessageType::Error: {
+      const uint8_t code = r.u8();
+      m.error.code = static_cast<ErrorCode>(code);
       m.error.type = r.u8();
-      return true;
+      return code >= static_cast<uint8_t>(ErrorCode::TooShort) && code <= static_cast<uint8_t>(ErrorCode::Busy);
+    }
   }
   return false;
 }

@@ -1,11 +1,16 @@
 #pragma once
 // Bounds-checked little-endian writer and reader: every access checks room,
 // a failed one poisons the stream so that one check at the end suffices.
+// Floats travel as their IEEE-754 bits; a NaN or an infinity is refused both
+// ways, so that every decoded number is finite.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 
 namespace ff::protocol {
+
+// Exponent all ones: infinity or NaN.
+constexpr bool finite_bits(uint32_t bits) { return (bits & 0x7F800000u) != 0x7F800000u; }
 
 class WireWriter {
  public:
@@ -19,6 +24,7 @@ class WireWriter {
   void f32(float v) {
     uint32_t bits;
     std::memcpy(&bits, &v, 4);
+    if (!finite_bits(bits)) ok_ = false;
     u32(bits);
   }
   size_t size() const { return size_; }
@@ -51,6 +57,10 @@ class WireReader {
   }
   float f32() {
     const uint32_t bits = u32();
+    if (!finite_bits(bits)) {
+      ok_ = false;
+      return 0.0f;
+    }
     float v;
     std::memcpy(&v, &bits, 4);
     return v;

@@ -1,16 +1,23 @@
-// The firmware's main loop and 2 kHz tick against emulated devices and a
-// scripted host: scene switches over UDP mid-trace, malformed packets, a
-// stalled loop, lift-off; what the mouse, the DAC and the telemetry saw.
+// The firmware's main loop and 2 kHz tick against the emulated devices and a
+// scripted host, as on the Teensy: the loop every 100 us, the tick every
+// 500 us (after the loop, as an interrupt would land), the USB host reading
+// one report per millisecond. Checked: what the DAC, the mouse, the carrier
+// and the host saw through scene switches over UDP mid-trace, malformed
+// packets, a stalled loop, a stopped tick, lift-off, streaming with and
+// without a reading host, a failed sensor.
 #include "firmware/app/firmware_app.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <deque>
 #include <memory>
 #include <vector>
 
 #include "frictionfield/emulated/ad9834_model.hpp"
 #include "frictionfield/emulated/i2c_bus.hpp"
+#include "frictionfield/emulated/manual_clock.hpp"
 #include "frictionfield/emulated/recording_dac.hpp"
 #include "frictionfield/emulated/scripted_adc.hpp"
 #include "frictionfield/emulated/zforce_model.hpp"
@@ -21,9 +28,22 @@ namespace {
 using protocol::Message;
 using protocol::MessageType;
 
+std::vector<uint8_t> encode(const Message& m) {
+  std::vector<uint8_t> f(protocol::kMaxFrame);
+  f.resize(protocol::encode(m, f.data(), f.size()));
+  return f;
+}
+
+// The Teensy side of the board, scripted: the experiment host on UDP, ffctl
+// on the HID channel (a 6-report transmit queue, as Teensyduino's SEREMU
+// keeps, drained by the host one report per millisecond).
 class FakeBoard final : public Board {
  public:
-  void mouse_move_to(int x, int y) override { mouse.push_back({x, y}); }
+  static constexpr size_t kTxQueue = 6;
+  explicit FakeBoard(const uint32_t& now) : now_(now) {}
+
+  struct Move { uint32_t t_us; int x, y; };
+  void mouse_move_to(int x, int y) override { mouse.push_back({now_, x, y}); }
   bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size) override {
     if (udp_in.empty() || udp_in.front().size() > capacity) return false;
     size = udp_in.front().size();
@@ -33,226 +53,571 @@ class FakeBoard final : public Board {
   }
   void udp_send(const uint8_t* data, size_t size) override {
     Message m;
-    if (protocol::decode(data, size, m) == protocol::DecodeStatus::Ok) udp_out.push_back(m);
-    else ++undecodable;
-  }
-  bool hid_receive(uint8_t*) override { return false; }
-  void hid_send(const uint8_t* report) override {
-    if (hid.push(report)) {
-      Message m;
-      if (protocol::decode(hid.frame(), hid.size(), m) == protocol::DecodeStatus::Ok) hid_out.push_back(m);
+    if (protocol::decode(data, size, m) == protocol::DecodeStatus::Ok) {
+      udp_out.push_back(m);
+      udp_out_us.push_back(now_);
+    } else {
+      ++undecodable;
     }
   }
-  uint32_t cycles() override { return cycle_counter += 900; }  // a fixed cost per call
+  bool hid_receive(uint8_t* report) override {
+    if (hid_in.empty()) return false;
+    std::copy(hid_in.front().begin(), hid_in.front().end(), report);
+    hid_in.pop_front();
+    return true;
+  }
+  void hid_send(const uint8_t* report) override {
+    ASSERT_LT(queued, kTxQueue) << "sent beyond the room the board reported";
+    ++queued;
+    if (reassembler.push(report)) {
+      Message m;
+      if (protocol::decode(reassembler.frame(), reassembler.size(), m) == protocol::DecodeStatus::Ok) {
+        hid_out.push_back(m);
+      } else {
+        ++undecodable;
+      }
+    }
+  }
+  size_t hid_tx_room() override { return kTxQueue - queued; }
+  uint32_t cycles() override { return cycle_counter += 900; }  // a fixed cost per tick
+  void watchdog_kick() override { kicks.push_back(now_); }
   void reboot_to_bootloader() override {
     ++reboots;
     dac_at_reboot = dac ? dac->last() : -1;
   }
 
-  void send(const Message& m) {
-    std::vector<uint8_t> f(protocol::kMaxFrame);
-    f.resize(protocol::encode(m, f.data(), f.size()));
-    udp_in.push_back(f);
+  // The hosts.
+  void send_udp(const Message& m) { udp_in.push_back(encode(m)); }
+  void send_hid(const Message& m) {
+    const std::vector<uint8_t> f = encode(m);
+    uint8_t reports[protocol::kMaxHidReports][protocol::kHidReportBytes];
+    const size_t n = protocol::split_into_reports(f.data(), f.size(), reports, protocol::kMaxHidReports);
+    for (size_t i = 0; i < n; ++i) hid_in.emplace_back(reports[i], reports[i] + protocol::kHidReportBytes);
   }
-  size_t count(MessageType t) const {
-    size_t n = 0;
-    for (const Message& m : udp_out) n += m.type == t ? 1 : 0;
-    return n;
+  void host_reads_one_report() {
+    if (queued > 0) --queued;
+  }
+  std::vector<Message> udp_of(MessageType t) const {
+    std::vector<Message> out;
+    for (const Message& m : udp_out) if (m.type == t) out.push_back(m);
+    return out;
+  }
+  std::vector<Message> hid_of(MessageType t) const {
+    std::vector<Message> out;
+    for (const Message& m : hid_out) if (m.type == t) out.push_back(m);
+    return out;
   }
 
-  struct Point { int x, y; };
-  std::vector<Point> mouse;
-  std::deque<std::vector<uint8_t>> udp_in;
+  std::vector<Move> mouse;
+  std::deque<std::vector<uint8_t>> udp_in, hid_in;
   std::vector<Message> udp_out, hid_out;
-  protocol::HidReassembler hid;
+  std::vector<uint32_t> udp_out_us, kicks;
+  protocol::HidReassembler reassembler;
+  size_t queued = 0;
   uint32_t cycle_counter = 0;
   int undecodable = 0, reboots = 0, dac_at_reboot = -1;
   const emulated::RecordingDac* dac = nullptr;
+
+ private:
+  const uint32_t& now_;
 };
 
 // The device: every peripheral emulated, the app as on the Teensy.
 struct Device {
+  uint32_t now = 0;
+  emulated::ManualClock clock;
   emulated::Ad9834Model dds;
   emulated::ZforceModel zforce_model;
   emulated::EmulatedI2cBus i2c;
-  emulated::RecordingDac dac;
+  emulated::RecordingDac dac{&clock};
   emulated::ScriptedAdc adc;
-  FakeBoard board;
+  FakeBoard board{now};
   std::unique_ptr<HapticPipeline> pipeline = std::make_unique<HapticPipeline>();
   std::unique_ptr<FirmwareApp> app;
+  bool loop_alive = true;
+  bool ticks_alive = true;
+  bool host_reads = true;
 
-  Device() {
+  // unplugged: the zForce neither announces its boot nor acknowledges its address.
+  explicit Device(bool sensor_unplugged = false) : zforce_model(model_options(sensor_unplugged)) {
     const ZforceConfig config;
     i2c.attach(config.address, zforce_model);
     zforce_model.set_calibration(config.calibration);
+    if (sensor_unplugged) i2c.fail_next(UINT32_MAX, BusStatus::Nack);
     for (uint8_t ch = 0; ch < 4; ++ch) adc.set(ch, 100);
     board.dac = &dac;
     app = std::make_unique<FirmwareApp>(Peripherals{dds, 0, i2c, zforce_model, dac, adc}, board, *pipeline);
     app->begin(0);
-    // Sensor start-up: the loop configures the zForce over I2C.
-    for (uint32_t t = 0; t < 1000000 && app->sensor().state() != ZforceState::Running; t += 1000) {
-      zforce_model.advance_to(t);
-      app->loop(t);
+    if (!sensor_unplugged) {
+      while (app->sensor().state() != ZforceState::Running && now < 1000000) step();  // configures the zForce
     }
   }
 
-  // Main loop every 100 us, tick every 500 us, from `from` to `to`.
-  void run(uint32_t from, uint32_t to, bool loop_alive = true) {
-    for (uint32_t t = from; t < to; t += 100) {
-      zforce_model.advance_to(t);
-      if (loop_alive) app->loop(t);
-      if (t % 500 == 0) app->tick(t);
+  void tick_at(uint32_t t) {
+    clock.set(t);
+    app->tick(t);
+  }
+  void step() {
+    now += 100;
+    clock.set(now);
+    zforce_model.advance_to(now);
+    if (loop_alive) app->loop(now);  // may move `now` (a slow preparation)
+    if (now % 500 == 0 && ticks_alive) tick_at(now);
+    if (now % 1000 == 0 && host_reads) board.host_reads_one_report();
+  }
+  void run_until(uint32_t t) {
+    while (now < t) step();
+  }
+  // The code on the DAC at time t (the last write at or before it).
+  uint16_t dac_at(uint32_t t) const {
+    uint16_t code = 0;
+    for (const auto& w : dac.writes()) {
+      if (w.t_us > t) break;
+      code = w.code;
     }
+    return code;
+  }
+  FirmwareCounters counters() const { return app->counters(); }
+  static emulated::ZforceModel::Options model_options(bool unplugged) {
+    emulated::ZforceModel::Options o;
+    o.boot_complete = !unplugged;
+    return o;
   }
 };
 
 // A finger along the middle path (y = 240) from x = 100 at 300 px/s, 200 Hz,
-// from 1 s to 3 s, then lifted.
-std::vector<SensorSample> stroke() {
+// from `from_us` for 2 s, then lifted.
+std::vector<SensorSample> stroke(uint32_t from_us = 1000000) {
   std::vector<SensorSample> s;
-  for (uint32_t t = 1000000; t <= 3000000; t += 5000) {
-    s.push_back({t, 100.0f + 300.0f * static_cast<float>(t - 1000000) * 1e-6f, 240.0f, true});
+  for (uint32_t t = from_us; t <= from_us + 2000000; t += 5000) {
+    s.push_back({t, 100.0f + 300.0f * static_cast<float>(t - from_us) * 1e-6f, 240.0f, true});
   }
-  s.push_back({3005000, 0.0f, 0.0f, false});
+  s.push_back({from_us + 2005000, 0.0f, 0.0f, false});
   return s;
 }
 
-Message condition(protocol::ConditionKind kind, float strength = 1.0f) {
+Message condition(protocol::ConditionKind kind, float strength = 1.0f, uint8_t sequence = 5) {
   Message m;
   m.type = MessageType::SetCondition;
-  m.sequence = 5;
+  m.sequence = sequence;
   m.condition.kind = kind;
   m.condition.target = Target::Middle;
   m.condition.strength = strength;
   return m;
 }
 
-TEST(FirmwareApp, BootsWithTheCarrierAtTheResonanceAndThePlateResting) {
+Message command(MessageType type, uint8_t sequence = 9) {
+  Message m;
+  m.type = type;
+  m.sequence = sequence;
+  return m;
+}
+
+// Codes the thesis' scenes give on the middle path, moving right (v_hat = (1, 0)):
+// frictionmap |u| = 0 <= 10: A = 1 -> 4095. Heightmap: grad Z_path = 0 on the
+// path, grad Z_cone = (-1, 0), so G = (-0.5, 0); max|G| over the screen is
+// (1 + 48^2/(1 + 48^2)) / 2 = 0.99978 (above the top target, where both
+// slopes point up), G_norm = (-0.25005, 0), mu = 0.24995, A = 0.75005
+// -> round(3071.5) = 3071 (3071.46 before rounding: no tie).
+constexpr uint16_t kFrictionmapOnPath = 4095;
+constexpr uint16_t kHeightmapOnPathMovingRight = 3071;
+
+TEST(FirmwareApp, BootsWithThePlateRestingAndTheCarrierAtTheResonance) {
   Device d;
   EXPECT_EQ(d.app->sensor().state(), ZforceState::Running);
+  ASSERT_FALSE(d.dac.writes().empty());
+  EXPECT_EQ(d.dac.writes().front().t_us, 0u);  // in begin(), before the first tick
+  EXPECT_EQ(d.dac.writes().front().code, 0);
   EXPECT_TRUE(d.dds.output_on());
-  EXPECT_EQ(d.dds.output_word(), 124912u);  // 34.9 kHz
-  d.run(1000000, 1010000);
-  EXPECT_EQ(d.dac.last(), 0);  // no finger, no scene: idle amplitude 0
+  EXPECT_EQ(d.dds.output_word(), 124912u);  // round(34900 * 2^28 / 75 MHz) = round(124911.97)
+  EXPECT_NEAR(static_cast<double>(d.app->carrier_hz()), 34900.0, 0.3);
+  d.run_until(1010000);
+  for (const auto& w : d.dac.writes()) EXPECT_EQ(w.code, 0) << "at " << w.t_us;  // no scene, no finger: idle
+  EXPECT_EQ(d.counters().tick_stalls, 0u);
+  EXPECT_EQ(d.counters().watchdog_trips, 0u);
 }
 
-TEST(FirmwareApp, RunsATrialScenesSwitchOverUdpMalformedPacketsAreRefused) {
+TEST(FirmwareApp, TrialOverUdpSceneSwitchMidTraceMalformedPacketsLiftOff) {
   Device d;
   d.zforce_model.load_trace(stroke());
-  d.board.send(condition(protocol::ConditionKind::Heightmap));
-  d.run(1000000, 1500000);
-  ASSERT_GE(d.board.count(MessageType::Ack), 1u);
-  EXPECT_EQ(d.board.udp_out.front().sequence, 5);
-  const uint16_t heightmap_code = d.dac.last();
-  EXPECT_GT(heightmap_code, 2048);  // moving right towards the middle target: assisted
+  d.run_until(999000);
+  d.board.send_udp(condition(protocol::ConditionKind::Heightmap));
+  d.run_until(1499900);
+  EXPECT_EQ(d.dac_at(1499500), kHeightmapOnPathMovingRight);
 
-  // Frictionmap mid-trace: the finger is on the path, so the next ticks render A = 1.
-  d.board.send(condition(protocol::ConditionKind::Frictionmap));
-  d.run(1500000, 1500600);
-  EXPECT_EQ(d.dac.last(), 4095);
-  EXPECT_EQ(d.app->counters().conditions_set, 2u);
+  // Frictionmap at 1.5 s, mid-trace: handled by the loop at 1.5 s, rendered by the tick at 1.5 s.
+  d.board.send_udp(condition(protocol::ConditionKind::Frictionmap, 1.0f, 6));
+  d.run_until(1600000);
+  EXPECT_EQ(d.dac_at(1499500), kHeightmapOnPathMovingRight);
+  EXPECT_EQ(d.dac_at(1500000), kFrictionmapOnPath);
+  const auto acks = d.board.udp_of(MessageType::Ack);
+  ASSERT_EQ(acks.size(), 2u);
+  EXPECT_EQ(acks[0].sequence, 5);
+  EXPECT_EQ(acks[1].sequence, 6);
+  EXPECT_EQ(acks[1].ack.command, MessageType::SetCondition);
+  EXPECT_EQ(acks[1].ack.status, protocol::AckStatus::Ok);
 
-  // Garbage and a bad CRC: counted, answered with Error, the scene stays.
+  // Garbage, a bad CRC, a type the protocol does not know, a device-to-host
+  // type: each counted and answered with its Error; the scene stays.
   d.board.udp_in.push_back({1, 2, 3});
-  std::vector<uint8_t> bad(protocol::kMaxFrame);
-  bad.resize(protocol::encode(condition(protocol::ConditionKind::Neutral), bad.data(), bad.size()));
-  bad[9] ^= 0xFF;
-  d.board.udp_in.push_back(bad);
-  d.run(1500600, 1600000);
-  EXPECT_EQ(d.app->counters().protocol_errors, 2u);
-  EXPECT_EQ(d.board.count(MessageType::Error), 2u);
-  EXPECT_EQ(d.dac.last(), 4095);
+  std::vector<uint8_t> bad_crc = encode(condition(protocol::ConditionKind::Neutral));
+  bad_crc[9] ^= 0xFF;
+  d.board.udp_in.push_back(bad_crc);
+  std::vector<uint8_t> unknown = encode(command(MessageType::QueryStatus));
+  unknown[3] = 0x42;
+  const uint16_t crc = protocol::crc16_ccitt(unknown.data() + 2, unknown.size() - 4);
+  unknown[unknown.size() - 2] = static_cast<uint8_t>(crc);
+  unknown[unknown.size() - 1] = static_cast<uint8_t>(crc >> 8);
+  d.board.udp_in.push_back(unknown);
+  Message force = command(MessageType::Force);
+  d.board.send_udp(force);
+  d.run_until(1700000);
+  const auto errors = d.board.udp_of(MessageType::Error);
+  ASSERT_EQ(errors.size(), 4u);
+  EXPECT_EQ(errors[0].error.code, protocol::ErrorCode::TooShort);
+  EXPECT_EQ(errors[1].error.code, protocol::ErrorCode::BadCrc);
+  EXPECT_EQ(errors[2].error.code, protocol::ErrorCode::UnknownType);
+  EXPECT_EQ(errors[2].error.type, 0x42);
+  EXPECT_EQ(errors[3].error.code, protocol::ErrorCode::UnknownType);
+  EXPECT_EQ(errors[3].error.type, static_cast<uint8_t>(MessageType::Force));
+  EXPECT_EQ(d.counters().protocol_errors, 4u);
+  EXPECT_EQ(d.counters().conditions_set, 2u);
+  for (uint32_t t = 1500000; t <= 1700000; t += 500) ASSERT_EQ(d.dac_at(t), kFrictionmapOnPath) << t;
 
-  // A scene the core refuses (NaN weight): Ack refused, the scene stays.
-  Message general = condition(protocol::ConditionKind::General);
+  // A scene the core refuses (a 1 px float table: 1.5 MiB, over the 96 KiB
+  // slot): Ack refused with the reason; the scene stays.
+  Message general = condition(protocol::ConditionKind::General, 1.0f, 7);
   general.condition.scene.rendering = Rendering::Directional;
-  general.condition.scene.add(FieldElement::vortex({400, 240}, NAN));
-  d.board.send(general);
-  d.run(1600000, 1700000);
-  EXPECT_EQ(d.app->counters().conditions_refused, 1u);
-  const Message* last_ack = nullptr;
-  for (const Message& m : d.board.udp_out) if (m.type == MessageType::Ack) last_ack = &m;
-  ASSERT_NE(last_ack, nullptr);
-  EXPECT_EQ(last_ack->ack.status, protocol::AckStatus::Refused);
-  EXPECT_EQ(last_ack->ack.detail, static_cast<uint8_t>(PrepareStatus::InvalidParameter));
-  EXPECT_EQ(d.dac.last(), 4095);
+  general.condition.scene.evaluation = Evaluation::Table;
+  general.condition.scene.table = {1.0f, TableStorage::Float32, TableSource::TabulatedGradient};
+  general.condition.scene.add(FieldElement::vortex({400, 240}, 1.0f));
+  d.board.send_udp(general);
+  d.run_until(1800000);
+  const Message last_ack = d.board.udp_of(MessageType::Ack).back();
+  EXPECT_EQ(last_ack.sequence, 7);
+  EXPECT_EQ(last_ack.ack.status, protocol::AckStatus::Refused);
+  EXPECT_EQ(last_ack.ack.detail, static_cast<uint8_t>(PrepareStatus::TableTooLarge));
+  EXPECT_EQ(d.counters().conditions_refused, 1u);
+  EXPECT_EQ(d.dac_at(1800000), kFrictionmapOnPath);
 
-  // Lift-off at 3.005 s: idle (0) after the 20 ms lift-off timeout.
-  d.run(1700000, 3100000);
-  EXPECT_EQ(d.dac.last(), 0);
-
-  // Mouse every 3 ms while the finger was down, at the filtered position.
-  EXPECT_GT(d.board.mouse.size(), 600u);
-  EXPECT_LT(d.board.mouse.size(), 700u);
-  EXPECT_NEAR(d.board.mouse.back().y, 240, 2);
-  // Force telemetry every 30 ms over UDP: 1.0 .. 3.1 s / 30 ms = 70, +-1 for phase.
-  EXPECT_NEAR(static_cast<double>(d.board.count(MessageType::Force)), 2100000.0 / 30000.0, 1.0);
+  // Lift-off: touch = 0 at 3.005 s, idle from the tick 20 ms later (the tracker's timeout).
+  d.run_until(3200000);
+  EXPECT_EQ(d.dac_at(3000000), kFrictionmapOnPath);
+  EXPECT_EQ(d.dac_at(3024500), kFrictionmapOnPath);
+  for (uint32_t t = 3025000; t <= 3200000; t += 500) ASSERT_EQ(d.dac_at(t), 0) << t;
+  EXPECT_EQ(d.board.undecodable, 0);
 }
 
-TEST(FirmwareApp, StalledLoopRestsThePlateUntilItRecovers) {
+TEST(FirmwareApp, MouseEvery3msAtTheFilteredPositionWhileTheFingerIsDown) {
   Device d;
   d.zforce_model.load_trace(stroke());
-  d.board.send(condition(protocol::ConditionKind::Frictionmap));
-  d.run(1000000, 1200000);
-  EXPECT_EQ(d.dac.last(), 4095);
-  d.run(1200000, 1240000, false);  // 40 ms without the loop: still inside the watchdog
-  EXPECT_EQ(d.app->counters().watchdog_trips, 0u);
-  d.run(1240000, 1300000, false);  // past 50 ms: idle
-  EXPECT_EQ(d.dac.last(), 0);
-  EXPECT_EQ(d.app->counters().watchdog_trips, 1u);
-  d.run(1300000, 1400000);  // the loop is back: rendering again
-  EXPECT_EQ(d.dac.last(), 4095);
-}
-
-TEST(FirmwareApp, StatusStreamingCarrierAndReboot) {
-  Device d;
-  d.zforce_model.load_trace(stroke());
-  d.board.send(condition(protocol::ConditionKind::Heightmap, 0.66f));
-  Message start;
-  start.type = MessageType::StartStream;
-  start.stream.tick_decimation = 2;
-  d.board.send(start);
-  d.run(1000000, 1100000);
-  Message stop;
-  stop.type = MessageType::StopStream;
-  d.board.send(stop);
-  Message q;
-  q.type = MessageType::QueryStatus;
-  d.board.send(q);
-  Message carrier;
-  carrier.type = MessageType::SetCarrier;
-  carrier.carrier.frequency_hz = 35200.0f;
-  d.board.send(carrier);
-  d.run(1100000, 1101000);
-
-  // Streaming: every 2nd tick of 100 ms = 100 records, and the sensor's reports.
-  size_t ticks = 0, samples = 0;
-  for (const Message& m : d.board.hid_out) {
-    if (m.type == MessageType::Ticks) ticks += m.ticks.count;
-    if (m.type == MessageType::Samples) samples += m.samples.count;
+  d.run_until(3200000);
+  const auto& mouse = d.board.mouse;
+  ASSERT_GT(mouse.size(), 2u);
+  // Down from the first report (1.0 s) to lift-off (3.025 s): 2.025 s / 3 ms = 675 moves.
+  EXPECT_NEAR(static_cast<double>(mouse.size()), 675.0, 1.0);
+  EXPECT_LE(mouse.back().t_us, 3025500u);
+  EXPECT_EQ(mouse.front().t_us, 1002000u);  // the first 3 ms step with a finger tracked
+  for (size_t i = 1; i < mouse.size(); ++i) {
+    ASSERT_EQ(mouse[i].t_us - mouse[i - 1].t_us, kMouseIntervalUs) << i;
+    ASSERT_EQ(mouse[i].y, 240) << i;
+    ASSERT_GE(mouse[i].x, mouse[i - 1].x) << i;
+    if (mouse[i].t_us > 3000000) continue;  // the finger has stopped; the tracker extrapolates, then holds
+    // The filtered position trails the finger by v / (2 pi fc) = 300 / (2 pi 20.1) = 2.4 px.
+    const double finger_x = 100.0 + 300.0 * (mouse[i].t_us - 1000000.0) * 1e-6;
+    ASSERT_NEAR(mouse[i].x, finger_x, 3.0) << mouse[i].t_us;
   }
-  EXPECT_NEAR(static_cast<double>(ticks), 100.0, 2.0);
-  EXPECT_NEAR(static_cast<double>(samples), 20.0, 1.0);
+}
 
-  const Message* status = nullptr;
-  for (const Message& m : d.board.udp_out) if (m.type == MessageType::Status) status = &m;
-  ASSERT_NE(status, nullptr);
-  EXPECT_EQ(status->status.firmware_version, kFirmwareVersion);
-  EXPECT_EQ(status->status.kind, protocol::ConditionKind::Heightmap);
-  EXPECT_FLOAT_EQ(status->status.strength, 0.66f);
-  EXPECT_EQ(status->status.tick_cycles_mean, 900u);  // the fake counter's cost per tick
-  EXPECT_TRUE(status->status.finger_present);
-  EXPECT_EQ(status->status.faults[Fault::TouchDown], 1u);
+TEST(FirmwareApp, ForceTelemetryEvery30msAveragedOver5Readings) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.run_until(1500000);  // tared at 100 counts per cell (a finger present does not rezero)
+  for (uint8_t ch = 0; ch < 4; ++ch) d.adc.set(ch, 110);  // +40 counts
+  d.run_until(1800000);
+  for (uint8_t ch = 0; ch < 4; ++ch) d.adc.set(ch, 115);  // +60 counts
+  d.run_until(2100000);
+  const auto force = d.board.udp_of(MessageType::Force);
+  ASSERT_GT(force.size(), 60u);
+  for (size_t i = 1; i < force.size(); ++i) ASSERT_EQ(force[i].force.t_us - force[i - 1].force.t_us, 30000u);
+  // 40 counts * 1.0712 * 9.81 = 420.34 mN once all 5 readings see it; 60 counts: 630.50 mN, over 0.5 N.
+  const auto at = [&](uint32_t t) {
+    Message last;
+    for (const Message& m : force) if (m.force.t_us <= t) last = m;
+    return last.force;
+  };
+  EXPECT_NEAR(static_cast<double>(at(1490000).force_mN), 0.0, 1e-3);
+  EXPECT_NEAR(static_cast<double>(at(1790000).force_mN), 40.0 * 1.0712 * 9.81, 0.05);
+  EXPECT_FALSE(at(1790000).over_force);
+  EXPECT_NEAR(static_cast<double>(at(2090000).force_mN), 60.0 * 1.0712 * 9.81, 0.05);
+  EXPECT_TRUE(at(2090000).over_force);
+  EXPECT_TRUE(d.board.hid_of(MessageType::Force).empty());  // USB only while streaming
+}
 
-  EXPECT_NEAR(d.dds.output_hz(), 35200.0, 0.3);  // switched to the other register, glitch-free
+TEST(FirmwareApp, StalledLoopRestsThePlateAfter50msAndRendersAgainWhenItReturns) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_udp(condition(protocol::ConditionKind::Frictionmap));
+  d.run_until(1200000);
+  EXPECT_EQ(d.dac_at(1200000), kFrictionmapOnPath);
+  const size_t kicks = d.board.kicks.size();
+  d.loop_alive = false;  // the last heartbeat: 1.2 s
+  d.run_until(1300000);
+  EXPECT_EQ(d.dac_at(1250000), kFrictionmapOnPath);  // 50 ms: not yet
+  for (uint32_t t = 1250500; t <= 1300000; t += 500) ASSERT_EQ(d.dac_at(t), 0) << t;
+  EXPECT_EQ(d.counters().watchdog_trips, 1u);
+  EXPECT_EQ(d.board.kicks.size(), kicks);  // the hardware watchdog is not fed either
+  d.loop_alive = true;
+  d.run_until(1400000);
+  EXPECT_EQ(d.dac_at(1400000), kFrictionmapOnPath);
+  EXPECT_EQ(d.counters().watchdog_trips, 1u);
+  EXPECT_EQ(d.board.kicks.size(), kicks + 1000);  // once per loop pass again: 100 ms / 100 us
+  // The tick ran through the stall: its clock never leapt.
+  const FaultCounters faults = d.pipeline->faults();
+  EXPECT_EQ(faults[Fault::BadTickTime], 0u);
+  EXPECT_EQ(faults[Fault::TimeBaseReset], 0u);
+}
+
+// A preparation that takes 80 ms of device time: the pipeline's clock is
+// read when it starts and ends; in between, the interrupt keeps ticking.
+struct SlowPreparation {
+  Device* device = nullptr;
+  uint32_t duration_us = 80000;
+  bool inside = false;
+};
+SlowPreparation* g_slow = nullptr;
+uint32_t slow_clock() {
+  SlowPreparation& s = *g_slow;
+  Device& d = *s.device;
+  if (!s.inside) {
+    s.inside = true;
+    return d.now;
+  }
+  const uint32_t end = d.now + s.duration_us;
+  for (uint32_t t = d.now - d.now % 500 + 500; t < end; t += 500) d.tick_at(t);
+  d.now = end;
+  s.inside = false;
+  return end;
+}
+
+TEST(FirmwareApp, ALongPreparationKeepsTheOldSceneAndDoesNotTripTheWatchdog) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_udp(condition(protocol::ConditionKind::Frictionmap));
+  d.run_until(1200000);
+  SlowPreparation slow{&d};
+  g_slow = &slow;
+  d.pipeline->set_clock(slow_clock);
+  d.board.send_udp(condition(protocol::ConditionKind::Neutral));
+  d.run_until(1300000);
+  d.pipeline->set_clock(nullptr);
+  EXPECT_EQ(d.pipeline->last_prepare_us(), 80000u);
+  EXPECT_EQ(d.counters().watchdog_trips, 0u);
+  // Through the preparation (1.2001 .. 1.2801 s) the old scene played; then neutral (0.5 -> 2048).
+  for (uint32_t t = 1200500; t < 1280100; t += 500) ASSERT_EQ(d.dac_at(t), kFrictionmapOnPath) << t;
+  EXPECT_EQ(d.dac_at(1280500), 2048);
+  EXPECT_EQ(d.board.udp_of(MessageType::Ack).back().ack.status, protocol::AckStatus::Ok);
+}
+
+TEST(FirmwareApp, StoppedTickIsCaughtByTheLoopWhichRestsThePlate) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_udp(condition(protocol::ConditionKind::Frictionmap));
+  d.run_until(1200000);
+  d.ticks_alive = false;  // the last tick: 1.2 s; the loop saw it at 1.2001 s
+  d.run_until(1250000);
+  EXPECT_EQ(d.dac_at(1210100), kFrictionmapOnPath);
+  EXPECT_EQ(d.dac_at(1210200), 0);  // over 10 ms without a tick: rested by the loop
+  EXPECT_EQ(d.dac.last(), 0);
+  EXPECT_EQ(d.counters().tick_stalls, 1u);
+  ASSERT_FALSE(d.board.kicks.empty());
+  EXPECT_EQ(d.board.kicks.back(), 1210100u);  // and the hardware watchdog starves
+  d.ticks_alive = true;
+  d.run_until(1300000);
+  EXPECT_EQ(d.dac_at(1300000), kFrictionmapOnPath);
+  EXPECT_GT(d.board.kicks.back(), 1250000u);
+  EXPECT_EQ(d.counters().tick_stalls, 1u);
+}
+
+TEST(FirmwareApp, StatusOverHidCarriesTheTickCostAndFaults) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_hid(condition(protocol::ConditionKind::Heightmap, 0.66f, 3));
+  d.run_until(1500000);
+  d.board.send_hid(command(MessageType::QueryStatus, 4));
+  d.run_until(1501000);
+  EXPECT_TRUE(d.board.udp_of(MessageType::Status).empty());  // replies go back on USB
+  const auto status = d.board.hid_of(MessageType::Status);
+  ASSERT_EQ(status.size(), 1u);
+  const protocol::StatusMessage& st = status[0].status;
+  EXPECT_EQ(status[0].sequence, 4);
+  EXPECT_EQ(st.firmware_version, kFirmwareVersion);
+  EXPECT_EQ(st.kind, protocol::ConditionKind::Heightmap);
+  EXPECT_FLOAT_EQ(st.strength, 0.66f);
+  EXPECT_EQ(st.ticks, 1500000u / 500u);  // every tick from 0.5 ms to 1.5 s
+  EXPECT_EQ(st.tick_cycles_mean, 900u);  // the fake counter's cost per tick
+  EXPECT_EQ(st.tick_cycles_max, 900u);
+  EXPECT_TRUE(st.finger_present);
+  EXPECT_NEAR(static_cast<double>(st.carrier_hz), 34900.0, 0.3);
+  EXPECT_EQ(st.faults[Fault::TouchDown], 1u);
+  // Strength 0.66 around the centre: 0.5 + 0.66 * 0.25005 = 0.66503 -> round(2723.3) = 2723.
+  EXPECT_EQ(d.dac_at(1500000), 2723);
+}
+
+TEST(FirmwareApp, StreamsEveryTickAndReportWithoutLossWhileTheHostReads) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_udp(condition(protocol::ConditionKind::Frictionmap));
+  d.run_until(1099900);
+  Message start = command(MessageType::StartStream);
+  start.stream.tick_decimation = 1;
+  d.board.send_hid(start);
+  d.run_until(1100000);  // the loop reads the sensor, then takes the command
+  const uint32_t reports_before = d.app->sensor().count(ZforceCount::Samples);
+  d.run_until(1299900);
+  d.board.send_hid(command(MessageType::StopStream));
+  d.run_until(1300000);
+  const uint32_t reports_streamed = d.app->sensor().count(ZforceCount::Samples) - reports_before;
+  d.run_until(1400000);
+
+  std::vector<protocol::TickRecord> ticks;
+  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks.insert(ticks.end(), m.ticks.ticks, m.ticks.ticks + m.ticks.count);
+  size_t samples = 0;
+  for (const Message& m : d.board.hid_of(MessageType::Samples)) samples += m.samples.count;
+  // Streaming from the loop at 1.1 s to the loop at 1.3 s: ticks 1.1 .. 1.2995 s, all 400, in order.
+  ASSERT_EQ(ticks.size(), 400u);
+  for (size_t i = 0; i < ticks.size(); ++i) {
+    ASSERT_EQ(ticks[i].t_us, 1100000u + 500u * i);
+    ASSERT_EQ(ticks[i].dac, kFrictionmapOnPath);
+    ASSERT_TRUE(ticks[i].present);
+  }
+  EXPECT_EQ(samples, reports_streamed);
+  EXPECT_NEAR(static_cast<double>(samples), 40.0, 1.0);  // 200 Hz for 0.2 s
+  EXPECT_FALSE(d.board.hid_of(MessageType::Force).empty());  // telemetry joins the stream
+  EXPECT_EQ(d.counters().stream_overruns, 0u);
+  EXPECT_EQ(d.counters().hid_frames_dropped, 0u);
+  const auto acks = d.board.hid_of(MessageType::Ack);
+  ASSERT_EQ(acks.size(), 2u);
+  EXPECT_EQ(acks[1].ack.command, MessageType::StopStream);
+}
+
+TEST(FirmwareApp, AHostThatStopsReadingCostsCountedRecordsNeverABlockedLoop) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.run_until(1099900);
+  Message start = command(MessageType::StartStream);
+  start.stream.tick_decimation = 2;
+  d.board.send_hid(start);
+  d.run_until(1100000);
+  const uint32_t reports_before = d.app->sensor().count(ZforceCount::Samples);
+  d.run_until(1200000);
+  d.host_reads = false;  // ffctl hangs for 0.4 s
+  d.run_until(1600000);
+  d.board.send_hid(command(MessageType::QueryStatus));  // no room for the reply: dropped, counted
+  d.run_until(1610000);
+  EXPECT_TRUE(d.board.hid_of(MessageType::Status).empty());
+  EXPECT_GE(d.counters().hid_frames_dropped, 1u);
+  d.host_reads = true;
+  d.run_until(1799900);
+  d.board.send_hid(command(MessageType::StopStream));
+  d.run_until(1800000);
+  const uint32_t reports_streamed = d.app->sensor().count(ZforceCount::Samples) - reports_before;
+  d.run_until(1900000);
+
+  std::vector<protocol::TickRecord> ticks;
+  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks.insert(ticks.end(), m.ticks.ticks, m.ticks.ticks + m.ticks.count);
+  size_t samples = 0;
+  for (const Message& m : d.board.hid_of(MessageType::Samples)) samples += m.samples.count;
+  for (size_t i = 1; i < ticks.size(); ++i) ASSERT_GT(ticks[i].t_us, ticks[i - 1].t_us);
+  // Every record streamed (every 2nd tick from 1.1 s to 1.8 s, and every report) arrived or was counted.
+  const FirmwareCounters c = d.counters();
+  EXPECT_GT(c.stream_overruns, 0u);
+  EXPECT_EQ(ticks.size() + samples + c.stream_overruns, 700u + reports_streamed);
+  EXPECT_EQ(ticks.back().t_us, 1799500u);  // streaming resumed after the hang (every 2nd tick from 1.1005 s)
+  EXPECT_EQ(d.board.undecodable, 0);
+  EXPECT_EQ(d.counters().watchdog_trips, 0u);
+}
+
+TEST(FirmwareApp, AFloodOfDatagramsIsTakenFourPerLoop) {
+  Device d;
+  for (int i = 0; i < 10; ++i) d.board.send_udp(command(MessageType::QueryStatus, static_cast<uint8_t>(i)));
+  d.step();
+  EXPECT_EQ(d.board.udp_of(MessageType::Status).size(), static_cast<size_t>(kMaxDatagramsPerLoop));
+  d.step();
+  d.step();
+  const auto status = d.board.udp_of(MessageType::Status);
+  ASSERT_EQ(status.size(), 10u);
+  for (size_t i = 0; i < status.size(); ++i) EXPECT_EQ(status[i].sequence, i);
+}
+
+TEST(FirmwareApp, CarrierSetAndSweptByMessage) {
+  Device d;
+  Message carrier = command(MessageType::SetCarrier);
+  carrier.carrier.frequency_hz = 35200.0f;
+  d.board.send_udp(carrier);
+  d.run_until(1100000);
+  EXPECT_NEAR(d.dds.output_hz(), 35200.0, 0.3);  // written to the idle register, then selected
   EXPECT_EQ(d.dds.total_faults(), 0u);
 
-  Message reboot;
-  reboot.type = MessageType::RebootToBootloader;
-  d.board.send(reboot);
-  d.run(1101000, 1102000);
+  carrier.carrier.frequency_hz = 500.0f;  // below any plate mode: refused, carrier unchanged
+  d.board.send_udp(carrier);
+  d.run_until(1200000);
+  EXPECT_EQ(d.board.udp_of(MessageType::Ack).back().ack.status, protocol::AckStatus::Refused);
+  EXPECT_NEAR(d.dds.output_hz(), 35200.0, 0.3);
+
+  Message sweep = command(MessageType::StartSweep);
+  sweep.sweep = {30000.0f, 40000.0f, 100};  // 100 Hz per ms
+  d.board.send_udp(sweep);
+  d.run_until(1250000);  // halfway
+  EXPECT_EQ(d.board.udp_of(MessageType::Ack).back().ack.status, protocol::AckStatus::Ok);
+  EXPECT_NEAR(static_cast<double>(d.app->carrier_hz()), 35000.0, 100.0);
+  d.run_until(1350000);
+  EXPECT_NEAR(d.dds.output_hz(), 40000.0, 0.3);  // lands on the end
+  EXPECT_EQ(d.dds.total_faults(), 0u);
+  d.board.send_udp(command(MessageType::QueryStatus));
+  d.run_until(1351000);
+  // Status reports the register that plays: word 143166 = 40000.12 Hz.
+  EXPECT_NEAR(static_cast<double>(d.board.udp_of(MessageType::Status).back().status.carrier_hz), 40000.12, 0.01);
+
+  sweep.sweep = {40000.0f, 30000.0f, 100};
+  d.board.send_udp(sweep);
+  d.run_until(1380000);
+  carrier.carrier.frequency_hz = 34900.0f;  // a carrier mid-sweep ends the sweep there
+  d.board.send_udp(carrier);
+  d.run_until(1500000);
+  EXPECT_EQ(d.dds.output_word(), 124912u);
+  sweep.sweep.duration_ms = 0;
+  d.board.send_udp(sweep);
+  d.run_until(1510000);
+  EXPECT_EQ(d.board.udp_of(MessageType::Ack).back().ack.status, protocol::AckStatus::Refused);
+  EXPECT_EQ(d.dds.output_word(), 124912u);
+}
+
+TEST(FirmwareApp, AFailedSensorIsStartedAgainAndThePlateRestsMeanwhile) {
+  Device d(/*sensor_unplugged=*/true);
+  d.board.send_udp(condition(protocol::ConditionKind::Neutral));  // would play 0.5 with a finger
+  d.run_until(1500000);
+  ASSERT_EQ(d.app->sensor().state(), ZforceState::Failed);
+  for (const auto& w : d.dac.writes()) ASSERT_EQ(w.code, 0) << "at " << w.t_us;  // no finger: idle
+  d.i2c.fail_next(0, BusStatus::Ok);  // plugged in again
+  d.zforce_model.load_trace(stroke(5000000));
+  d.run_until(5500000);
+  EXPECT_EQ(d.counters().sensor_restarts, 1u);
+  EXPECT_EQ(d.app->sensor().state(), ZforceState::Running);
+  EXPECT_EQ(d.dac_at(5500000), 2048);  // the neutral scene, with the finger back
+}
+
+TEST(FirmwareApp, RebootRestsThePlateFirst) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_udp(condition(protocol::ConditionKind::Frictionmap));
+  d.run_until(1200000);
+  EXPECT_EQ(d.dac.last(), kFrictionmapOnPath);
+  d.board.send_hid(command(MessageType::RebootToBootloader));
+  d.run_until(1201000);
   EXPECT_EQ(d.board.reboots, 1);
-  EXPECT_EQ(d.board.dac_at_reboot, 0);  // the plate rests before the reboot
+  EXPECT_EQ(d.board.dac_at_reboot, 0);
+  ASSERT_EQ(d.board.hid_of(MessageType::Ack).size(), 1u);  // acknowledged before the reset
 }
 
 }  // namespace

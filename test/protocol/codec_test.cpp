@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "frictionfield/core/scenes.hpp"
@@ -28,22 +29,63 @@ Message round_trip(const Message& m) {
   return out;
 }
 
+// A valid CRC around whatever the bytes now say.
+std::vector<uint8_t> reseal(std::vector<uint8_t> f) {
+  const uint16_t crc = crc16_ccitt(f.data() + 2, f.size() - 4);
+  f[f.size() - 2] = uint8_t(crc);
+  f[f.size() - 1] = uint8_t(crc >> 8);
+  return f;
+}
+
+// Header, payload and CRC for hand-made payloads.
+std::vector<uint8_t> frame_with_payload(MessageType type, const std::vector<uint8_t>& payload) {
+  std::vector<uint8_t> f = {'F', 'F', kVersion, static_cast<uint8_t>(type), 0,
+                            uint8_t(payload.size()), uint8_t(payload.size() >> 8)};
+  f.insert(f.end(), payload.begin(), payload.end());
+  f.push_back(0);
+  f.push_back(0);
+  return reseal(f);
+}
+
+DecodeStatus status_of(const std::vector<uint8_t>& f) {
+  Message out;
+  return decode(f.data(), f.size(), out);
+}
+
+Message condition(ConditionKind kind) {
+  Message m;
+  m.type = MessageType::SetCondition;
+  m.condition.kind = kind;
+  return m;
+}
+
+TEST(Codec, CrcIsCcittFalse) {
+  EXPECT_EQ(crc16_ccitt(reinterpret_cast<const uint8_t*>("123456789"), 9), 0x29B1);  // the standard check value
+}
+
 TEST(Codec, QueryStatusIsTheHandDerivedFrame) {
   Message m;
   m.type = MessageType::QueryStatus;
   m.sequence = 7;
-  const std::vector<uint8_t> f = frame_of(m);
-  // 'F' 'F' version 1, type 0x02, seq 7, length 0, CRC-16/CCITT-FALSE of 01 02 07 00 00.
-  const uint16_t crc = crc16_ccitt(f.data() + 2, 5);
-  const std::vector<uint8_t> expected = {'F', 'F', 1, 0x02, 7, 0, 0, uint8_t(crc), uint8_t(crc >> 8)};
-  EXPECT_EQ(f, expected);
-  EXPECT_EQ(crc16_ccitt(reinterpret_cast<const uint8_t*>("123456789"), 9), 0x29B1);  // the standard check value
+  // 'F' 'F', version 2, type 0x02, sequence 7, length 0, then CRC-16/CCITT-FALSE
+  // of 02 02 07 00 00 = 0x3D77 (worked out by hand-checked script), little-endian.
+  const std::vector<uint8_t> expected = {'F', 'F', 2, 0x02, 7, 0, 0, 0x77, 0x3D};
+  EXPECT_EQ(frame_of(m), expected);
+}
+
+TEST(Codec, ForceIsExplicitLittleEndian) {
+  Message m;
+  m.type = MessageType::Force;
+  m.sequence = 9;
+  m.force = {0x01020304u, 1.0f, true};
+  // t_us 04 03 02 01, 1.0f = 0x3F800000 -> 00 00 80 3F, over-force 01; CRC 0x08BE.
+  const std::vector<uint8_t> expected = {'F', 'F', 2, 0x83, 9, 9, 0, 0x04, 0x03, 0x02, 0x01,
+                                         0x00, 0x00, 0x80, 0x3F, 0x01, 0xBE, 0x08};
+  EXPECT_EQ(frame_of(m), expected);
 }
 
 TEST(Codec, ThesisConditionRoundTripsAndBecomesTheBuiltInScene) {
-  Message m;
-  m.type = MessageType::SetCondition;
-  m.condition.kind = ConditionKind::Heightmap;
+  Message m = condition(ConditionKind::Heightmap);
   m.condition.target = Target::Top;
   m.condition.strength = 0.66f;
   const Message out = round_trip(m);
@@ -53,6 +95,8 @@ TEST(Codec, ThesisConditionRoundTripsAndBecomesTheBuiltInScene) {
   const Condition c = out.condition.to_condition();
   EXPECT_EQ(host::format_scene_text(c.scene), host::format_scene_text(scenes::heightmap(Target::Top)));
   EXPECT_FLOAT_EQ(c.amplitude.strength, 0.66f);
+  // A thesis condition is short: 7 header + 15 condition + 2 x 8 calibration + 2 CRC.
+  EXPECT_EQ(frame_of(m).size(), 7u + 15u + 16u + 2u);
 }
 
 TEST(Codec, GeneralSceneRoundTripsEveryField) {
@@ -69,14 +113,57 @@ TEST(Codec, GeneralSceneRoundTripsEveryField) {
       "element vortex weight 0.002 centre 400 240\n"
       "element texture weight 0.3 wavelength 100 80 height 5\n",
       s, err)) << err;
-  Message m;
-  m.type = MessageType::SetCondition;
-  m.condition.kind = ConditionKind::General;
+  Message m = condition(ConditionKind::General);
   m.condition.scene = s;
-  m.condition.inverted_dac = true;
+  m.condition.s_curve = 0.5f;
+  m.condition.idle_amplitude = 0.25f;
   const Message out = round_trip(m);
   EXPECT_EQ(host::format_scene_text(out.condition.scene), host::format_scene_text(s));
-  EXPECT_TRUE(out.condition.inverted_dac);
+  EXPECT_FLOAT_EQ(out.condition.s_curve, 0.5f);
+  EXPECT_FLOAT_EQ(out.condition.idle_amplitude, 0.25f);
+  // Constant and position-only scenes carry their constant and bias.
+  Message k = condition(ConditionKind::General);
+  k.condition.scene.rendering = Rendering::PositionOnly;
+  k.condition.scene.bias = 0.125f;
+  k.condition.scene.constant = 0.75f;
+  const Message ko = round_trip(k);
+  EXPECT_EQ(ko.condition.scene.rendering, Rendering::PositionOnly);
+  EXPECT_FLOAT_EQ(ko.condition.scene.bias, 0.125f);
+  EXPECT_FLOAT_EQ(ko.condition.scene.constant, 0.75f);
+}
+
+TEST(Codec, TheLargestSceneFitsOneFrame) {
+  Message m = condition(ConditionKind::General);
+  Vec2 points[kMaxPolylinePoints];
+  for (int i = 0; i < kMaxPolylinePoints; ++i) points[i] = {10.0f + 50.0f * static_cast<float>(i), 240.0f};
+  for (int i = 0; i < kMaxSceneElements; ++i) {
+    ASSERT_TRUE(m.condition.scene.add(FieldElement::path_sink(PathCurve::polyline(points, kMaxPolylinePoints), 0.2f)));
+  }
+  for (int i = 0; i < kMaxCalibrationPoints; ++i) {
+    m.condition.calibration.amplitude[i] = static_cast<float>(i) / (kMaxCalibrationPoints - 1);
+    m.condition.calibration.code[i] = 4095.0f * static_cast<float>(i) / (kMaxCalibrationPoints - 1);
+  }
+  m.condition.calibration.count = kMaxCalibrationPoints;
+  const std::vector<uint8_t> f = frame_of(m);
+  // 7 header + 143 condition + 17 scene header + 8 x 147 elements + 2 CRC.
+  EXPECT_EQ(f.size(), 1345u);
+  EXPECT_LE(f.size(), kMaxFrame);
+  EXPECT_EQ(round_trip(m).condition.scene.elements[7].valley.curve.points[15].x, 760.0f);
+}
+
+TEST(Codec, DacCalibrationTravelsWhole) {
+  Message m = condition(ConditionKind::Neutral);
+  m.condition.calibration = DacCalibration::inverted();
+  const Message inv = round_trip(m);
+  EXPECT_EQ(inv.condition.to_condition().amplitude.calibration.code_for(0.0f), DacCalibration::inverted().code_for(0.0f));
+  const float amps[4] = {0.0f, 0.2f, 0.7f, 1.0f};
+  const float codes[4] = {100.0f, 900.0f, 3000.0f, 4000.0f};
+  ASSERT_TRUE(DacCalibration::from_points(amps, codes, 4, m.condition.calibration));
+  const Message out = round_trip(m);
+  ASSERT_EQ(out.condition.calibration.count, 4);
+  EXPECT_FLOAT_EQ(out.condition.calibration.amplitude[2], 0.7f);
+  EXPECT_FLOAT_EQ(out.condition.calibration.code[3], 4000.0f);
+  EXPECT_EQ(out.condition.to_condition().amplitude.calibration.code_for(0.2f), 900);
 }
 
 TEST(Codec, DeviceMessagesRoundTrip) {
@@ -85,25 +172,34 @@ TEST(Codec, DeviceMessagesRoundTrip) {
   st.status.firmware_version = 0x0102;
   st.status.tick_cycles_mean = 1234;
   st.status.tick_cycles_max = 5678;
+  st.status.watchdog_trips = 2;
+  st.status.stream_overruns = 17;
   st.status.force_mN = 412.5f;
-  st.status.over_force = false;
   st.status.finger_present = true;
+  st.status.carrier_hz = 34900.0f;
   st.status.faults.count[static_cast<int>(Fault::JumpRejected)] = 3;
   const Message s = round_trip(st);
   EXPECT_EQ(s.status.firmware_version, 0x0102);
+  EXPECT_EQ(s.status.tick_cycles_mean, 1234u);
   EXPECT_EQ(s.status.tick_cycles_max, 5678u);
+  EXPECT_EQ(s.status.watchdog_trips, 2u);
+  EXPECT_EQ(s.status.stream_overruns, 17u);
+  EXPECT_FLOAT_EQ(s.status.force_mN, 412.5f);
+  EXPECT_FLOAT_EQ(s.status.carrier_hz, 34900.0f);
   EXPECT_TRUE(s.status.finger_present);
+  EXPECT_FALSE(s.status.over_force);
   EXPECT_EQ(s.status.faults[Fault::JumpRejected], 3u);
 
   Message t;
   t.type = MessageType::Ticks;
   t.ticks.count = 2;
   t.ticks.ticks[0] = {1000, 0.25f, 1024, true};
-  t.ticks.ticks[1] = {1500, 0.0f, 0, false};
+  t.ticks.ticks[1] = {1500, 0.0f, 4095, false};
   const Message tt = round_trip(t);
-  EXPECT_EQ(tt.ticks.count, 2);
+  ASSERT_EQ(tt.ticks.count, 2);
   EXPECT_EQ(tt.ticks.ticks[0].dac, 1024);
   EXPECT_TRUE(tt.ticks.ticks[0].present);
+  EXPECT_EQ(tt.ticks.ticks[1].dac, 4095);
   EXPECT_FALSE(tt.ticks.ticks[1].present);
 
   Message sm;
@@ -113,54 +209,182 @@ TEST(Codec, DeviceMessagesRoundTrip) {
   const Message ss = round_trip(sm);
   EXPECT_EQ(ss.samples.samples[0].t_us, 4294967000u);
   EXPECT_FLOAT_EQ(ss.samples.samples[0].y, 300.25f);
+  EXPECT_FALSE(ss.samples.has_taken_times);
+  EXPECT_EQ(frame_of(sm).size(), 7u + 2u + 13u + 2u);
+  sm.samples.has_taken_times = true;
+  sm.samples.taken_us[0] = 200u;  // the tick after the wrap
+  const Message st2 = round_trip(sm);
+  EXPECT_TRUE(st2.samples.has_taken_times);
+  EXPECT_EQ(st2.samples.taken_us[0], 200u);
+  EXPECT_EQ(frame_of(sm).size(), 7u + 2u + 17u + 2u);
 
-  Message f;
-  f.type = MessageType::Force;
-  f.force = {30000, 520.0f, true};
-  EXPECT_TRUE(round_trip(f).force.over_force);
+  Message c = condition(ConditionKind::Frictionmap);
+  c.type = MessageType::Condition;
+  c.condition.target = Target::Bottom;
+  EXPECT_EQ(round_trip(c).condition.target, Target::Bottom);
+
+  Message a;
+  a.type = MessageType::Ack;
+  a.ack = {MessageType::SetCondition, AckStatus::Refused, 2};
+  EXPECT_EQ(round_trip(a).ack.detail, 2);
+
+  Message e;
+  e.type = MessageType::Error;
+  e.error = {ErrorCode::BadCrc, 0x01};
+  EXPECT_EQ(round_trip(e).error.code, ErrorCode::BadCrc);
+
+  Message sw;
+  sw.type = MessageType::StartSweep;
+  sw.sweep = {30000.0f, 40000.0f, 5000};
+  EXPECT_EQ(round_trip(sw).sweep.duration_ms, 5000u);
 }
 
-TEST(Codec, EveryMalformedClassIsRejected) {
-  Message m;
-  m.type = MessageType::SetCondition;
-  const std::vector<uint8_t> good = frame_of(m);
-  Message out;
-  auto status_of = [&](std::vector<uint8_t> f) { return decode(f.data(), f.size(), out); };
+TEST(Codec, EveryFramingFaultIsRejected) {
+  const std::vector<uint8_t> good = frame_of(condition(ConditionKind::Heightmap));
   EXPECT_EQ(status_of({}), DecodeStatus::TooShort);
-  auto bad = good; bad[0] = 'X';
+  EXPECT_EQ(status_of(std::vector<uint8_t>(good.begin(), good.begin() + 8)), DecodeStatus::TooShort);
+  auto bad = good;
+  bad[0] = 'X';
   EXPECT_EQ(status_of(bad), DecodeStatus::BadMagic);
-  bad = good; bad[2] = 9;
+  bad = good;
+  bad[2] = 1;  // the previous version
   EXPECT_EQ(status_of(bad), DecodeStatus::BadVersion);
-  bad = good; bad.push_back(0);
+  bad = good;
+  bad.push_back(0);
   EXPECT_EQ(status_of(bad), DecodeStatus::BadLength);
-  bad = good; bad[8] ^= 0x40;
-  EXPECT_EQ(status_of(bad), DecodeStatus::BadCrc);
-  // A valid CRC around nonsense: unknown type, out-of-range enum, trailing bytes.
-  auto reseal = [](std::vector<uint8_t> f) {
-    const uint16_t crc = crc16_ccitt(f.data() + 2, f.size() - 4);
-    f[f.size() - 2] = uint8_t(crc);
-    f[f.size() - 1] = uint8_t(crc >> 8);
-    return f;
-  };
-  bad = good; bad[3] = 0x55;
+  bad = good;
+  bad.pop_back();
+  EXPECT_EQ(status_of(bad), DecodeStatus::BadLength);
+  bad = good;
+  bad[5] = 0xFF;  // claims 1535 bytes: over the maximum
+  bad[6] = 0x05;
+  EXPECT_EQ(status_of(bad), DecodeStatus::BadLength);
+  for (size_t i = 2; i < good.size(); ++i) {  // any flipped bit outside the magic
+    if (i == 5 || i == 6) continue;         // (the length is caught first)
+    bad = good;
+    bad[i] ^= 0x10;
+    EXPECT_EQ(status_of(bad), i == 2 ? DecodeStatus::BadVersion : DecodeStatus::BadCrc) << "byte " << i;
+  }
+  bad = good;
+  bad[3] = 0x55;
   EXPECT_EQ(status_of(reseal(bad)), DecodeStatus::UnknownType);
-  bad = good; bad[7] = 9;  // condition kind 9
-  EXPECT_EQ(status_of(reseal(bad)), DecodeStatus::Malformed);
-  Message g;
-  g.type = MessageType::SetCondition;
-  g.condition.kind = ConditionKind::General;
-  g.condition.scene.element_count = 1;
-  bad = frame_of(g);
-  bad[7 + 15 + 16] = 9;  // the scene's element count (after 15 condition + 16 scene bytes)
-  EXPECT_EQ(status_of(reseal(bad)), DecodeStatus::Malformed);
-  EXPECT_EQ(out.type, MessageType::QueryStatus);  // `out` untouched by failures
 }
 
-TEST(Codec, EncodeRefusesASmallBuffer) {
+TEST(Codec, EveryMalformedPayloadIsRejected) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  // Condition: kind, target, strength 1, idle 0, s-curve 0, calibration 2 points.
+  auto cond = [](uint8_t kind, uint8_t target, float strength, uint8_t points) {
+    std::vector<uint8_t> p = {kind, target};
+    auto f32 = [&](float v) {
+      uint8_t b[4];
+      std::memcpy(b, &v, 4);  // the test host is little-endian, like the wire
+      p.insert(p.end(), b, b + 4);
+    };
+    f32(strength);
+    f32(0.0f);
+    f32(0.0f);
+    p.push_back(points);
+    for (int i = 0; i < points; ++i) {
+      f32(points > 1 ? static_cast<float>(i) / static_cast<float>(points - 1) : 0.0f);
+      f32(points > 1 ? 4095.0f * static_cast<float>(i) / static_cast<float>(points - 1) : 0.0f);
+    }
+    return p;
+  };
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 1, 1.0f, 2))), DecodeStatus::Ok);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(4, 1, 1.0f, 2))), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 3, 1.0f, 2))), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 1, 0.0f, 2))), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 1, 1.5f, 2))), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 1, nan, 2))), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 1, inf, 2))), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 1, 1.0f, 1))), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, cond(0, 1, 1.0f, 17))), DecodeStatus::Malformed);
+  // Truncated and overlong payloads.
+  auto p = cond(0, 1, 1.0f, 2);
+  p.pop_back();
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, p)), DecodeStatus::Malformed);
+  p = cond(0, 1, 1.0f, 2);
+  p.push_back(0);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCondition, p)), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::QueryStatus, {0})), DecodeStatus::Malformed);
+  // A non-monotonic calibration.
+  Message m = condition(ConditionKind::Neutral);
+  m.condition.calibration.code[1] = 0.0f;
+  std::vector<uint8_t> flat(kMaxFrame);
+  flat.resize(encode(m, flat.data(), flat.size()));
+  EXPECT_EQ(status_of(flat), DecodeStatus::Malformed);
+  // General scene (after 15 condition and 16 calibration bytes): rendering at
+  // +0, element count at +16, the first element's kind at +17.
+  Message g = condition(ConditionKind::General);
+  g.condition.scene.element_count = 1;
+  auto bad = frame_of(g);
+  bad[7 + 15 + 16 + 16] = 9;
+  EXPECT_EQ(status_of(reseal(bad)), DecodeStatus::Malformed);
+  bad = frame_of(g);
+  bad[7 + 15 + 16] = 3;  // rendering 3
+  EXPECT_EQ(status_of(reseal(bad)), DecodeStatus::Malformed);
+  bad = frame_of(g);
+  bad[7 + 15 + 16 + 17] = 6;  // element kind 6
+  EXPECT_EQ(status_of(reseal(bad)), DecodeStatus::Malformed);
+  // Streams: counts over the limit, reserved bits, flags that are not 0/1.
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Samples, {25, 0})), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Samples, {0, 2})), DecodeStatus::Malformed);  // flags
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, {33})), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0x00, 0x10})),
+            DecodeStatus::Malformed);  // dac bit 12
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0xFF, 0x8F})),
+            DecodeStatus::Ok);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Samples, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2})),
+            DecodeStatus::Malformed);  // touch 2
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Samples, {1, 0, 0, 0, 0, 0, 0, 0, 0xC0, 0x7F, 0, 0, 0, 0, 1})),
+            DecodeStatus::Malformed);  // x NaN
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Samples, {1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1})),
+            DecodeStatus::Malformed);  // taken times announced, missing
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::StartStream, {0})), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::SetCarrier, {0, 0, 0x80, 0x7F})), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Ack, {0x55, 0, 0})), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Ack, {0x01, 2, 0})), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Error, {0, 1})), DecodeStatus::Malformed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Force, {0, 0, 0, 0, 0, 0, 0, 0, 2})), DecodeStatus::Malformed);
+}
+
+TEST(Codec, FailuresLeaveTheOutputUntouched) {
+  Message out;
+  out.type = MessageType::Force;
+  out.force.force_mN = 12.0f;
+  auto bad = frame_of(condition(ConditionKind::Heightmap));
+  bad[7] = 9;
+  EXPECT_EQ(decode(bad.data(), bad.size(), out), DecodeStatus::BadCrc);
+  EXPECT_EQ(decode(reseal(bad).data(), bad.size(), out), DecodeStatus::Malformed);
+  EXPECT_EQ(out.type, MessageType::Force);
+  EXPECT_FLOAT_EQ(out.force.force_mN, 12.0f);
+  EXPECT_EQ(decode(nullptr, 20, out), DecodeStatus::TooShort);
+}
+
+TEST(Codec, EncodeRefusesASmallBufferAndNonFiniteNumbers) {
   Message m;
   m.type = MessageType::Status;
   uint8_t small[10];
   EXPECT_EQ(encode(m, small, sizeof small), 0u);
+  std::vector<uint8_t> buf(kMaxFrame);
+  EXPECT_EQ(encode(m, buf.data(), 0), 0u);
+  EXPECT_EQ(encode(m, nullptr, buf.size()), 0u);
+  m.status.force_mN = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(encode(m, buf.data(), buf.size()), 0u);
+  // Exactly enough room works, one byte less does not.
+  Message q;
+  q.type = MessageType::QueryStatus;
+  EXPECT_EQ(encode(q, buf.data(), kHeaderBytes + kCrcBytes), kHeaderBytes + kCrcBytes);
+  EXPECT_EQ(encode(q, buf.data(), kHeaderBytes + kCrcBytes - 1), 0u);
+}
+
+TEST(Codec, ErrorCodesNameTheFailedCheck) {
+  EXPECT_EQ(error_code_for(DecodeStatus::BadCrc), ErrorCode::BadCrc);
+  EXPECT_EQ(error_code_for(DecodeStatus::UnknownType), ErrorCode::UnknownType);
+  EXPECT_EQ(error_code_for(DecodeStatus::Malformed), ErrorCode::Malformed);
+  EXPECT_STREQ(to_string(ErrorCode::BadVersion), "unsupported protocol version");
+  EXPECT_STREQ(to_string(DecodeStatus::BadLength), "length does not match");
 }
 
 }  // namespace

@@ -2,34 +2,40 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace ff::protocol {
 namespace {
 
-TEST(HidChannel, SplitsAndReassemblesALongFrame) {
+std::vector<uint8_t> status_frame() {
   Message m;
   m.type = MessageType::Status;
   std::vector<uint8_t> frame(kMaxFrame);
   frame.resize(encode(m, frame.data(), frame.size()));
+  return frame;
+}
+
+
+TEST(HidChannel, SplitsAndReassemblesALongFrame) {
+  const std::vector<uint8_t> frame = status_frame();
   uint8_t reports[kMaxHidReports][kHidReportBytes];
   const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
   ASSERT_EQ(n, (frame.size() + 62) / 63);
+  ASSERT_GE(n, 2u);
   EXPECT_EQ(reports[0][0], 0x00);
   EXPECT_EQ(reports[n - 1][0], 0x80 | (n - 1));
+  EXPECT_TRUE(std::equal(frame.begin(), frame.begin() + 63, &reports[0][1]));
   HidReassembler r;
   for (size_t i = 0; i + 1 < n; ++i) EXPECT_FALSE(r.push(reports[i]));
   ASSERT_TRUE(r.push(reports[n - 1]));
   ASSERT_EQ(r.size(), frame.size());
-  Message out;
-  EXPECT_EQ(decode(r.frame(), r.size(), out), DecodeStatus::Ok);
+  EXPECT_TRUE(std::equal(frame.begin(), frame.end(), r.frame()));
+  EXPECT_EQ(r.errors(), 0u);
 }
 
 TEST(HidChannel, LostReportIsCountedAndTheNextFrameStillArrives) {
-  Message m;
-  m.type = MessageType::Status;
-  std::vector<uint8_t> frame(kMaxFrame);
-  frame.resize(encode(m, frame.data(), frame.size()));
+  const std::vector<uint8_t> frame = status_frame();
   uint8_t reports[kMaxHidReports][kHidReportBytes];
   const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
   ASSERT_GE(n, 2u);
@@ -38,6 +44,55 @@ TEST(HidChannel, LostReportIsCountedAndTheNextFrameStillArrives) {
   EXPECT_EQ(r.errors(), 1u);
   for (size_t i = 0; i + 1 < n; ++i) r.push(reports[i]);
   EXPECT_TRUE(r.push(reports[n - 1]));
+  EXPECT_EQ(r.size(), frame.size());
+}
+
+TEST(HidChannel, SplitRefusesWhatDoesNotFit) {
+  const std::vector<uint8_t> frame = status_frame();
+  uint8_t reports[1][kHidReportBytes];
+  EXPECT_EQ(split_into_reports(frame.data(), frame.size(), reports, 1), 0u);
+  EXPECT_EQ(split_into_reports(frame.data(), 0, reports, 1), 0u);
+}
+
+TEST(HidChannel, BinaryFramesWithEveryByteValueSurvive) {
+  std::vector<uint8_t> frame(kMaxFrame);
+  for (size_t i = 0; i < frame.size(); ++i) frame[i] = static_cast<uint8_t>(i * 7);  // all 256 values
+  frame[5] = static_cast<uint8_t>((kMaxFrame - kHeaderBytes - kCrcBytes) & 0xFF);   // the header's length
+  frame[6] = static_cast<uint8_t>((kMaxFrame - kHeaderBytes - kCrcBytes) >> 8);
+  uint8_t reports[kMaxHidReports][kHidReportBytes];
+  const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
+  ASSERT_EQ(n, kMaxHidReports);
+  HidReassembler r;
+  for (size_t i = 0; i + 1 < n; ++i) ASSERT_FALSE(r.push(reports[i]));
+  ASSERT_TRUE(r.push(reports[n - 1]));
+  EXPECT_EQ(std::vector<uint8_t>(r.frame(), r.frame() + r.size()), frame);
+}
+
+TEST(HidChannel, ReportsBeyondTheLongestFrameAreCounted) {
+  uint8_t report[kHidReportBytes] = {};
+  HidReassembler r;
+  for (size_t i = 0; i < kMaxHidReports; ++i) {
+    report[0] = static_cast<uint8_t>(i);  // never the last
+    EXPECT_FALSE(r.push(report));
+  }
+  EXPECT_EQ(r.errors(), 0u);
+  report[0] = static_cast<uint8_t>(kMaxHidReports);
+  EXPECT_FALSE(r.push(report));  // one more than any frame needs
+  EXPECT_EQ(r.errors(), 1u);
+}
+
+TEST(HidChannel, ALastReportShorterThanTheHeaderSaysIsCounted) {
+  const std::vector<uint8_t> frame = status_frame();
+  uint8_t reports[kMaxHidReports][kHidReportBytes];
+  const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
+  ASSERT_GE(n, 2u);
+  HidReassembler r;
+  reports[0][0] = 0x80;  // the first report claims to be the last
+  EXPECT_FALSE(r.push(reports[0]));
+  EXPECT_EQ(r.errors(), 1u);
+  reports[0][0] = 0x00;
+  for (size_t i = 0; i + 1 < n; ++i) r.push(reports[i]);
+  EXPECT_TRUE(r.push(reports[n - 1]));  // and the next frame is whole again
 }
 
 }  // namespace

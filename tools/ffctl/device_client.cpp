@@ -18,20 +18,6 @@ using protocol::MessageType;
 
 // --- requests ----------------------------------------------------------------
 
-const char* to_string(protocol::ErrorCode code) {
-  switch (code) {
-    case protocol::ErrorCode::TooShort: return "frame too short";
-    case protocol::ErrorCode::BadMagic: return "bad magic";
-    case protocol::ErrorCode::BadVersion: return "unsupported protocol version";
-    case protocol::ErrorCode::BadLength: return "length does not match";
-    case protocol::ErrorCode::BadCrc: return "CRC mismatch";
-    case protocol::ErrorCode::UnknownType: return "unknown message type";
-    case protocol::ErrorCode::Malformed: return "malformed payload";
-    case protocol::ErrorCode::Busy: return "busy";
-  }
-  return "unknown error code";
-}
-
 ReceiveResult DeviceClient::next(Message& m, int timeout_ms) {
   std::vector<uint8_t> frame;
   for (;;) {
@@ -65,7 +51,7 @@ bool DeviceClient::request(Message command, Message& reply, std::string& error, 
     }
     if (reply.sequence != command.sequence) continue;  // streamed traffic, or an older command's reply
     if (reply.type == MessageType::Error) {
-      return error = std::string("the device refused the message: ") + to_string(reply.error.code), false;
+      return error = std::string("the device refused the message: ") + protocol::to_string(reply.error.code), false;
     }
     if (reply.type == MessageType::Ack || reply.type == MessageType::Status) return true;
   }
@@ -150,7 +136,7 @@ std::string describe(const protocol::ConditionMessage& c) {
   std::snprintf(buf, sizeof buf, "%s, target %s, strength %.3g, idle amplitude %.3g, S-curve %.3g%s",
                 kinds[static_cast<int>(c.kind)], targets[static_cast<int>(c.target)], static_cast<double>(c.strength),
                 static_cast<double>(c.idle_amplitude), static_cast<double>(c.s_curve),
-                c.inverted_dac ? ", inverted DAC" : "");
+                c.calibration.code[0] > c.calibration.code[c.calibration.count - 1] ? ", decreasing DAC calibration" : "");
   return buf;
 }
 
@@ -360,7 +346,7 @@ VerifyResult replay(const Recording& r, const Condition& condition, const Tracke
     if (!in_run) {
       in_run = true;
       ++v.run_count;
-      if (v.runs.size() < kMaxRuns) v.runs.push_back({0, t.t_us, t.t_us, -1, m});
+      if (v.runs.size() < kMaxRuns) v.runs.push_back({0, t.t_us, t.t_us, -1, m, m});
     }
     if (v.run_count <= kMaxRuns) {
       MismatchRun& run = v.runs.back();

@@ -88,6 +88,7 @@ struct MismatchRun {
   uint64_t first_t_us = 0, last_t_us = 0;
   int max_dac_difference = -1;
   Mismatch worst;
+  Mismatch first;  // where it starts: its device and native values
 };
 
 struct VerifyResult {

@@ -88,13 +88,18 @@ void print_verify(const ff::ffctl::VerifyResult& v) {
     std::printf("  the recording does not say which tick took each report: reports delivered by timestamp "
                 "(a report read across a tick boundary shows as a one-tick difference)\n");
   }
+  auto print_tick = [](const char* what, const ff::ffctl::Mismatch& m) {
+    std::printf("    %s %llu us: device %.5f (dac %u%s), native %.5f (dac %u%s)\n", what,
+                static_cast<unsigned long long>(m.t_us), static_cast<double>(m.device_amplitude), m.device_dac,
+                m.device_present ? "" : ", no finger", static_cast<double>(m.native_amplitude), m.native_dac,
+                m.native_present ? "" : ", no finger");
+  };
   for (const auto& run : v.runs) {
-    const auto& w = run.worst;
-    std::printf("  t %llu..%llu us (%zu ticks): worst at %llu us: device %.5f (%u%s), native %.5f (%u%s)\n",
+    std::printf("  t %llu..%llu us: %zu ticks differ, up to %d DAC codes\n",
                 static_cast<unsigned long long>(run.first_t_us), static_cast<unsigned long long>(run.last_t_us),
-                run.ticks, static_cast<unsigned long long>(w.t_us), static_cast<double>(w.device_amplitude),
-                w.device_dac, w.device_present ? "" : ", no finger", static_cast<double>(w.native_amplitude),
-                w.native_dac, w.native_present ? "" : ", no finger");
+                run.ticks, run.max_dac_difference);
+    print_tick("first at", run.first);
+    if (run.worst.t_us != run.first.t_us) print_tick("worst at", run.worst);
   }
   if (v.run_count > v.runs.size()) std::printf("  ... and %zu more runs\n", v.run_count - v.runs.size());
 }

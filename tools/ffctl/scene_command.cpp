@@ -9,7 +9,7 @@ bool condition_message(const host::SceneSpec& spec, protocol::ConditionMessage& 
   m.strength = c.amplitude.strength;
   m.idle_amplitude = c.amplitude.idle_amplitude;
   m.s_curve = c.amplitude.s_curve;
-  m.inverted_dac = spec.inverted_dac;
+  m.calibration = c.amplitude.calibration;
   // make_condition accepted the target word, so it is one of these three.
   m.target = spec.target == "top" ? Target::Top : spec.target == "bottom" ? Target::Bottom : Target::Middle;
   // A table-evaluated heightmap is a different rendering: it goes whole.

@@ -22,11 +22,13 @@ constexpr size_t kMaxFrame = kHeaderBytes + kMaxPayload + kCrcBytes;
 
 enum class DecodeStatus : uint8_t { Ok, TooShort, BadMagic, BadVersion, BadLength, BadCrc, UnknownType, Malformed };
 const char* to_string(DecodeStatus s);
+const char* to_string(ErrorCode c);
 ErrorCode error_code_for(DecodeStatus s);
 
-// Writes one frame; returns its size, or 0 if `capacity` is too small.
+// Writes one frame; returns its size, or 0 if `capacity` is too small or a
+// number is not finite (a frame that encodes always decodes).
 size_t encode(const Message& m, uint8_t* out, size_t capacity);
-// Reads one frame of exactly `size` bytes.
+// Reads one frame of exactly `size` bytes; `out` is untouched unless Ok.
 DecodeStatus decode(const uint8_t* in, size_t size, Message& out);
 
 uint16_t crc16_ccitt(const uint8_t* data, size_t size, uint16_t crc = 0xFFFF);

@@ -1,6 +1,16 @@
 #pragma once
-// A frame over 64-byte USB HID reports: byte 0 = (last ? 0x80 : 0) | index,
-// bytes 1..63 = the next 63 bytes of the frame (zero-padded in the last one).
+// Frames over the USB host channel: the Teensy's serial emulation (SEREMU,
+// USB type USB_HID, interface 2), in 64-byte reports both ways: byte 0 =
+// (last ? 0x80 : 0) | index, bytes 1..63 = the next 63 bytes of the frame
+// (zero-padded in the last one). docs/protocol.md.
+//
+// Device -> host: one 64-byte IN report per report (one Serial.write of 64
+// bytes fills one packet exactly); the host reads reports whole (hidapi).
+// Host -> device: the OUT endpoint takes 32-byte reports (SEREMU_RX_SIZE), so
+// the host sends each 64-byte report as two: bytes 0..31, then 32..63. The
+// firmware must read these raw packets (usb_rx on the SEREMU endpoint) and
+// join them: Serial.read() ends a packet at its first 0x00 (it takes zero
+// as padding), and frames are binary.
 #include <cstddef>
 #include <cstdint>
 
@@ -32,5 +42,9 @@ class HidReassembler {
   uint8_t next_index_ = 0;
   uint32_t errors_ = 0;
 };
+
+// Host -> device reports travel as two OUT packets of this size (SEREMU_RX_SIZE).
+constexpr size_t kHostPacketBytes = 32;
+static_assert(2 * kHostPacketBytes == kHidReportBytes, "a report is two OUT packets");
 
 }  // namespace ff::protocol

@@ -8,7 +8,10 @@
 
 namespace ff::protocol {
 
-constexpr uint8_t kVersion = 1;
+// 2: streamed reports may say which tick took them; status carries
+// the watchdog and stream-overrun counters; the DAC calibration travels whole;
+// QueryCondition / Condition; non-finite numbers are malformed.
+constexpr uint8_t kVersion = 2;
 
 enum class MessageType : uint8_t {
   // host -> device
@@ -19,12 +22,14 @@ enum class MessageType : uint8_t {
   SetCarrier = 0x05,     // AD9834 frequency
   StartSweep = 0x06,     // frequency sweep (resonance search)
   RebootToBootloader = 0x07,
+  QueryCondition = 0x08, // what the device renders now (ffctl record keeps it for verify)
   // device -> host
   Ack = 0x81,            // a command was carried out (or refused: status)
   Status = 0x82,
   Force = 0x83,          // every 30 ms: 5-sample average
   Samples = 0x84,        // raw sensor reports
   Ticks = 0x85,          // rendered ticks (every `decimation`-th)
+  Condition = 0x86,      // reply to QueryCondition: the SetCondition payload
   Error = 0xE0,          // a malformed or unknown message was received
 };
 
@@ -37,7 +42,7 @@ struct ConditionMessage {
   float strength = 1.0f;
   float idle_amplitude = 0.0f;
   float s_curve = 0.0f;
-  bool inverted_dac = false;
+  DacCalibration calibration = DacCalibration::linear();  // 2..16 points
   SceneDefinition scene;  // General only (no sampled height map over the wire)
 
   Condition to_condition() const;
@@ -59,6 +64,8 @@ struct StatusMessage {
   uint32_t tick_cycles_mean = 0;
   uint32_t tick_cycles_max = 0;
   uint32_t protocol_errors = 0;
+  uint32_t watchdog_trips = 0;   // ticks forced idle because the main loop stalled
+  uint32_t stream_overruns = 0;  // tick records dropped from the stream
   float force_mN = 0.0f;
   bool over_force = false;
   bool finger_present = false;
@@ -76,6 +83,12 @@ constexpr int kMaxSamplesPerMessage = 24;
 struct SamplesMessage {
   uint8_t count = 0;
   SensorSample samples[kMaxSamplesPerMessage];
+  // With each report, the time of the tick that took it from the mailbox
+  // (a firmware that streams reports as its ticks take them knows it): lets
+  // `ffctl verify` hand it to the same tick natively, whatever the I2C read
+  // latency was. Without it, verify goes by the reports' timestamps.
+  bool has_taken_times = false;
+  uint32_t taken_us[kMaxSamplesPerMessage] = {};
 };
 
 struct TickRecord {
@@ -115,7 +128,7 @@ struct ErrorMessage {
 struct Message {
   MessageType type = MessageType::QueryStatus;
   uint8_t sequence = 0;  // echoed in replies
-  ConditionMessage condition;
+  ConditionMessage condition;  // SetCondition and Condition
   AckMessage ack;
   StatusMessage status;
   ForceMessage force;

@@ -147,6 +147,9 @@ TEST(Verify, DifferencesAreReportedWhereTheyAre) {
   EXPECT_EQ(v.runs[0].ticks, 40u);
   EXPECT_EQ(v.runs[0].max_dac_difference, 1024);
   EXPECT_EQ(v.runs[0].worst.t_us, 810000u);
+  EXPECT_EQ(v.runs[0].first.t_us, 800000u);
+  EXPECT_EQ(v.runs[0].first.device_dac, r.ticks[first].dac);
+  EXPECT_EQ(std::abs(static_cast<int>(v.runs[0].first.native_dac) - static_cast<int>(r.ticks[first].dac)), 0x200);
   EXPECT_EQ(v.runs[1].first_t_us, 2000000u);
   EXPECT_TRUE(v.runs[1].worst.native_present);
   EXPECT_FALSE(v.runs[1].worst.device_present);
