@@ -142,6 +142,9 @@ class UdpDevice(Device):
                 self.status = msg
                 if self.pending.get(seq) == protocol.STATUS:
                     self.replies[seq] = msg
+            elif isinstance(msg, protocol.ConditionEcho):
+                if self.pending.get(seq) == protocol.CONDITION:
+                    self.replies[seq] = msg
             elif isinstance(msg, protocol.Ack):
                 if self.pending.get(seq) == protocol.ACK:
                     self.replies[seq] = msg
@@ -181,8 +184,16 @@ class UdpDevice(Device):
             raise DeviceRefused(f"condition refused (prepare status {reply.detail})")
         return reply
 
+    def query_condition(self):
+        """The SetCondition payload the device renders (its own encoding)."""
+        reply = self._request(protocol.query_condition, "QueryCondition", protocol.CONDITION)
+        if isinstance(reply, protocol.Error):
+            raise DeviceRefused(reply.text())
+        return reply.payload
+
     def start_stream(self):
-        self._request(lambda s: protocol.start_stream(s, TICK_DECIMATION), "StartStream", protocol.ACK)
+        """Amplitude samples for the bar and the simulated participant; an Ack is not awaited."""
+        self._send(lambda s: protocol.start_stream(s, TICK_DECIMATION))
 
     def poll(self):
         changed = self._receive(0.0)

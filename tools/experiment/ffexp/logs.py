@@ -45,10 +45,10 @@ class CsvAppender:
 
     def __init__(self, path, columns):
         self.path = path
+        if os.path.exists(path):
+            _drop_torn_tail(path)
         fresh = not os.path.exists(path) or os.path.getsize(path) == 0
         self._file = open(path, "a", newline="", encoding="utf-8")
-        if not fresh:
-            _repair_tail(path, self._file)
         self._writer = csv.writer(self._file, lineterminator="\n")
         if fresh:
             self._writer.writerow(columns)
@@ -68,16 +68,13 @@ class CsvAppender:
             self._file.close()
 
 
-def _repair_tail(path, handle):
-    """A kill can leave half a row; end it with a newline so the next row is whole.
-
-    The reader then reports (or, for frames, skips) the broken row by line."""
-    with open(path, "rb") as f:
-        f.seek(-1, os.SEEK_END)
-        last = f.read(1)
-    if last != b"\n":
-        handle.write("\n")
-        handle.flush()
+def _drop_torn_tail(path):
+    """A kill can leave half a row at the end: cut it off before appending
+    (its trial was unfinished and runs again on --resume)."""
+    with open(path, "rb+") as f:
+        data = f.read()
+        if data and not data.endswith(b"\n"):
+            f.truncate(data.rfind(b"\n") + 1)
 
 
 def _cell(v):
@@ -216,35 +213,24 @@ def read_trials(folder):
     return out
 
 
-def read_frames(folder, tolerate_torn_rows=True):
-    """Frames as numpy-ready columns. A torn row (a kill mid-write) is skipped
-    only if tolerate_torn_rows; any other bad row is an error."""
+def read_frames(folder):
+    """Frames as numpy columns. A row with too few fields (a kill mid-write,
+    never resumed) is skipped; a field that is not a number is an error."""
     import numpy as np
     path = os.path.join(folder, "frames.csv")
     cols = {c: [] for c in FRAME_COLUMNS}
     for line, row, idx in _rows(path, FRAME_COLUMNS):
         if len(row) < len(idx):
-            if tolerate_torn_rows:
-                continue
-            raise LogError(path, line, "truncated row")
+            continue
+        values = []
         for c, i in idx.items():
             try:
-                cols[c].append(float(row[i]) if row[i] != "" else math.nan)
+                values.append(float(row[i]) if row[i] != "" else math.nan)
             except ValueError:
-                if tolerate_torn_rows and line_is_torn(row, idx):
-                    break
                 raise LogError(path, line, f"column '{c}': '{row[i]}' is not a number") from None
-        else:
-            continue
-        # a torn row: drop what was appended from it
-        n = min(len(v) for v in cols.values())
-        for v in cols.values():
-            del v[n:]
+        for c, v in zip(idx, values):
+            cols[c].append(v)
     return {c: np.asarray(v, dtype=float) for c, v in cols.items()}
-
-
-def line_is_torn(row, idx):
-    return len(row) != len(idx)
 
 
 def read_events(folder):

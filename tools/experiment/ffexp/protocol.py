@@ -204,6 +204,16 @@ class Error:
         return f"device error: {ERROR_NAMES.get(self.code, self.code)} (message type 0x{self.offending_type:02X})"
 
 
+@dataclass
+class ConditionEcho:
+    """The device's reply to QueryCondition: the condition it renders, as sent."""
+    payload: bytes
+
+
+def query_condition(seq):
+    return frame(QUERY_CONDITION, seq)
+
+
 STATUS_FIXED = struct.Struct("<HBBfIIIIIIfBfB")
 
 
@@ -233,7 +243,10 @@ def decode(data):
                 tu, a, code = struct.unpack_from("<IfH", p, 1 + 10 * i)
                 ticks.append((tu, a, code & 0x0FFF, bool(code & 0x8000)))
             return seq, ticks
-        if t in (SAMPLES, CONDITION):
+        if t == CONDITION:
+            decode_condition(p)  # checks it
+            return seq, ConditionEcho(p)
+        if t == SAMPLES:
             return seq, None  # not used by the experiment
     except struct.error:
         pass

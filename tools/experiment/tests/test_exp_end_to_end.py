@@ -92,3 +92,24 @@ def test_analysis_of_the_simulated_study(study, tmp_path):
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "report" / "fig15_learning.png").exists()
     assert "one participant: no group statistics" in (tmp_path / "report" / "summary.md").read_text()
+
+
+def test_python_codec_against_the_cpp_codec_in_ff_sim():
+    """Every condition the study sends is acknowledged by the firmware's C++
+    decoder, and the condition it then reports (its C++ encoder) is byte for
+    byte the payload the Python encoder wrote."""
+    if not os.access(FF_SIM, os.X_OK):
+        pytest.fail(f"ff-sim is not built ({FF_SIM} missing): cmake --build --preset native --target ff-sim")
+    from ffexp import device, protocol
+    dev = device.SimDevice(FF_SIM)
+    try:
+        status = dev.open()
+        assert status.firmware_version > 0
+        conditions = [protocol.Condition(r, t, s) for r in logs.RENDERINGS for s in logs.STRENGTHS for t in logs.TARGETS]
+        conditions += list(protocol.FAMILIARISATION.values()) + [protocol.Condition("neutral")]
+        for c in conditions:
+            ack = dev.set_condition(c)
+            assert ack.ok and ack.command == protocol.SET_CONDITION
+            assert dev.query_condition() == c.payload(), c
+    finally:
+        dev.close()

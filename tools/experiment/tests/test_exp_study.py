@@ -152,3 +152,18 @@ def test_bad_usage_is_one_line(tmp_path):
     r = subprocess.run([sys.executable, TOOL, "--device", "udp:", "--participant-number", "1", "-o", str(tmp_path)],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "udp:HOST" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_torn_rows_are_cut_before_appending(tmp_path):
+    folder = str(tmp_path / "P01")
+    log = logs.ParticipantLog(folder)
+    log.frame(1, 0.5, 10, 20, 1, 0.3, 0)
+    log.close()
+    with open(os.path.join(folder, "frames.csv"), "a") as f:
+        f.write("1,0.51,11")  # killed mid-row
+    assert len(logs.read_frames(folder)["t"]) == 1  # the reader skips the torn row
+    log = logs.ParticipantLog(folder)
+    log.frame(2, 0.6, 12, 22, 1, 0.3, 0)
+    log.close()
+    lines = open(os.path.join(folder, "frames.csv")).read().splitlines()
+    assert lines[1:] == ["1,0.5,10,20,1,0.3,0", "2,0.6,12,22,1,0.3,0"]
