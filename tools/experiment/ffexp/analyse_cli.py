@@ -68,6 +68,9 @@ def summary_text(participants, group, figure_names):
         L.append(f"- {r}: hit rate block 1 vs 2 (45 trials each), Wilcoxon {stats.format_p(d['test']['p'])}")
     for r, d in group["learning"].items():
         a, b, c = d["fit"]
+        if not (math.isfinite(b) and b > 1e-3 and a > 0):
+            L.append(f"- {r}: movement time shows no power-law learning trend (fit degenerate: a = {a:.3g}, b = {b:.3g})")
+            continue
         L.append(f"- {r}: movement time learning curve y = a·x^-b + c: a = {a:.2f}, b = {b:.3f}, c = {c:.2f} (start a+c = {a + c:.2f} s)")
     for n in group["notes"]:
         L.append(f"- note: {n}")

@@ -219,8 +219,9 @@ def fit_power_law(x, y):
     return tuple(float(v) for v in p)
 
 
-def path_length_excess(t, x, y, required_px=600.0):
-    """Total |dx| and |dy| travelled, minus the least needed (appendix L panel I)."""
+def path_length_excess(t, x, y, required_px=610.0):
+    """Total |dx| travelled minus the least needed (start circle edge x = 90
+    to the end zone x = 700), and total |dy| (appendix L panel I)."""
     x, y = np.asarray(x, float), np.asarray(y, float)
     if len(x) < 2:
         return 0.0, 0.0

@@ -92,6 +92,7 @@ def test_analysis_of_the_simulated_study(study, tmp_path):
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "report" / "fig15_learning.png").exists()
     assert "one participant: no group statistics" in (tmp_path / "report" / "summary.md").read_text()
+    shutil.copy(tmp_path / "report" / "participant_1.png", os.path.join(DOC_IMAGES, "report_participant.png"))
 
 
 def test_python_codec_against_the_cpp_codec_in_ff_sim():
