@@ -5,7 +5,9 @@
 
 poll() is called once a frame and never blocks; set_condition() waits for
 the Ack. A device that has sent nothing for LOST_AFTER_S (Force arrives
-every 30 ms) is lost: the study pauses until it answers again."""
+every 30 ms) is lost: the study pauses until it answers again. That
+timeout is wall-clock time even when the simulator runs faster, so a busy
+computer that delays ff-sim for a few ms is not taken for a lost device."""
 import os
 import select
 import signal
@@ -40,7 +42,8 @@ class Device:
         self.force_n = float("nan")
         self.amplitude = float("nan")
         self.amplitudes = []        # (t, amplitude) since the last take_amplitudes()
-        self.last_heard = clock()
+        self.wall = time.monotonic
+        self.last_heard = self.wall()
         self.counters = {}
         self.status = None
 
@@ -58,7 +61,7 @@ class Device:
         return {}
 
     def lost(self):
-        return self.clock() - self.last_heard > LOST_AFTER_S
+        return self.wall() - self.last_heard > LOST_AFTER_S
 
     def set_condition(self, condition):
         raise NotImplementedError
@@ -128,7 +131,7 @@ class UdpDevice(Device):
             except protocol.ProtocolError as e:
                 self.errors.append(str(e))
                 continue
-            self.last_heard = self.clock()
+            self.last_heard = self.wall()
             if isinstance(msg, protocol.Force):
                 self.force_n = msg.force_mn / 1000.0
             elif isinstance(msg, list):  # ticks
@@ -282,7 +285,7 @@ class FakeDevice(Device):
     def query_status(self):
         if self.silent:
             raise DeviceLost("fake device silent")
-        self.last_heard = self.clock()
+        self.last_heard = self.wall()
         return protocol.Status(0x0200, 2, 1, 1.0, 0, 0, 0, 0, 0, 0, self.force_n * 1000, False, False,
                                34900.0, list(self.fault_counts))
 
@@ -297,7 +300,7 @@ class FakeDevice(Device):
     def poll(self):
         if self.silent:
             return {}
-        self.last_heard = self.clock()
+        self.last_heard = self.wall()
         return self._changed_counters(self.query_status())
 
     def finger(self, x, y, force_n):

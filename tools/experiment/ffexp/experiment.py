@@ -300,10 +300,10 @@ class Study:
                                                  "Press space to continue."], protocol.Condition("neutral"), "pause"):
                     return 1
         self.send(protocol.Condition("neutral"), 0)
-        self.key_screen_once_done()
+        self.thank_you()
         return 0
 
-    def key_screen_once_done(self):
+    def thank_you(self):
         self.screen.message("Thank you!", [f"Score {self.score} of {self.index}"])
         self.screenshot("done")
         self.flip()

@@ -17,8 +17,8 @@ TOOL = os.path.join(HERE, "..", "ff-experiment")
 STANDIN = os.path.join(HERE, "standin_ff_sim.py")
 
 
-def run_fake(tmp_path, *extra, factory=None):
-    argv = ["--device", "fake", "--participant", "sim", "--speed", "8", "--participant-number", "4",
+def run_fake(tmp_path, *extra, factory=None, speed=8):
+    argv = ["--device", "fake", "--participant", "sim", "--speed", str(speed), "--participant-number", "4",
             "-o", str(tmp_path), *extra]
     return experiment.main(argv, factory)
 
@@ -81,20 +81,23 @@ def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
 
 
 class FlakyDevice(device.FakeDevice):
-    """Falls silent for one simulated second during trial 2."""
+    """Falls silent for one wall-clock second during trial 2."""
 
     def __init__(self, clock):
         super().__init__(clock)
-        self.silence = None
+        self.silence = None      # wall clock
+        self.silence_study = None  # the same in study time
 
     def set_condition(self, condition):
         ack = super().set_condition(condition)
         if len([c for c in self.conditions if c.kind != "general" and c.kind != "neutral"]) == 2 and self.silence is None:
-            self.silence = (self.clock() + 0.5, self.clock() + 1.5)
+            self.silence = (self.wall() + 0.1, self.wall() + 1.1)
+            speed = 1
+            self.silence_study = (self.clock() + 0.1 * speed, self.clock() + 1.1 * speed)
         return ack
 
     def _silent_now(self):
-        return self.silence is not None and self.silence[0] <= self.clock() < self.silence[1]
+        return self.silence is not None and self.silence[0] <= self.wall() < self.silence[1]
 
     def poll(self):
         self.silent = self._silent_now()
@@ -110,15 +113,16 @@ def test_device_loss_pauses_and_restarts_the_trial(tmp_path, capsys):
     def factory(spec, root, speed, clock):
         made.append(FlakyDevice(clock))
         return made[0]
-    assert run_fake(tmp_path, "--trials", "3", "--skip-familiarisation", factory=factory) == 0
+    # real time: the loss (0.5 s of wall-clock silence) falls inside trial 2
+    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation", factory=factory, speed=1) == 0
     assert "study paused (trial 2)" in capsys.readouterr().err
     ev = [e["event"] for e in logs.read_events(str(tmp_path / "P04"))]
     assert ev.index("device-lost") < ev.index("device-back") < ev.index("trial-restart")
     frames = logs.read_frames(str(tmp_path / "P04"))
-    lost = made[0].silence
-    during = (frames["t"] > lost[0] + device.LOST_AFTER_S + 0.01) & (frames["t"] < lost[1])
+    lost = made[0].silence_study
+    during = (frames["t"] > lost[0] + device.LOST_AFTER_S + 0.05) & (frames["t"] < lost[1] - 0.05)
     assert not np.any(during)  # nothing logged while the device was away
-    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3]
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2]
 
 
 def test_propose_exclusions(tmp_path):
