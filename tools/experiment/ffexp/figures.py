@@ -4,6 +4,7 @@ import math
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import analysis, geometry, metrics  # noqa: E402
@@ -92,13 +93,11 @@ def raw_paths(ax, participant, rendering):
     """Appendix L A/B: every trial's path, green correct, red wrong."""
     for xs, y in geometry.path_polylines():
         ax.plot(xs, y, color="black", lw=0.8)
-    ns = []
-    for t in participant.trials:
-        if t["rendering"] != rendering:
-            continue
-        ns.append(t["trial"])
-        _, x, y = t["path"]
-        ax.plot(x, y, color="green" if t["hit"] else "red", lw=0.5, alpha=0.6)
+    mine = [t for t in participant.trials if t["rendering"] == rendering]
+    ns = [t["trial"] for t in mine]
+    segments = [np.column_stack(t["path"][1:]) for t in mine if len(t["path"][1]) > 1]
+    colours = ["green" if t["hit"] else "red" for t in mine if len(t["path"][1]) > 1]
+    ax.add_collection(LineCollection(segments, colors=colours, linewidths=0.5, alpha=0.6))
     ax.set_xlim(0, geometry.WIDTH)
     ax.set_ylim(geometry.HEIGHT, 0)
     ax.set_aspect("equal")
@@ -109,7 +108,7 @@ def participant_page(participant, path):
     """Appendix L: panels A-J for one participant."""
     ps = [participant]
     fig = plt.figure(figsize=(11, 10))
-    grid = fig.add_gridspec(4, 3)
+    grid = fig.add_gridspec(4, 3, left=0.07, right=0.98, bottom=0.06, top=0.93, hspace=0.45, wspace=0.3)
     raw_paths(fig.add_subplot(grid[0, 0:2]), participant, "frictionmap")
     ax = fig.add_subplot(grid[0, 2]); raw_paths(ax, participant, "heightmap")
     hit_rates(fig.add_subplot(grid[1, 0]), ps)
@@ -125,13 +124,12 @@ def participant_page(participant, path):
         ax.plot(metrics.moving_average(participant.rendering_series(r, "direction_changes")), color=COLOURS[r])
     ax.set_ylabel("direction changes, moving avg")
     ax = fig.add_subplot(grid[3, 0])
-    for t in participant.trials:
-        ex, ey = metrics.path_length_excess(*t["path"])
-        ax.scatter(ex, ey, s=8 + 20 * t["strength"], color=COLOURS[t["rendering"]], alpha=0.5)
+    excess = np.array([metrics.path_length_excess(*t["path"]) for t in participant.trials]).reshape(-1, 2)
+    ax.scatter(excess[:, 0], excess[:, 1], s=[8 + 20 * t["strength"] for t in participant.trials],
+               c=[COLOURS[t["rendering"]] for t in participant.trials], alpha=0.5)
     ax.set_xlabel("extra |dx| (px)"); ax.set_ylabel("total |dy| (px)")
     angles(fig.add_subplot(grid[3, 1:3]), ps)
     fig.suptitle(f"participant {participant.number} (order {participant.order})")
-    fig.tight_layout()
     fig.savefig(path, dpi=80)
     plt.close(fig)
 
