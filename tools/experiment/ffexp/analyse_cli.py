@@ -4,6 +4,7 @@ import datetime
 import math
 import os
 import sys
+import warnings
 
 from . import VERSION, analysis, figures, logs, stats
 
@@ -107,6 +108,7 @@ def run(argv):
 
 
 def main(argv=None):
+    warnings.simplefilter("ignore", RuntimeWarning)  # empty cells are reported as such, not as numpy warnings
     try:
         return run(sys.argv[1:] if argv is None else argv)
     except logs.LogError as e:

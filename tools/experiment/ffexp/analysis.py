@@ -1,6 +1,7 @@
 """From participant folders to the study's numbers: per-participant cells,
 group statistics (RM-ANOVA, post-hoc, Wilcoxon), learning curves."""
 import math
+import os
 
 import numpy as np
 
@@ -21,6 +22,8 @@ class Participant:
         self.order = self.session["order"]
         self.excluded = exclusions.read_exclusions(folder)
         all_trials = logs.read_trials(folder)
+        if not all_trials:
+            raise logs.LogError(os.path.join(folder, "trials.csv"), 0, "no finished trials")
         self.trials = [t for t in all_trials if t["trial"] not in self.excluded]
         self.frames = logs.read_frames(folder)
         for t in self.trials:
