@@ -2,7 +2,6 @@
 import argparse
 import datetime
 import hashlib
-import math
 import os
 import sys
 import time

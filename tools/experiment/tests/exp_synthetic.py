@@ -1,6 +1,5 @@
 """Synthetic participant folders with known answers, written through the
 program's own log writer (so the reader and the analysis see real files)."""
-import math
 import os
 
 import numpy as np

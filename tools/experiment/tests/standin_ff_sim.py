@@ -36,7 +36,7 @@ def main():
     print(f"ff-sim ready port={a.port} finger-port={a.finger_port}", flush=True)
     start = time.monotonic()
     peer, cond, finger, streaming = None, None, None, False
-    next_force, seq, ticks = 0.0, 0, []
+    next_force, seq = 0.0, 0
     while True:
         now = (time.monotonic() - start) * a.speed
         ready, _, _ = select.select([sock, fing], [], [], 0.002)
