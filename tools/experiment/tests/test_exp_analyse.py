@@ -1,7 +1,6 @@
 """ff-analyse on synthetic participants: planted effects found, null ones not,
 readable errors on bad folders."""
 import json
-import os
 
 import pytest
 
