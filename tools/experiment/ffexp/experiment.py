@@ -249,6 +249,8 @@ class Study:
             self.keys()
             if touch and state == "wait-start" and geometry.in_start(x, y):
                 state, t_enter = "in-start", now
+                if self.participant is not None:
+                    self.participant.started(now)
             elif state == "in-start" and touch and not geometry.in_start(x, y):
                 state, t_leave = "moving", now
             elif state == "moving" and touch and geometry.in_end_zone(x):
@@ -263,6 +265,9 @@ class Study:
                                     late_frames=late, ack="ok" if ack.ok else "refused"))
                 return self.feedback(trial, hit)
             prev = (x, y) if touch else prev
+            if self.participant is not None and self.participant.stuck(now):
+                self.participant.begin_trial(now)
+                state = "wait-start"
             self.screen.trial(n, total, self.score, self.dev.force_n, self.dev.amplitude if self.sim else None)
             if state == "moving" and x > 200:
                 self.screenshot("trial")

@@ -34,23 +34,36 @@ class SimParticipant:
 
     # -- trial
     def begin_trial(self, t):
-        """Plan the way to the probe line; the rest is decided there."""
+        """Lift, touch down in the start circle and stay there until the
+        program has seen the finger there (started())."""
         start = (geometry.START_CENTRE[0] + self.rng.normal(0, 3), geometry.START_CENTRE[1] + self.rng.normal(0, 3))
+        self.legs = [(t + 0.05, start, start, 0.1)]
+        self.probe_end = math.inf
+        self.felt = []
+        self.decided = None
+
+    def started(self, t):
+        """The program saw the finger in the start circle: plan the way to the
+        probe line; the rest is decided there."""
+        start = self.legs[0][1]
         d = self.rng.uniform(0.8, 1.2) / self.speed
-        self.legs = [(t + 0.05, start, start, 0.15 / self.speed),
-                     (None, start, (PROBE_X, 240.0), 0.5 * d),
-                     (None, (PROBE_X, 240.0), (PROBE_X, SWEEP[0]), 0.35 * d),
-                     (None, (PROBE_X, SWEEP[0]), (PROBE_X, SWEEP[1]), 0.6 * d)]
-        t_leg = t + 0.05
-        timed = []
-        for _, p0, p1, dur in self.legs:
+        t_leg = t + 0.15 / self.speed
+        timed = [(t, start, start, 0.15 / self.speed)]
+        for p0, p1, dur in ((start, (PROBE_X, 240.0), 0.5 * d),
+                            ((PROBE_X, 240.0), (PROBE_X, SWEEP[0]), 0.35 * d),
+                            ((PROBE_X, SWEEP[0]), (PROBE_X, SWEEP[1]), 0.6 * d)):
             timed.append((t_leg, p0, p1, dur))
             t_leg += dur
         self.legs = timed
         self.probe_end = t_leg
-        self.felt = []
-        self.decided = None
-        self.touch = False
+
+    def stuck(self, t):
+        """The plan has ended but the program has not ended the trial (frames
+        too sparse to see a crossing, say): start over."""
+        if not self.legs:
+            return False
+        last = self.legs[-1]
+        return self.decided is not None and t > last[0] + last[3] + 0.5
 
     def feel(self, x, y, amplitude):
         if math.isfinite(amplitude) and abs(x - PROBE_X) < 1.0 and self.legs and not self.decided:
