@@ -9,7 +9,8 @@ import time
 from collections import Counter
 
 import numpy as np
-import pygame
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+import pygame  # noqa: E402
 import pytest
 
 from ffexp import design, geometry, logs
