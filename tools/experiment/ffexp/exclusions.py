@@ -1,0 +1,82 @@
+"""Trial exclusions: exclusions.csv (trial,reason) in a participant folder,
+written or reviewed by a person. `ff-experiment --propose-exclusions DIR`
+lists candidates the person then accepts or not:
+  jump       the position moved faster than a finger can in one frame
+  two-finger a jump that comes back within a few frames (a second finger on the sensor)
+  device     the device was lost during the trial, or frames stopped coming
+"""
+import csv
+import os
+
+import numpy as np
+
+from . import logs
+
+EXCLUSION_COLUMNS = ["trial", "reason"]
+JUMP_PX_PER_S = 8000.0       # ~1.5 m/s on the 7" screen: faster than an exploring finger
+RETURN_FRAMES = 8            # a jump undone within 0.1 s
+FRAME_GAP_S = 0.5
+
+
+def read_exclusions(folder):
+    """{trial: reason}; no file means no exclusions."""
+    path = os.path.join(folder, "exclusions.csv")
+    if not os.path.isfile(path):
+        return {}
+    out = {}
+    for line, row, idx in logs._rows(path, EXCLUSION_COLUMNS):
+        text = row[idx["trial"]].strip()
+        if not text.isdigit() or not 1 <= int(text) <= 180:
+            raise logs.LogError(path, line, f"'{text}' is not a trial number 1..180")
+        out[int(text)] = row[idx["reason"]] if len(row) > idx["reason"] else ""
+    return out
+
+
+def propose(folder):
+    """Candidate exclusions [(trial, reason, detail)] from the frames and events."""
+    trials = logs.read_trials(folder)
+    frames = logs.read_frames(folder)
+    events = logs.read_events(folder)
+    lost = {int(float(e["trial"])) for e in events if e["event"] in ("device-lost", "device-error")
+            and e["trial"] not in ("", None)}
+    out = []
+    for tr in trials:
+        n = tr["trial"]
+        sel = (frames["trial"] == n) & (frames["t"] >= tr["t_enter_start"]) & (frames["t"] <= tr["t_cross"])
+        t, x, y, touch = frames["t"][sel], frames["x"][sel], frames["y"][sel], frames["touch"][sel]
+        if n in lost:
+            out.append((n, "device", "device lost during the trial"))
+            continue
+        if len(t) > 1 and np.max(np.diff(t)) > FRAME_GAP_S:
+            out.append((n, "device", f"no frames for {np.max(np.diff(t)):.2f} s"))
+            continue
+        ok = touch > 0
+        t, x, y = t[ok], x[ok], y[ok]
+        if len(t) < 2:
+            continue
+        dt = np.maximum(np.diff(t), 1e-3)
+        step = np.hypot(np.diff(x), np.diff(y))
+        jumps = np.nonzero(step / dt > JUMP_PX_PER_S)[0]
+        if len(jumps) == 0:
+            continue
+        j = int(jumps[0])
+        dx, dy = np.diff(x), np.diff(y)
+        # a second finger: a jump undone by an opposite jump soon after
+        back = [k for k in jumps if j < k <= j + RETURN_FRAMES and
+                np.hypot(dx[j] + dx[k], dy[j] + dy[k]) < step[j] / 2]
+        if back:
+            out.append((n, "two-finger", f"jump of {step[j]:.0f} px at t={t[j + 1]:.3f} s and back"))
+        else:
+            out.append((n, "jump", f"jump of {step[j]:.0f} px in {dt[j] * 1000:.0f} ms at t={t[j + 1]:.3f} s"))
+    return out
+
+
+def write_proposal(folder, candidates):
+    """Writes exclusions.proposed.csv for a person to review (never exclusions.csv)."""
+    path = os.path.join(folder, "exclusions.proposed.csv")
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(EXCLUSION_COLUMNS + ["detail"])
+        for n, reason, detail in candidates:
+            w.writerow([n, reason, detail])
+    return path

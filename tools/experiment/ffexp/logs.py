@@ -1,0 +1,245 @@
+"""The participant folder: what the study writes and the analysis reads.
+
+One folder per participant (P07/):
+  session.json  header written once (atomically): who, seed, versions, scene hashes
+  frames.csv    one row per 80 Hz frame: monotonic time, finger, force, lateness
+  trials.csv    one row per finished trial
+  events.csv    device fault counters when they change, device lost/back, pauses, resumes
+  exclusions.csv  trials a person decided to drop (trial,reason); see exclusions.py
+
+Rows are appended and flushed one by one and the files fsync'ed at each
+trial's end, so a killed program loses at most the unfinished trial, which
+--resume runs again. Readers raise LogError naming the file and line.
+"""
+import csv
+import json
+import math
+import os
+
+FORMAT = "ff-experiment-log"
+FORMAT_VERSION = 1
+
+FRAME_COLUMNS = ["trial", "t", "x", "y", "touch", "force_n", "late_ms"]
+TRIAL_COLUMNS = ["trial", "rendering", "strength", "target", "choice", "hit",
+                 "t_enter_start", "t_leave_start", "t_cross", "movement_time",
+                 "crossing_y", "late_frames", "ack"]
+EVENT_COLUMNS = ["t", "trial", "event", "detail"]
+
+RENDERINGS = ("heightmap", "frictionmap")
+STRENGTHS = (1.0, 0.66, 0.33)
+TARGETS = ("top", "middle", "bottom")
+
+
+class LogError(Exception):
+    """Bad input: carries the file and line so the user can find it."""
+
+    def __init__(self, path, line, message):
+        super().__init__(f"{path}:{line}: {message}" if line else f"{path}: {message}")
+        self.path, self.line, self.message = path, line, message
+
+
+# ---------------------------------------------------------------- writing
+
+class CsvAppender:
+    """Appends rows to a CSV file, flushing each; fsync() on demand."""
+
+    def __init__(self, path, columns):
+        self.path = path
+        if os.path.exists(path):
+            _drop_torn_tail(path)
+        fresh = not os.path.exists(path) or os.path.getsize(path) == 0
+        self._file = open(path, "a", newline="", encoding="utf-8")
+        self._writer = csv.writer(self._file, lineterminator="\n")
+        if fresh:
+            self._writer.writerow(columns)
+            self._file.flush()
+
+    def append(self, row):
+        self._writer.writerow([_cell(v) for v in row])
+        self._file.flush()
+
+    def fsync(self):
+        self._file.flush()
+        os.fsync(self._file.fileno())
+
+    def close(self):
+        if not self._file.closed:
+            self.fsync()
+            self._file.close()
+
+
+def _drop_torn_tail(path):
+    """A kill can leave half a row at the end: cut it off before appending
+    (its trial was unfinished and runs again on --resume)."""
+    with open(path, "rb+") as f:
+        data = f.read()
+        if data and not data.endswith(b"\n"):
+            f.truncate(data.rfind(b"\n") + 1)
+
+
+def _cell(v):
+    if isinstance(v, float):
+        return f"{v:.6f}".rstrip("0").rstrip(".") if math.isfinite(v) else ""
+    if isinstance(v, bool):
+        return int(v)
+    return "" if v is None else v
+
+
+def write_session(folder, header):
+    """Writes session.json atomically (temp file, fsync, rename)."""
+    data = dict(header)
+    data["format"] = FORMAT
+    data["format_version"] = FORMAT_VERSION
+    path = os.path.join(folder, "session.json")
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        json.dump(data, f, indent=2, sort_keys=True)
+        f.write("\n")
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+class ParticipantLog:
+    """The writer side: frames, trials and events of one participant."""
+
+    def __init__(self, folder):
+        os.makedirs(folder, exist_ok=True)
+        self.folder = folder
+        self.frames = CsvAppender(os.path.join(folder, "frames.csv"), FRAME_COLUMNS)
+        self.trials = CsvAppender(os.path.join(folder, "trials.csv"), TRIAL_COLUMNS)
+        self.events = CsvAppender(os.path.join(folder, "events.csv"), EVENT_COLUMNS)
+
+    def frame(self, trial, t, x, y, touch, force_n, late_ms):
+        self.frames.append([trial, t, x, y, int(bool(touch)), force_n, late_ms])
+
+    def event(self, t, trial, event, detail=""):
+        self.events.append([t, trial, event, detail])
+
+    def trial(self, row):
+        self.trials.append([row[c] for c in TRIAL_COLUMNS])
+        self.sync()
+
+    def sync(self):
+        for a in (self.frames, self.trials, self.events):
+            a.fsync()
+
+    def close(self):
+        for a in (self.frames, self.trials, self.events):
+            a.close()
+
+
+# ---------------------------------------------------------------- reading
+
+def read_session(folder):
+    path = os.path.join(folder, "session.json")
+    if not os.path.isfile(path):
+        raise LogError(path, 0, "missing: not a participant folder of ff-experiment")
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except json.JSONDecodeError as e:
+        raise LogError(path, e.lineno, f"not valid JSON ({e.msg})") from None
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise LogError(path, 1, f"not an {FORMAT} header")
+    if data.get("format_version") != FORMAT_VERSION:
+        raise LogError(path, 1, f"log format version {data.get('format_version')!r}; "
+                                f"this program reads version {FORMAT_VERSION}")
+    for key in ("participant", "seed", "order"):
+        if key not in data:
+            raise LogError(path, 1, f"header has no '{key}'")
+    return data
+
+
+def _rows(path, columns):
+    """Yields (line number, dict) for each row; checks the column header."""
+    if not os.path.isfile(path):
+        raise LogError(path, 0, "missing")
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.reader(f)
+        try:
+            head = next(reader)
+        except StopIteration:
+            raise LogError(path, 1, "empty file (no column header)") from None
+        missing = [c for c in columns if c not in head]
+        if missing:
+            raise LogError(path, 1, f"missing column(s): {', '.join(missing)}")
+        index = {c: head.index(c) for c in columns}
+        for row in reader:
+            if not row:
+                continue
+            yield reader.line_num, row, index
+
+
+def _number(path, line, name, text, allow_empty=False):
+    if text == "" and allow_empty:
+        return math.nan
+    try:
+        v = float(text)
+    except ValueError:
+        raise LogError(path, line, f"column '{name}': '{text}' is not a number") from None
+    return v
+
+
+def read_trials(folder):
+    """Finished trials as a list of dicts, in trial order. Checks every field."""
+    path = os.path.join(folder, "trials.csv")
+    out = []
+    for line, row, idx in _rows(path, TRIAL_COLUMNS):
+        if len(row) < len(idx):
+            raise LogError(path, line, f"truncated row ({len(row)} of {len(TRIAL_COLUMNS)} fields)")
+        get = {c: row[i] for c, i in idx.items()}
+        t = {}
+        t["trial"] = int(_number(path, line, "trial", get["trial"]))
+        for c in ("rendering", "target", "choice", "ack"):
+            t[c] = get[c]
+        if t["rendering"] not in RENDERINGS:
+            raise LogError(path, line, f"unknown rendering '{t['rendering']}'")
+        for c in ("target", "choice"):
+            if t[c] not in TARGETS:
+                raise LogError(path, line, f"column '{c}': unknown target '{t[c]}'")
+        t["strength"] = _number(path, line, "strength", get["strength"])
+        t["hit"] = bool(int(_number(path, line, "hit", get["hit"])))
+        for c in ("t_enter_start", "t_leave_start", "t_cross", "movement_time", "crossing_y"):
+            t[c] = _number(path, line, c, get[c])
+        t["late_frames"] = int(_number(path, line, "late_frames", get["late_frames"]))
+        t["line"] = line
+        out.append(t)
+    seen = set()
+    for t in out:
+        if t["trial"] in seen:
+            raise LogError(path, t["line"], f"trial {t['trial']} appears twice")
+        seen.add(t["trial"])
+    return out
+
+
+def read_frames(folder):
+    """Frames as numpy columns. A row with too few fields (a kill mid-write,
+    never resumed) is skipped; a field that is not a number is an error."""
+    import numpy as np
+    path = os.path.join(folder, "frames.csv")
+    cols = {c: [] for c in FRAME_COLUMNS}
+    for line, row, idx in _rows(path, FRAME_COLUMNS):
+        if len(row) < len(idx):
+            continue
+        values = []
+        for c, i in idx.items():
+            try:
+                values.append(float(row[i]) if row[i] != "" else math.nan)
+            except ValueError:
+                raise LogError(path, line, f"column '{c}': '{row[i]}' is not a number") from None
+        for c, v in zip(idx, values):
+            cols[c].append(v)
+    return {c: np.asarray(v, dtype=float) for c, v in cols.items()}
+
+
+def read_events(folder):
+    path = os.path.join(folder, "events.csv")
+    if not os.path.isfile(path):
+        return []
+    out = []
+    for line, row, idx in _rows(path, EVENT_COLUMNS):
+        if len(row) < len(idx):
+            continue
+        out.append({c: row[i] for c, i in idx.items()})
+    return out

@@ -1,0 +1,128 @@
+"""Each analysis definition on synthetic strokes with known answers."""
+import math
+
+import numpy as np
+import pytest
+
+from ffexp import metrics
+
+
+def eased(waypoints, leg_s, rate=400.0, start=0.0):
+    """A coordinate moving between waypoints with cosine easing (velocity 0 at each)."""
+    ts, vs = [], []
+    for k in range(len(waypoints) - 1):
+        t = np.arange(0, leg_s, 1 / rate)
+        a, b = waypoints[k], waypoints[k + 1]
+        ts.append(start + k * leg_s + t)
+        vs.append(a + (b - a) * (1 - np.cos(np.pi * t / leg_s)) / 2)
+    ts.append([start + (len(waypoints) - 1) * leg_s])
+    vs.append([waypoints[-1]])
+    return np.concatenate(ts), np.concatenate(vs)
+
+
+def stroke(x_points, x_leg, y_points, y_leg, y_start=0.0):
+    tx, x = eased(x_points, x_leg)
+    ty, y = eased(y_points, y_leg, start=y_start)
+    t = np.arange(0, max(tx[-1], ty[-1]), 1 / 200.0)  # a 200 Hz sensor, not the 80 Hz grid
+    return t, np.interp(t, tx, x), np.interp(t, ty, y)
+
+
+def test_reversals_of_one_coordinate():
+    t, x = eased([100, 300, 200, 400, 300, 700], 1.0)
+    assert len(metrics.reversals(x)) == 4
+
+
+def test_wiggle_below_gap_is_not_a_reversal():
+    t, x = eased([100, 300, 292, 700], 1.0)  # an 8 px step back
+    assert metrics.reversals(x) == []
+    t, x = eased([100, 300, 289, 700], 1.0)  # 11 px
+    assert len(metrics.reversals(x)) == 2  # back 11 px, then forward again: two turns
+
+
+def test_four_x_and_five_y_reversals_count_nine():
+    # x turns every 2 s, y every 1 s from 1.5 s: never within 0.5 s of each other
+    t, x, y = stroke([100, 300, 200, 420, 300, 700], 2.0,
+                     [240, 140, 320, 160, 330, 180, 400], 1.0, y_start=0.5)
+    n, xf, yf, points = metrics.direction_changes(t, x, y)
+    assert len(metrics.reversals(xf)) == 4
+    assert len(metrics.reversals(yf)) == 5
+    assert n == 9
+    assert len(points) == 9
+
+
+def test_simultaneous_x_and_y_reversal_counts_once():
+    # both coordinates turn at the same moments (1.0 s legs): every x reversal
+    # has a y reversal at the same place
+    t, x, y = stroke([100, 300, 200, 420, 300, 700], 1.0,
+                     [240, 140, 320, 160, 330, 180, 400], 1.0)
+    n, xf, yf, _ = metrics.direction_changes(t, x, y)
+    ix, iy = metrics.reversals(xf), metrics.reversals(yf)
+    assert (len(ix), len(iy)) == (4, 5)
+    assert n == 5  # 4 merged pairs + 1 y reversal alone
+
+
+def test_merge_threshold_is_15_px():
+    x = np.array([0.0, 0.0, 0.0]); y = np.array([0.0, 14.9, 15.1])
+    assert metrics.merge_reversals(x, y, [0], [1]) == [(0, 1)]
+    assert metrics.merge_reversals(x, y, [0], [2]) == []
+
+
+def test_filter_is_zero_phase_and_minus_6_db_at_cutoff():
+    t = np.arange(0, 20, 1 / 80.0)
+    slow = np.sin(2 * np.pi * 0.3 * t)
+    f = metrics.lowpass(slow)
+    mid = slice(400, 1200)
+    assert np.max(np.abs(f[mid] - slow[mid])) < 0.01  # no lag
+    at_cut = metrics.lowpass(np.sin(2 * np.pi * 2.0 * t))
+    # |H|^2 of a Butterworth at its cut-off is 1/2; forward+backward squares it
+    assert np.max(np.abs(at_cut[mid])) == pytest.approx(0.5, abs=0.01)
+
+
+def test_resample_uniform_80_hz():
+    t = np.array([0.0, 0.013, 0.05, 0.1])
+    g, x, y = metrics.resample_uniform(t, t * 100, t * -100)
+    assert np.allclose(np.diff(g), 1 / 80)
+    assert np.allclose(x, g * 100)
+
+
+def test_movement_angles_along_paths():
+    t = np.arange(0, 3, 1 / 80)
+    up = metrics.movement_angles(t, 100 + 200 * t, 240 - 200 / 3 * t)  # towards the top end
+    assert np.median(up) == pytest.approx(metrics.PATH_ANGLES_DEG[1], abs=0.1)
+    edges, h = metrics.angle_histogram(up)
+    assert h.sum() == pytest.approx(1.0)
+
+
+def test_power_law_recovered_within_one_percent():
+    a, b, c = 11.7, 0.29, 4.0
+    x = np.arange(1, 82, dtype=float)
+    rng = np.random.default_rng(2)
+    y = metrics.power_law(x, a, b, c) * (1 + rng.normal(0, 0.001, len(x)))
+    fa, fb, fc = metrics.fit_power_law(x, y)
+    assert fa == pytest.approx(a, rel=0.01)
+    assert fb == pytest.approx(b, rel=0.01)
+    assert fc == pytest.approx(c, rel=0.01)
+
+
+def test_moving_average_window_10():
+    v = np.arange(20, dtype=float)
+    m = metrics.moving_average(v)
+    assert len(m) == 11 and m[0] == pytest.approx(4.5) and m[-1] == pytest.approx(14.5)
+
+
+def trials_with(hits, rendering="heightmap", strength=1.0, start=1):
+    return [dict(trial=start + i, rendering=rendering, strength=strength, hit=h) for i, h in enumerate(hits)]
+
+
+def test_hit_rate_and_blocks():
+    tr = trials_with([True] * 45 + [False] * 45)
+    assert metrics.hit_rate(tr) == 0.5
+    assert metrics.block_hit_rates(tr, "heightmap") == [1.0, 0.0]
+    assert math.isnan(metrics.hit_rate([]))
+
+
+def test_movement_samples_take_the_trial_interval_only():
+    frames = dict(trial=np.array([1, 1, 1, 1, 2.0]), t=np.array([0, 1, 2, 3, 4.0]),
+                  x=np.arange(5.0), y=np.arange(5.0), touch=np.array([1, 1, 0, 1, 1.0]))
+    t, x, y = metrics.movement_samples(frames, dict(trial=1, t_leave_start=1, t_cross=3))
+    assert list(t) == [1, 3]

@@ -1,0 +1,58 @@
+"""The Python codec against frames built by hand from docs/protocol.md (and,
+once the C++ encoder is on the branch, against its frames)."""
+import struct
+
+import pytest
+
+from ffexp import protocol
+
+
+def test_crc_check_value():
+    assert protocol.crc16(b"123456789") == 0x29B1
+
+
+def test_force_example_from_the_doc():
+    doc = bytes.fromhex("46 46 02 83 09 09 00 04 03 02 01 00 00 80 3F 01 BE 08")
+    assert protocol.force(9, 0x01020304, 1.0, True) == doc
+    seq, m = protocol.decode(doc)
+    assert seq == 9 and m == protocol.Force(0x01020304, 1.0, True)
+
+
+def test_set_condition_is_40_bytes_by_hand():
+    c = protocol.Condition("frictionmap", "bottom", 0.66)
+    f = protocol.set_condition(5, c)
+    assert len(f) == 40
+    payload = (bytes([1, 2]) + struct.pack("<f", 0.66) + struct.pack("<f", 0.0) + struct.pack("<f", 0.0)
+               + bytes([2]) + struct.pack("<ffff", 0.0, 0.0, 1.0, 4095.0))
+    body = bytes([2, 0x01, 5]) + struct.pack("<H", len(payload)) + payload
+    assert f == b"FF" + body + struct.pack("<H", protocol.crc16(body))
+    t, seq, p = protocol.unframe(f)
+    d = protocol.decode_condition(p)
+    assert (d.kind, d.target, d.calibration) == ("frictionmap", "bottom", [(0.0, 0.0), (1.0, 4095.0)])
+    assert d.strength == pytest.approx(0.66, abs=1e-7)
+
+
+@pytest.mark.parametrize("mutate, why", [
+    (lambda f: f[:8], "too short"),
+    (lambda f: b"FG" + f[2:], "bad magic"),
+    (lambda f: f[:2] + b"\x01" + f[3:], "version 1"),
+    (lambda f: f[:-3] + bytes([f[-3] ^ 1]) + f[-2:], "bad CRC"),
+    (lambda f: f + b"\x00", "bad length"),
+])
+def test_bad_frames_say_why(mutate, why):
+    f = protocol.ack(1, protocol.SET_CONDITION)
+    with pytest.raises(protocol.ProtocolError, match=why):
+        protocol.decode(mutate(f))
+
+
+def test_status_and_ticks_round_trip():
+    s = protocol.status(3, firmware_version=0x0203, force_mn=250.0, faults=[1, 0, 7], protocol_errors=2)
+    seq, m = protocol.decode(s)
+    assert m.firmware == "2.3" and m.force_mn == 250.0 and m.faults == [1, 0, 7] and m.protocol_errors == 2
+    seq, t = protocol.decode(protocol.ticks(4, [(10, 0.5, 2047, True), (510, 0.25, 1023, False)]))
+    assert t == [(10, 0.5, 2047, True), (510, 0.25, 1023, False)]
+
+
+def test_nan_refused():
+    with pytest.raises(protocol.ProtocolError):
+        protocol.Condition("heightmap", "top", float("nan")).payload()

@@ -1,0 +1,108 @@
+"""The ANOVA against independent implementations: statsmodels' AnovaRM
+(within part), Box's epsilon formula, one-way ANOVA and t-tests (between part)."""
+import numpy as np
+import pandas as pd
+import pytest
+from scipy import stats as sps
+from statsmodels.stats.anova import AnovaRM
+
+from ffexp import stats
+
+
+def random_design(n=12, p=2, q=3, seed=1, effect_a=0.0, effect_b=0.0):
+    rng = np.random.default_rng(seed)
+    subj = rng.normal(0, 1, (n, 1, 1))
+    y = subj + rng.normal(0, 1, (n, p, q))
+    y += effect_a * np.arange(p)[None, :, None]
+    y += effect_b * np.arange(q)[None, None, :]
+    # non-spherical: one level noisier
+    y[:, :, -1] += rng.normal(0, 2, (n, p))
+    return y
+
+
+def anovarm(y):
+    n, p, q = y.shape
+    rows = [dict(s=s, a=a, b=b, v=y[s, a, b]) for s in range(n) for a in range(p) for b in range(q)]
+    return AnovaRM(pd.DataFrame(rows), "v", "s", within=["a", "b"]).fit().anova_table
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_within_effects_equal_statsmodels(seed):
+    y = random_design(seed=seed, effect_b=0.3)
+    ours = stats.rm_anova(y)
+    ref = anovarm(y)
+    for name, key in (("A", "a"), ("B", "b"), ("A x B", "a:b")):
+        assert ours[name]["F"] == pytest.approx(ref.loc[key, "F Value"], rel=1e-9)
+        assert ours[name]["df1"] == ref.loc[key, "Num DF"]
+        assert ours[name]["df2"] == ref.loc[key, "Den DF"]
+        assert ours[name]["p"] == pytest.approx(ref.loc[key, "Pr > F"], rel=1e-6)
+
+
+def box_epsilon(cov):
+    """Greenhouse-Geisser epsilon from the k x k covariance of the levels (Box 1954)."""
+    k = cov.shape[0]
+    mean_diag = np.mean(np.diag(cov))
+    grand = np.mean(cov)
+    row = np.mean(cov, axis=1)
+    num = (k * (mean_diag - grand)) ** 2
+    den = (k - 1) * (np.sum(cov ** 2) - 2 * k * np.sum(row ** 2) + k ** 2 * grand ** 2)
+    return num / den
+
+
+def test_greenhouse_geisser_epsilon_equals_box_formula():
+    y = random_design(n=15, p=2, q=4, seed=7)
+    ours = stats.rm_anova(y)
+    strength_means = y.mean(axis=1)  # subjects x q
+    assert ours["B"]["epsilon"] == pytest.approx(box_epsilon(np.cov(strength_means.T)), rel=1e-9)
+    assert 1 / 3 <= ours["B"]["epsilon"] <= 1
+    assert ours["A"]["epsilon"] == 1.0  # one contrast: always spherical
+
+
+def test_between_factor_equals_one_way_anova_of_subject_means():
+    y = random_design(n=13, seed=4)  # unequal groups: 7 and 6
+    groups = ["hf" if i % 2 else "fh" for i in range(13)]
+    ours = stats.rm_anova(y, groups)
+    means = y.mean(axis=(1, 2))
+    f, p = sps.f_oneway(means[[g == "hf" for g in groups]], means[[g == "fh" for g in groups]])
+    assert ours["group"]["F"] == pytest.approx(f, rel=1e-9)
+    assert ours["group"]["p"] == pytest.approx(p, rel=1e-9)
+
+
+def test_rendering_by_order_interaction_equals_t_test_of_differences():
+    y = random_design(n=12, seed=5)
+    groups = ["hf" if i % 2 else "fh" for i in range(12)]
+    ours = stats.rm_anova(y, groups)
+    diff = y[:, 1, :].mean(axis=1) - y[:, 0, :].mean(axis=1)
+    g = np.array(groups)
+    t, p = sps.ttest_ind(diff[g == "hf"], diff[g == "fh"])
+    assert ours["A x group"]["F"] == pytest.approx(t ** 2, rel=1e-9)
+    assert ours["A x group"]["p"] == pytest.approx(p, rel=1e-9)
+    assert ours["A"]["df2"] == 10  # the error term loses the group df
+
+
+def test_textbook_one_within_two_levels_is_paired_t():
+    rng = np.random.default_rng(3)
+    a = rng.normal(5, 1, 10)
+    b = a + rng.normal(0.5, 0.5, 10)
+    y = np.stack([np.stack([a, a], axis=1), np.stack([b, b], axis=1)], axis=1)  # n x 2 x 2
+    t, p = sps.ttest_rel(a, b)
+    assert stats.rm_anova(y)["A"]["F"] == pytest.approx(t ** 2, rel=1e-9)
+
+
+def test_planted_effect_found_and_null_not():
+    planted = stats.rm_anova(random_design(n=20, seed=11, effect_a=1.5))
+    null = stats.rm_anova(random_design(n=20, seed=11, effect_a=0.0))
+    assert planted["A"]["p"] < 0.001
+    assert null["A"]["p"] > 0.05
+
+
+def test_bonferroni_multiplies_by_pairs():
+    rng = np.random.default_rng(0)
+    lv = {s: rng.normal(i, 1, 10) for i, s in enumerate((0.33, 0.66, 1.0))}
+    out = stats.bonferroni_pairwise(lv)
+    for (a, b), r in out.items():
+        assert r["p_bonferroni"] == pytest.approx(min(1.0, 3 * sps.ttest_rel(lv[a], lv[b]).pvalue))
+
+
+def test_wilcoxon_all_equal_is_nan_not_error():
+    assert np.isnan(stats.wilcoxon_paired([1, 2, 3], [1, 2, 3])["p"])

@@ -1,0 +1,173 @@
+"""ff-experiment with the in-Python fake device and the simulated participant:
+trial logic, logs, resume after a kill, device loss, exclusions, bad usage."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from ffexp import design, device, exclusions, experiment, geometry, logs
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOL = os.path.join(HERE, "..", "ff-experiment")
+STANDIN = os.path.join(HERE, "standin_ff_sim.py")
+
+
+def run_fake(tmp_path, *extra, factory=None, speed=8):
+    argv = ["--device", "fake", "--participant", "sim", "--speed", str(speed), "--participant-number", "4",
+            "-o", str(tmp_path), *extra]
+    return experiment.main(argv, factory)
+
+
+def test_trials_follow_the_plan_and_the_rules(tmp_path):
+    assert run_fake(tmp_path, "--trials", "6", "--screenshots", str(tmp_path / "shots")) == 0
+    folder = tmp_path / "P04"
+    trials = logs.read_trials(str(folder))
+    plan = design.plan(4)
+    assert [t["trial"] for t in trials] == [1, 2, 3, 4, 5, 6]
+    frames = logs.read_frames(str(folder))
+    for t, p in zip(trials, plan):
+        assert (t["rendering"], t["strength"], t["target"]) == (p["rendering"], p["strength"], p["target"])
+        assert t["choice"] == geometry.choice(t["crossing_y"])
+        assert t["hit"] == (t["choice"] == t["target"])
+        assert t["movement_time"] == pytest.approx(t["t_cross"] - t["t_leave_start"], abs=1e-5)
+        assert t["t_enter_start"] <= t["t_leave_start"] < t["t_cross"]
+        mine = frames["trial"] == t["trial"]
+        # the finger was in the start circle at t_enter and past x = 700 at t_cross
+        at_cross = mine & (frames["t"] == pytest.approx(t["t_cross"], abs=5e-6))
+        assert np.all(frames["x"][at_cross] > geometry.END_ZONE_X)
+    session = json.loads((folder / "session.json").read_text())
+    assert session["order"] == "hm-fm" and session["protocol_version"] == 2 and len(session["scene_hashes"]) == 20
+    for name in ("familiarisation_1", "familiarisation_2", "trial", "feedback"):
+        assert (tmp_path / "shots" / f"{name}.png").exists()
+
+
+def test_refuses_to_overwrite_and_resumes(tmp_path, capsys):
+    assert run_fake(tmp_path, "--trials", "2") == 0
+    assert run_fake(tmp_path, "--trials", "3") == 2
+    assert "--resume" in capsys.readouterr().err
+    assert run_fake(tmp_path, "--trials", "4", "--resume") == 0
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4]
+
+
+def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
+    env = dict(os.environ, FF_SIM=STANDIN)
+    cmd = [sys.executable, TOOL, "--device", "sim", "--participant", "sim", "--speed", "8",
+           "--participant-number", "5", "-o", str(tmp_path)]
+    p = subprocess.Popen(cmd + ["--trials", "20"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    trials = tmp_path / "P05" / "trials.csv"
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        if trials.exists() and len(trials.read_text().splitlines()) >= 4:  # header + 3 trials
+            break
+        time.sleep(0.05)
+    time.sleep(0.15)  # into the next trial
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    done = [t["trial"] for t in logs.read_trials(str(tmp_path / "P05"))]
+    assert 3 <= len(done) < 20
+    r = subprocess.run(cmd + ["--trials", str(len(done) + 2), "--resume"], env=env, capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    after = logs.read_trials(str(tmp_path / "P05"))
+    assert [t["trial"] for t in after] == list(range(1, len(done) + 3))
+    plan = design.plan(5)
+    assert all(t["target"] == plan[t["trial"] - 1]["target"] for t in after)
+    events = logs.read_events(str(tmp_path / "P05"))
+    assert any(e["event"] == "resume" and int(float(e["trial"])) == len(done) + 1 for e in events)
+
+
+class FlakyDevice(device.FakeDevice):
+    """Falls silent for one wall-clock second during trial 2."""
+
+    def __init__(self, clock):
+        super().__init__(clock)
+        self.silence = None      # wall clock
+        self.silence_study = None  # the same in study time
+
+    def set_condition(self, condition):
+        ack = super().set_condition(condition)
+        if len([c for c in self.conditions if c.kind != "general" and c.kind != "neutral"]) == 2 and self.silence is None:
+            self.silence = (self.wall() + 0.1, self.wall() + 1.1)
+            speed = 1
+            self.silence_study = (self.clock() + 0.1 * speed, self.clock() + 1.1 * speed)
+        return ack
+
+    def _silent_now(self):
+        return self.silence is not None and self.silence[0] <= self.wall() < self.silence[1]
+
+    def poll(self):
+        self.silent = self._silent_now()
+        return super().poll()
+
+    def query_status(self):
+        self.silent = self._silent_now()
+        return super().query_status()
+
+
+def test_device_loss_pauses_and_restarts_the_trial(tmp_path, capsys):
+    made = []
+    def factory(spec, root, speed, clock):
+        made.append(FlakyDevice(clock))
+        return made[0]
+    # real time: the loss (0.5 s of wall-clock silence) falls inside trial 2
+    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation", factory=factory, speed=1) == 0
+    assert "study paused (trial 2)" in capsys.readouterr().err
+    ev = [e["event"] for e in logs.read_events(str(tmp_path / "P04"))]
+    assert ev.index("device-lost") < ev.index("device-back") < ev.index("trial-restart")
+    frames = logs.read_frames(str(tmp_path / "P04"))
+    lost = made[0].silence_study
+    during = (frames["t"] > lost[0] + device.LOST_AFTER_S + 0.05) & (frames["t"] < lost[1] - 0.05)
+    assert not np.any(during)  # nothing logged while the device was away
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2]
+
+
+def test_propose_exclusions(tmp_path):
+    folder = str(tmp_path / "P01")
+    log = logs.ParticipantLog(folder)
+    logs.write_session(folder, dict(participant=1, seed=1, order="fm-hm"))
+    def stroke(n, t0, jump=None, back=False):
+        for k in range(40):
+            x, y = 60 + 17 * k, 240.0
+            if jump is not None and k >= jump and (not back or k < jump + 3):
+                y += 200
+            log.frame(n, t0 + k / 80, x, y, 1, 0.3, 0)
+        log.trial(dict(trial=n, rendering="frictionmap", strength=1.0, target="middle", choice="middle", hit=1,
+                       t_enter_start=t0, t_leave_start=t0, t_cross=t0 + 39 / 80, movement_time=39 / 80,
+                       crossing_y=240, late_frames=0, ack="ok"))
+    stroke(1, 0.0)
+    stroke(2, 1.0, jump=10)
+    stroke(3, 2.0, jump=10, back=True)
+    log.event(3.1, 4, "device-lost", "test")
+    stroke(4, 3.0)
+    log.close()
+    got = {n: r for n, r, _ in exclusions.propose(folder)}
+    assert got == {2: "jump", 3: "two-finger", 4: "device"}
+    exclusions.write_proposal(folder, exclusions.propose(folder))
+    assert "two-finger" in (tmp_path / "P01" / "exclusions.proposed.csv").read_text()
+
+
+def test_bad_usage_is_one_line(tmp_path):
+    r = subprocess.run([sys.executable, TOOL, "-o", str(tmp_path)], capture_output=True, text=True)
+    assert r.returncode == 2 and "--participant-number" in r.stderr and "Traceback" not in r.stderr
+    r = subprocess.run([sys.executable, TOOL, "--device", "udp:", "--participant-number", "1", "-o", str(tmp_path)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "udp:HOST" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_torn_rows_are_cut_before_appending(tmp_path):
+    folder = str(tmp_path / "P01")
+    log = logs.ParticipantLog(folder)
+    log.frame(1, 0.5, 10, 20, 1, 0.3, 0)
+    log.close()
+    with open(os.path.join(folder, "frames.csv"), "a") as f:
+        f.write("1,0.51,11")  # killed mid-row
+    assert len(logs.read_frames(folder)["t"]) == 1  # the reader skips the torn row
+    log = logs.ParticipantLog(folder)
+    log.frame(2, 0.6, 12, 22, 1, 0.3, 0)
+    log.close()
+    lines = open(os.path.join(folder, "frames.csv")).read().splitlines()
+    assert lines[1:] == ["1,0.5,10,20,1,0.3,0", "2,0.6,12,22,1,0.3,0"]
