@@ -1,5 +1,5 @@
 // The 2 kHz tick end to end: scenes switch atomically, idle without a finger,
-// only what the scene needs is computed, and SPEC.md's output identity holds.
+// only what the scene needs is computed, and the replay-output identity (docs/spec.md#replay-output) holds.
 #include "frictionfield/core/haptic_pipeline.hpp"
 
 #include <gtest/gtest.h>

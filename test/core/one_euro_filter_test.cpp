@@ -8,7 +8,7 @@
 namespace ff {
 namespace {
 
-// Appendix G / SPEC.md in double, written independently of the core.
+// Appendix G / docs/spec.md#thesis-tracker in double, written independently of the core.
 struct ReferenceOneEuro {
   bool from_filtered = true;
   double fr = 2000, fcmin = 20, beta = 0.0004, fcd = 25;

@@ -12,7 +12,7 @@ namespace {
 struct TrackerRun {
   Tracker tracker;
   explicit TrackerRun(const TrackerConfig& c) : tracker(c) {}
-  // Feeds samples due by each tick (SPEC.md timing) and records the states.
+  // Feeds samples due by each tick (docs/spec.md#tick-timing) and records the states.
   std::vector<TrackState> replay(const std::vector<SensorSample>& samples, uint32_t t0, int ticks) {
     std::vector<TrackState> out;
     size_t next = 0;

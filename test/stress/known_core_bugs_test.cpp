@@ -104,7 +104,7 @@ TEST(CoreRegressions, ExtremeWeightsRenderFlat) {
 // is up to 27 % longer (or shorter) than 1. The thesis configuration (no
 // fade) renders v_hat at any speed; with the derivative from the previous
 // raw value dxhat decays through every subnormal at rest. The amplitude is
-// still clamped to [0, 1], but SPEC.md's unit direction and its output
+// still clamped to [0, 1], but the spec's unit direction and its output
 // identity fail for those ticks.
 TEST(CoreRegressions, DirectionLongerThanOneAtSubnormalSpeed) {
   TrackerConfig thesis = TrackerConfig::thesis();
@@ -163,7 +163,7 @@ TEST(CoreRegressions, TickClockLeapOfAnHourKeepsTheStaleFinger) {
 // This random general scene (from Precision.ClosedFormRenderingAgainstDouble
 // at 100 cases) gets max|G| 113.30 where a double 4 px scan with refinement
 // finds 122.76 (-7.7 %): G_norm reaches 0.54 and the amplitude saturates at
-// its clamp around the missed peaks. Safe (clamped), but not SPEC.md's
+// its clamp around the missed peaks. Safe (clamped), but not docs/spec.md#rendering's
 // G / (2 max|G|). Expected within 0.1 %.
 TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
   const char* text =

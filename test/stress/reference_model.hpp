@@ -1,5 +1,5 @@
 #pragma once
-// Double-precision reference of SPEC.md's rendering chain, written from the
+// Double-precision reference of the rendering chain of docs/spec.md, written from the
 // spec and the scene data format, not from the core's code: every element's
 // gradient and position-only profile, max|G| by a dense scan, the strength
 // map, the DAC calibration, and the thesis tracker (algorithms 3/4 + 1-euro).
@@ -56,7 +56,7 @@ class ReferenceScene {
   // Normalise by another max|G| (the core's), so that the float32 evaluation
   // is compared apart from the accuracy of the core's search for the maximum.
   void use_max_gradient(double m) { max_gradient_ = m; }
-  // Raw amplitude in [0, 1] at p for the direction d (SPEC.md: A = 0.5 - d . G / (2 max|G|)).
+  // Raw amplitude in [0, 1] at p for the direction d (docs/spec.md#rendering: A = 0.5 - d . G / (2 max|G|)).
   double raw_amplitude(double px, double py, double dx, double dy) const;
 
  private:
@@ -66,7 +66,7 @@ class ReferenceScene {
   double max_gradient_ = 0.0;
 };
 
-// Strength, S-curve, idle amplitude and calibration as SPEC.md and the
+// Strength, S-curve, idle amplitude and calibration as docs/spec.md#amplitude and the
 // settings' documentation define them, with the sanitising the spec asks
 // for: NaN strength gives no modulation (0), others are clamped to [0, 1].
 class ReferenceAmplitude {
@@ -86,7 +86,7 @@ class ReferenceAmplitude {
   std::vector<double> amps_, codes_;
 };
 
-// SPEC.md "Finger tracking at 2 kHz" in double: v_raw between samples,
+// docs/spec.md#thesis-tracker in double: v_raw between samples,
 // p_ext = p_k + v_raw n 500 us, 1-euro per axis (derivative from the
 // previous filtered value), v_hat = dxhat / |dxhat|. Clean input only (no
 // faults): the core's fault handling is not part of the spec's algorithm.

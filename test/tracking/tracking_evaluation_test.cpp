@@ -1,5 +1,5 @@
 // The benchmark's evaluation: tick timing, the ideal renderer against
-// SPEC.md's formulas, known behaviour of the thesis pipeline, the goal, and
+// The formulas of docs/spec.md, known behaviour of the thesis pipeline, the goal, and
 // the report.
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@
 namespace ff::bench {
 namespace {
 
-// SPEC.md "heightmap": G = 1/2 grad Z_path + 1/2 grad Z_cone, in double.
+// docs/spec.md#heightmap: G = 1/2 grad Z_path + 1/2 grad Z_cone, in double.
 void heightmap_gradient(double x, double y, double rise, double& gx, double& gy) {
   const double a = 0.2;
   const double u = y - tracegen::path_y(x, rise);

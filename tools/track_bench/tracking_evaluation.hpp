@@ -1,6 +1,6 @@
 #pragma once
 // Runs a tracker configuration over generated traces, tick for tick as the
-// replay does (SPEC.md "Timing of a replay"), and measures what is felt:
+// replay does (docs/spec.md#tick-timing), and measures what is felt:
 // position, lag, direction and the rendered amplitude against an ideal
 // renderer fed the true position and the true direction.
 #include <iosfwd>

@@ -47,7 +47,7 @@ struct TrackerConfig {
   uint32_t max_tick_step_us = 100000;     // a longer step between ticks is suspect until confirmed
   uint32_t max_sample_lead_us = 2000;     // a report may be stamped this far after the last tick
 
-  static TrackerConfig thesis();       // exactly SPEC.md / the thesis (no fade)
+  static TrackerConfig thesis();       // exactly the thesis (docs/spec.md#thesis-tracker) (no fade)
   static TrackerConfig recommended();  // the benchmarked default
 };
 
