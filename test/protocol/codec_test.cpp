@@ -33,9 +33,11 @@ TEST(Codec, QueryStatusIsTheHandDerivedFrame) {
   m.type = MessageType::QueryStatus;
   m.sequence = 7;
   const std::vector<uint8_t> f = frame_of(m);
-  // 'F' 'F' version 1, type 0x02, seq 7, length 0, CRC-16/CCITT-FALSE of 01 02 07 00 00.
-  const uint16_t crc = crc16_ccitt(f.data() + 2, 5);
-  const std::vector<uint8_t> expected = {'F', 'F', 1, 0x02, 7, 0, 0, uint8_t(crc), uint8_t(crc >> 8)};
+  // 'F' 'F' version 1, type 0x02, seq 7, length 0, CRC-16/CCITT-FALSE of 01 02 07 00 00
+  // = 0xD3A5, low byte first. Computed outside the project, by Python's
+  // binascii.crc_hqx(bytes([1, 2, 7, 0, 0]), 0xFFFF) and a bitwise loop
+  // (poly 0x1021, init 0xFFFF, no reflection, no final xor).
+  const std::vector<uint8_t> expected = {'F', 'F', 1, 0x02, 7, 0, 0, 0xA5, 0xD3};
   EXPECT_EQ(f, expected);
   EXPECT_EQ(crc16_ccitt(reinterpret_cast<const uint8_t*>("123456789"), 9), 0x29B1);  // the standard check value
 }
