@@ -112,7 +112,8 @@ class Tracker {
     void start(float z, float r);
     void predict(float dt_s, float q);
     void update(float z, float r);
-  } kx_, ky_, px_, py_;  // direction (or only) filter; SplitKalman's position filter
+  } direction_x_, direction_y_,  // the direction (or only) filter
+      position_x_, position_y_;    // SplitKalman's position filter
   bool filters_fresh_ = false;  // filters restarted from the last sample on next use
   uint32_t last_tick_us_ = 0;
   bool have_tick_ = false;
