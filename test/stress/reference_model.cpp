@@ -319,18 +319,19 @@ int ReferenceAmplitude::dac(double a, bool* near_tie) const {
   return static_cast<int>(std::min(4095.0, std::max(0.0, std::floor(c + 0.5))));
 }
 
-double ReferenceThesisTracker::Euro::step(double x) {
-  const double fr = 2000.0;
-  auto alpha = [&](double fc) { return 1.0 / (1.0 + fr / (2.0 * kPiD * fc)); };
+double ReferenceOneEuro::operator()(double x) {
+  auto alpha = [&](double fc) { return 1.0 / (1.0 + rate_hz / (2.0 * kPiD * fc)); };
   if (!init) {
     init = true;
-    xhat = x;
+    xhat = xprev = x;
     dxhat = 0.0;
     return x;
   }
-  dxhat = alpha(25.0) * (x - xhat) * fr + (1.0 - alpha(25.0)) * dxhat;
-  const double a = alpha(20.0 + 0.0004 * std::fabs(dxhat));
+  const double dx = (x - (from_filtered ? xhat : xprev)) * rate_hz;
+  dxhat = alpha(derivative_cutoff_hz) * dx + (1.0 - alpha(derivative_cutoff_hz)) * dxhat;
+  const double a = alpha(min_cutoff_hz + beta * std::fabs(dxhat));
   xhat = a * x + (1.0 - a) * xhat;
+  xprev = x;
   return xhat;
 }
 
@@ -353,7 +354,7 @@ double ReferenceThesisTracker::filtered_speed() const { return std::hypot(ex_.dx
 void ReferenceThesisTracker::on_tick(DVec& position, DVec& direction) {
   const double h = static_cast<double>(n_) * 500.0;
   ++n_;
-  position = {ex_.step(x_ + vx_ * h), ey_.step(y_ + vy_ * h)};
+  position = {ex_(x_ + vx_ * h), ey_(y_ + vy_ * h)};
   const double speed = std::hypot(ex_.dxhat, ey_.dxhat);
   direction = speed > 0.0 ? DVec{ex_.dxhat / speed, ey_.dxhat / speed} : DVec{};
 }
