@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../core/reference_fields.hpp"
 #include "bench_report.hpp"
 #include "motion.hpp"
 #include "proposed_config.hpp"
@@ -15,22 +16,11 @@
 namespace ff::bench {
 namespace {
 
-// docs/spec.md#heightmap: G = 1/2 grad Z_path + 1/2 grad Z_cone, in double.
+// The spec's heightmap and frictionmap in double: test/core/reference_fields.hpp.
 void heightmap_gradient(double x, double y, double rise, double& gx, double& gy) {
-  const double a = 0.2;
-  const double u = y - tracegen::path_y(x, rise);
-  const double d = (u > 0 ? 1.0 : (u < 0 ? -1.0 : 0.0)) * a * a * u * u / (1.0 + a * a * u * u);
-  const double path_gx = d * -tracegen::path_slope(x, rise), path_gy = d;
-  const double tx = 700.0, ty = 240.0 + rise;
-  const double r = std::hypot(x - tx, y - ty);
-  gx = 0.5 * path_gx + 0.5 * (x - tx) / r;
-  gy = 0.5 * path_gy + 0.5 * (y - ty) / r;
-}
-
-double frictionmap(double x, double y, double rise) {
-  const double u = std::fabs(y - tracegen::path_y(x, rise));
-  const double t = std::clamp((30.0 - u) / 20.0, 0.0, 1.0);
-  return t * t * t * (10.0 + t * (-15.0 + 6.0 * t));
+  const ff::reference::Grad g = ff::reference::heightmap_gradient(x, y, rise);
+  gx = g.x;
+  gy = g.y;
 }
 
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
@@ -63,7 +53,7 @@ TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollows
       expected_hm = 0.5 - (t.state.velocity.x * gx + t.state.velocity.y * gy) / speed / (2.0 * max_gradient);
     }
     EXPECT_NEAR(static_cast<double>(t.heightmap_ideal), expected_hm, 1e-3) << k;
-    EXPECT_NEAR(static_cast<double>(t.frictionmap_ideal), frictionmap(t.state.position.x, t.state.position.y, -200.0),
+    EXPECT_NEAR(static_cast<double>(t.frictionmap_ideal), ff::reference::frictionmap_amplitude(t.state.position.x, t.state.position.y, -200.0),
                 2e-4)
         << k;
     ++checked;
