@@ -1,6 +1,10 @@
 // libFuzzer target: the message decoder and the HID reassembler. Whatever
 // the bytes: no crash; a decoded message re-encodes and decodes to the same
 // frame; a decoded condition prepares (or is refused) without harm.
+// Seeds: valid frames of every message type, written by the encoder itself at
+// build time (protocol_seeds.cpp). protocol_fixed_fuzz.cpp runs the same
+// checks on frames whose length and CRC are made right first.
+// FF_FUZZ_NO_ENTRY leaves out LLVMFuzzerTestOneInput (for that variant).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -11,7 +15,9 @@
 #include "frictionfield/protocol/codec.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+namespace ff::fuzz {
+
+int protocol_one_input(const uint8_t* data, size_t size) {
   using namespace ff::protocol;
   static Message m;  // large: keep it off the stack
   if (decode(data, size, m) == DecodeStatus::Ok) {
@@ -35,3 +41,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   return 0;
 }
+
+}  // namespace ff::fuzz
+
+#ifndef FF_FUZZ_NO_ENTRY
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return ff::fuzz::protocol_one_input(data, size);
+}
+#endif

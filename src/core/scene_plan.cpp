@@ -1,5 +1,6 @@
 #include "frictionfield/core/scene_plan.hpp"
 
+#include <cfloat>
 #include <cmath>
 #include <initializer_list>
 
@@ -12,6 +13,7 @@ const char* to_string(PrepareStatus s) {
     case PrepareStatus::InvalidParameter: return "invalid parameter (NaN, infinite or out of range)";
     case PrepareStatus::TableTooLarge: return "table larger than the RAM budget";
     case PrepareStatus::InvalidSampledMap: return "invalid sampled height map";
+    case PrepareStatus::NonFiniteField: return "field not finite on the screen (heights or gradients overflow float)";
   }
   return "?";
 }
@@ -141,6 +143,7 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
       return PrepareStatus::TableTooLarge;
     }
     uint32_t evaluations = 0;
+    bool finite = true;  // an overflowing node would poison every difference taken across it
     next.table_.fill([&](Vec2 p, float* out) {
       ++evaluations;
       if (!directional) {
@@ -161,7 +164,9 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
         out[0] = g.x;
         out[1] = g.y;
       }
+      finite = finite && std::isfinite(out[0]) && (channels < 2 || std::isfinite(out[1]));
     });
+    if (!finite) return PrepareStatus::NonFiniteField;
     next.stats_.gradient_evaluations += evaluations;
     next.stats_.table_bytes = static_cast<uint32_t>(next.table_.bytes());
     next.stats_.table_cols = cols;
@@ -170,7 +175,9 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
 
   if (def.rendering == Rendering::Directional) {
     const float max_g = next.find_max_gradient();
-    next.stats_.max_gradient = max_g * next.field_scale_;  // in the definition's units
+    // In the definition's units; weights near 1e36 take it past float: saturate.
+    const float max_in_units = max_g * next.field_scale_;
+    next.stats_.max_gradient = std::isfinite(max_in_units) ? max_in_units : FLT_MAX;
     // A field that is flat everywhere renders 0.5 (no direction to favour).
     next.inv_two_max_ = (max_g > 0.0f && std::isfinite(max_g)) ? 0.5f / max_g : 0.0f;
   }

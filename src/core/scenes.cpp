@@ -5,7 +5,7 @@ namespace ff::scenes {
 namespace {
 
 // A position-only scene of one slippery band along `curve`: fully slippery
-// for |u| <= 10 px, a 20 px quintic feather, sticky beyond (SPEC.md).
+// for |u| <= 10 px, a 20 px quintic feather, sticky beyond (docs/spec.md#frictionmap).
 SceneDefinition slippery_band(const PathCurve& curve) {
   SceneDefinition s;
   s.rendering = Rendering::PositionOnly;

@@ -3,14 +3,14 @@
 #include <cmath>
 #include <limits>
 
+#include "frictionfield/bus/clock.hpp"
+
 namespace ff {
 
 namespace {
 
-// Signed difference of two wrapping 32-bit microsecond stamps.
-int32_t elapsed_us(uint32_t later, uint32_t earlier) {
-  return static_cast<int32_t>(later - earlier);
-}
+// Stamps are the wrapping 32-bit micros(): differences by the clock's rule.
+constexpr int32_t elapsed_us(uint32_t later, uint32_t earlier) { return signed_elapsed(later, earlier); }
 
 float smoothstep(float t) {
   t = clamp(t, 0.0f, 1.0f);
@@ -97,10 +97,10 @@ void Tracker::reset() {
   have_pending_jump_ = false;
   lifting_ = false;
   stale_reported_ = false;
-  kx_ = KalmanAxis{};
-  ky_ = KalmanAxis{};
-  px_ = KalmanAxis{};
-  py_ = KalmanAxis{};
+  direction_x_ = KalmanAxis{};
+  direction_y_ = KalmanAxis{};
+  position_x_ = KalmanAxis{};
+  position_y_ = KalmanAxis{};
   have_tick_ = false;
   have_tick_candidate_ = false;
   filters_fresh_ = false;
@@ -129,11 +129,11 @@ void Tracker::restart_at(const SensorSample& s) {
   filter_x_.reset();
   filter_y_.reset();
   const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
-  kx_.start(s.x, r);
-  ky_.start(s.y, r);
+  direction_x_.start(s.x, r);
+  direction_y_.start(s.y, r);
   const float rp = config_.position_kalman.measurement_noise_px * config_.position_kalman.measurement_noise_px;
-  px_.start(s.x, rp);
-  py_.start(s.y, rp);
+  position_x_.start(s.x, rp);
+  position_y_.start(s.y, rp);
   filters_fresh_ = false;
 }
 
@@ -158,18 +158,18 @@ void Tracker::accept(const SensorSample& s, bool need_filter) {
   const float dt_s = static_cast<float>(dt_us) * 1e-6f;
   const float q = config_.kalman.accel_noise_px_s2 * config_.kalman.accel_noise_px_s2;
   const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
-  kx_.predict(dt_s, q);
-  ky_.predict(dt_s, q);
-  kx_.update(s.x, r);
-  ky_.update(s.y, r);
+  direction_x_.predict(dt_s, q);
+  direction_y_.predict(dt_s, q);
+  direction_x_.update(s.x, r);
+  direction_y_.update(s.y, r);
   if (config_.estimator == Estimator::SplitKalman) {
     const KalmanConfig& pk = config_.position_kalman;
     const float qp = pk.accel_noise_px_s2 * pk.accel_noise_px_s2;
     const float rp = pk.measurement_noise_px * pk.measurement_noise_px;
-    px_.predict(dt_s, qp);
-    py_.predict(dt_s, qp);
-    px_.update(s.x, rp);
-    py_.update(s.y, rp);
+    position_x_.predict(dt_s, qp);
+    position_y_.predict(dt_s, qp);
+    position_x_.update(s.x, rp);
+    position_y_.update(s.y, rp);
   }
 }
 
@@ -266,13 +266,13 @@ Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
     }
     case Estimator::Kalman: {
       const float dt_s = static_cast<float>(extrapolation_us(now_us)) * 1e-6f;
-      velocity = {kx_.v, ky_.v};
-      return {kx_.p + kx_.v * dt_s, ky_.p + ky_.v * dt_s};
+      velocity = {direction_x_.v, direction_y_.v};
+      return {direction_x_.p + direction_x_.v * dt_s, direction_y_.p + direction_y_.v * dt_s};
     }
     case Estimator::SplitKalman: {
       const float dt_s = static_cast<float>(extrapolation_us(now_us)) * 1e-6f;
-      velocity = {kx_.v, ky_.v};  // smooth: the direction
-      return {px_.p + px_.v * dt_s, py_.p + py_.v * dt_s};  // fast: the position
+      velocity = {direction_x_.v, direction_y_.v};  // smooth: the direction
+      return {position_x_.p + position_x_.v * dt_s, position_y_.p + position_y_.v * dt_s};  // fast: the position
     }
   }
   return {last_.x, last_.y};

@@ -15,8 +15,8 @@ ReplaySummary replay(const std::vector<TraceRow>& rows, HapticPipeline& pipeline
 
   // Rows arrive in file order. A row stamped far ahead of the rows behind it
   // (a clock glitch, more than kMaxHoldUs) arrives with the next one instead
-  // of holding the whole trace back; smaller inversions keep SPEC.md's rule
-  // (the tracker then judges the earlier stamp). Monotonic traces: SPEC.md exactly.
+  // of holding the whole trace back; smaller inversions keep the spec's rule
+  // (the tracker then judges the earlier stamp). Monotonic traces: docs/spec.md#tick-timing exactly.
   constexpr uint64_t kMaxHoldUs = 20000;
   std::vector<uint64_t> arrival(rows.size());
   uint64_t next_arrival = UINT64_MAX;

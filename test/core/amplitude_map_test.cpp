@@ -95,6 +95,28 @@ TEST(AmplitudeMap, SCurveIsMonotonicAndKeepsEndpointsAndCentre) {
   }
 }
 
+TEST(AmplitudeMap, SCurveValuesByHand) {
+  // S5(1/4) = 6/4^5 - 15/4^4 + 10/4^3 = 0.005859375 - 0.05859375 + 0.15625
+  //         = 0.103515625 (exact in float). S5(3/4) = 1 - S5(1/4).
+  AmplitudeMap m;
+  AmplitudeSettings a;
+  a.s_curve = 1.0f;
+  ASSERT_TRUE(m.configure(a));
+  EXPECT_FLOAT_EQ(m.scale(0.25f), 0.103515625f);
+  EXPECT_FLOAT_EQ(m.scale(0.75f), 0.896484375f);
+  a.s_curve = 0.5f;  // halfway: 0.25 + 0.5 (0.103515625 - 0.25)
+  ASSERT_TRUE(m.configure(a));
+  EXPECT_FLOAT_EQ(m.scale(0.25f), 0.1767578125f);
+  a.s_curve = 1.0f;
+  a.strength = 0.5f;  // then strength: 0.5 + 0.5 (0.103515625 - 0.5)
+  ASSERT_TRUE(m.configure(a));
+  EXPECT_FLOAT_EQ(m.scale(0.25f), 0.3017578125f);
+  a.s_curve = 0.0f;  // off: the identity before strength
+  a.strength = 1.0f;
+  ASSERT_TRUE(m.configure(a));
+  EXPECT_FLOAT_EQ(m.scale(0.25f), 0.25f);
+}
+
 TEST(AmplitudeMap, IdleCodeFollowsTheCalibration) {
   AmplitudeMap m;
   AmplitudeSettings a;

@@ -1,5 +1,5 @@
 // The 2 kHz tick end to end: scenes switch atomically, idle without a finger,
-// only what the scene needs is computed, and SPEC.md's output identity holds.
+// only what the scene needs is computed, and the replay-output identity (docs/spec.md#replay-output) holds.
 #include "frictionfield/core/haptic_pipeline.hpp"
 
 #include <gtest/gtest.h>
@@ -48,6 +48,59 @@ TEST(HapticPipeline, OutputObeysTheSpecIdentity) {
   const Vec2 g = p->plan().normalized_gradient(t.position);
   EXPECT_NEAR(static_cast<double>(t.amplitude), 0.5 - 0.66 * static_cast<double>(dot(t.direction, g)), 1e-6);
   EXPECT_EQ(t.dac, static_cast<uint16_t>(static_cast<double>(t.amplitude) * 4095.0 + 0.5));
+}
+
+// The 2 kHz interrupt can fire at any instruction of the main loop, also
+// while set_condition() prepares. The pipeline's clock hook is called inside
+// set_condition() (before and after preparation, before the swap): it stands
+// in for the interrupt and runs a tick there.
+struct InterruptDuringPreparation {
+  static HapticPipeline* pipeline;
+  static uint32_t now_us;
+  static std::vector<TickOutput> ticks;
+  static std::vector<Needs> rendered_needs;
+  static uint32_t micros() {
+    now_us += kTickPeriodUs;
+    pipeline->post_sample({now_us, 400.0f, 240.0f, true});
+    ticks.push_back(pipeline->tick(now_us));
+    rendered_needs.push_back(pipeline->plan().needs());
+    return now_us;
+  }
+};
+HapticPipeline* InterruptDuringPreparation::pipeline = nullptr;
+uint32_t InterruptDuringPreparation::now_us = 0;
+std::vector<TickOutput> InterruptDuringPreparation::ticks;
+std::vector<Needs> InterruptDuringPreparation::rendered_needs;
+
+TEST(HapticPipeline, TickDuringPreparationRendersTheOldSceneWhole) {
+  using I = InterruptDuringPreparation;
+  auto p = std::make_unique<HapticPipeline>();
+  I::pipeline = p.get();
+  // Old scene: the frictionmap at half strength. A finger on the middle path
+  // (|u| = 0) gives A = 1, so A_s = 0.5 + 0.5 (1 - 0.5) = 0.75, code
+  // round(0.75 * 4095) = 3071.
+  ASSERT_EQ(p->set_condition(condition(scenes::frictionmap(Target::Middle), 0.5f)), PrepareStatus::Ok);
+  for (int k = 0; k < 40; ++k) I::micros();  // the finger settles on the path
+  ASSERT_TRUE(I::ticks.back().present);
+  ASSERT_EQ(I::ticks.back().dac, 3071);
+  I::ticks.clear();
+  I::rendered_needs.clear();
+  // New scene: constant 0.25 at full strength, code round(0.25 * 4095) = 1024.
+  SceneDefinition next = scenes::neutral();
+  next.constant = 0.25f;
+  p->set_clock(&I::micros);
+  ASSERT_EQ(p->set_condition(condition(next)), PrepareStatus::Ok);
+  p->set_clock(nullptr);
+  ASSERT_GE(I::ticks.size(), 2u);  // before and after preparation
+  for (size_t k = 0; k < I::ticks.size(); ++k) {
+    EXPECT_EQ(I::rendered_needs[k], Needs::Position) << k;  // the slot being rendered was not written
+    EXPECT_FLOAT_EQ(I::ticks[k].amplitude, 0.75f) << k;    // the old scene, whole
+    EXPECT_EQ(I::ticks[k].dac, 3071) << k;
+  }
+  const TickOutput after = p->tick(I::now_us + kTickPeriodUs);  // the first tick after the swap
+  EXPECT_EQ(p->plan().needs(), Needs::Nothing);
+  EXPECT_FLOAT_EQ(after.amplitude, 0.25f);
+  EXPECT_EQ(after.dac, 1024);
 }
 
 TEST(HapticPipeline, NeutralNeedsNoTrackingAndRendersHalf) {

@@ -5,31 +5,14 @@
 #include <cmath>
 #include <random>
 
+#include "reference_model.hpp"
+
 namespace ff {
 namespace {
 
-// Appendix G / SPEC.md in double, written independently of the core.
-struct ReferenceOneEuro {
-  bool from_filtered = true;
-  double fr = 2000, fcmin = 20, beta = 0.0004, fcd = 25;
-  bool init = false;
-  double xhat = 0, xprev = 0, dxhat = 0;
-  static double alpha(double fc, double fr) { return 1.0 / (1.0 + fr / (2 * M_PI * fc)); }
-  double operator()(double x) {
-    if (!init) {
-      init = true;
-      xhat = xprev = x;
-      dxhat = 0;
-      return x;
-    }
-    const double dx = (x - (from_filtered ? xhat : xprev)) * fr;
-    dxhat = alpha(fcd, fr) * dx + (1 - alpha(fcd, fr)) * dxhat;
-    const double a = alpha(fcmin + beta * std::fabs(dxhat), fr);
-    xhat = a * x + (1 - a) * xhat;
-    xprev = x;
-    return xhat;
-  }
-};
+// The double reference of appendix G (docs/spec.md#thesis-tracker), written
+// independently of the core: test/stress/reference_model.hpp.
+using stress::ReferenceOneEuro;
 
 TEST(OneEuroFilter, HandDerivedFirstSteps) {
   OneEuroFilter f;

@@ -1,5 +1,5 @@
 #pragma once
-// Independent double-precision forms of SPEC.md's fields, written from the
+// Independent double-precision forms of the fields of docs/spec.md#scenes, written from the
 // spec (not from the core), for tests to compare against.
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Hand-derived values of every built-in scene at named points (SPEC.md "Scenes").
+// Hand-derived values of every built-in scene at named points (docs/spec.md#scenes).
 #include "frictionfield/core/scenes.hpp"
 
 #include <gtest/gtest.h>

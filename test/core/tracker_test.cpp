@@ -6,13 +6,15 @@
 #include <cmath>
 #include <vector>
 
+#include "reference_model.hpp"
+
 namespace ff {
 namespace {
 
 struct TrackerRun {
   Tracker tracker;
   explicit TrackerRun(const TrackerConfig& c) : tracker(c) {}
-  // Feeds samples due by each tick (SPEC.md timing) and records the states.
+  // Feeds samples due by each tick (docs/spec.md#tick-timing) and records the states.
   std::vector<TrackState> replay(const std::vector<SensorSample>& samples, uint32_t t0, int ticks) {
     std::vector<TrackState> out;
     size_t next = 0;
@@ -42,44 +44,6 @@ std::vector<SensorSample> line(uint32_t t0, Vec2 p0, Vec2 v_px_s, int n, uint32_
   return s;
 }
 
-// Thesis alg. 3/4 with y extrapolated from y, in double, independent of the core.
-struct ReferenceThesis {
-  struct Euro {
-    bool init = false;
-    double xhat = 0, dxhat = 0;
-    double step(double x) {
-      const double fr = 2000;
-      auto alpha = [&](double fc) { return 1.0 / (1.0 + fr / (2 * M_PI * fc)); };
-      if (!init) { init = true; xhat = x; dxhat = 0; return x; }
-      dxhat = alpha(25) * (x - xhat) * fr + (1 - alpha(25)) * dxhat;
-      const double a = alpha(20 + 0.0004 * std::fabs(dxhat));
-      return xhat = a * x + (1 - a) * xhat;
-    }
-  } ex, ey;
-  double x = 0, y = 0, dxraw = 0, dyraw = 0, dt = 1;
-  double lastt = 0;
-  bool have = false;
-  int idx = 0;
-  void sample(const SensorSample& s) {
-    if (have) {
-      dt = static_cast<double>(s.t_us) - lastt;
-      dxraw = static_cast<double>(s.x) - x;
-      dyraw = static_cast<double>(s.y) - y;
-    }
-    have = true;
-    x = s.x;
-    y = s.y;
-    lastt = s.t_us;
-    idx = 0;
-  }
-  void tick(double& fx, double& fy) {
-    const double xe = x + idx * dxraw / dt * 500, ye = y + idx * dyraw / dt * 500;
-    ++idx;
-    fx = ex.step(xe);
-    fy = ey.step(ye);
-  }
-};
-
 TEST(Tracker, ThesisPipelineMatchesIndependentReference) {
   std::vector<SensorSample> s;
   for (int i = 0; i < 300; ++i) {
@@ -89,15 +53,16 @@ TEST(Tracker, ThesisPipelineMatchesIndependentReference) {
   }
   TrackerRun run(TrackerConfig::thesis());
   const std::vector<TrackState> got = run.replay(s, 1000, 2990);
-  ReferenceThesis ref;
+  // Thesis alg. 3/4 with y extrapolated from y, in double, independent of the core.
+  stress::ReferenceThesisTracker ref;
   size_t next = 0;
   double worst = 0;
   for (int k = 0; k < 2990; ++k) {
     const uint32_t now = 1000u + static_cast<uint32_t>(k) * 500u;
-    while (next < s.size() && s[next].t_us <= now) ref.sample(s[next++]);
-    double fx, fy;
-    ref.tick(fx, fy);
-    worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - fx, static_cast<double>(got[k].position.y) - fy));
+    while (next < s.size() && s[next].t_us <= now) ref.on_sample(s[next++]);
+    stress::DVec p, direction;
+    ref.on_tick(p, direction);
+    worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - p.x, static_cast<double>(got[k].position.y) - p.y));
   }
   EXPECT_LT(worst, 0.01) << "px";
 }

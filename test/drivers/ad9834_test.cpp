@@ -1,4 +1,4 @@
-// AD9834 driver: frequency words by hand (SPEC.md's 34.9 kHz both ways), the
+// AD9834 driver: frequency words by hand (docs/spec.md#dac: 34.9 kHz both ways), the
 // exact SPI words of the start-up (replayed), and every operation through the
 // emulated chip, which must never see a word it would misread.
 #include "frictionfield/drivers/ad9834.hpp"
@@ -25,7 +25,7 @@ TEST(Ad9834Word, SpecCarrierRoundsToNearest) {
 }
 
 TEST(Ad9834Word, TruncationReproducesTheLinuxDriver) {
-  // ad9834_calc_freqreg: (u64)fout << 28 / mclk = 124911 = 0x1E7EF; words 0x67EF, 0x4007 (SPEC.md).
+  // ad9834_calc_freqreg: (u64)fout << 28 / mclk = 124911 = 0x1E7EF; words 0x67EF, 0x4007 (docs/spec.md#dac).
   const uint32_t w = ad9834::frequency_word(34900, ad9834::kMclkHz, ad9834::Rounding::Truncate);
   EXPECT_EQ(w, 124911u);
   EXPECT_EQ(ad9834::freq_lsb_word(0, w), 0x67EF);

@@ -126,9 +126,9 @@ TEST(LoadCells, AFingerDuringTheTareStartsItAgain) {
 
 TEST(LoadCells, AFailedConversionSkipsOneReading) {
   Rig rig;
-  rig.adc.fail_read(5);  // the second reading's second channel
   LoadReading r;
   EXPECT_TRUE(rig.cells.step(30000, false, r));
+  rig.adc.fail_next(1);  // the second reading's first channel
   EXPECT_FALSE(rig.cells.step(60000, false, r));
   EXPECT_EQ(rig.cells.read_errors(), 1u);
   rig.t = 60000;

@@ -2,7 +2,11 @@
 // crash, hang or sanitizer report (20000-run smoke plus a 3.0 million-run,
 // 150 s session). Pinned here: the smallest input it generated for each
 // decoder verdict, so those verdicts cannot drift; crash inputs, should it
-// ever find one, go here too.
+// ever find one, go here too. The verdicts were read off the decoder under
+// test: they are change detectors. Beside them, FrameLevelVerdictsByHand
+// derives the frame-level part of every verdict from the zForce frame rule
+// (0xEE, length <= 128, then that many bytes) without the decoder, and each
+// finding says in words why its verdict is right.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -47,6 +51,29 @@ INSTANTIATE_TEST_SUITE_P(
         Finding{"EE0BEF09400202006803810100", FrameError::None, "a frequency answer with a stylus rate"},
         Finding{"EE0CEF0A6C0072006604410200FF", FrameError::None,
                 "deviceInformation and signalsLayout before touchFormat, no address"}));
+
+// The frame rule by hand, independent of FrameDecoder: the header byte, the
+// announced length against 128, the bytes present. Anything else passes the
+// door and gets a BER-level verdict.
+FrameError frame_level_verdict(const std::vector<uint8_t>& b) {
+  if (b.empty() || b[0] != 0xEE) return FrameError::WrongHeader;
+  if (b.size() < 2) return FrameError::Truncated;
+  if (b[1] > 128) return FrameError::LengthOverMax;
+  if (b.size() < 2u + b[1]) return FrameError::Truncated;
+  return FrameError::None;
+}
+
+TEST_P(FuzzFindingTest, FrameLevelVerdictsByHand) {
+  const std::vector<uint8_t> b = hex(GetParam().bytes);
+  const FrameError v = GetParam().verdict;
+  const bool frame_level = v == FrameError::WrongHeader || v == FrameError::LengthOverMax || v == FrameError::Truncated;
+  if (frame_level) {
+    EXPECT_EQ(frame_level_verdict(b), v) << GetParam().why;
+  } else {
+    EXPECT_EQ(frame_level_verdict(b), FrameError::None) << GetParam().why;  // got past the door
+    EXPECT_EQ(b.size(), 2u + b[1]) << GetParam().why;
+  }
+}
 
 TEST(FuzzFinding, TwoTouchesWithTheTrackedOneSecond) {
   const std::vector<uint8_t> b =

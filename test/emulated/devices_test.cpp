@@ -27,12 +27,13 @@ TEST(ScriptedAdc, PlaysEachChannelsScriptThenRepeatsTheLast) {
   EXPECT_EQ(adc.reads(), 4u);
 }
 
-TEST(ScriptedAdc, FailsTheChosenRead) {
+TEST(ScriptedAdc, FailsTheNextReads) {
   ScriptedAdc adc;
-  adc.fail_read(1);
   uint16_t v = 0;
   EXPECT_EQ(adc.read(0, v), BusStatus::Ok);
-  EXPECT_EQ(adc.read(0, v), BusStatus::BusError);
+  adc.fail_next(2, BusStatus::Timeout);
+  EXPECT_EQ(adc.read(0, v), BusStatus::Timeout);
+  EXPECT_EQ(adc.read(1, v), BusStatus::Timeout);
   EXPECT_EQ(adc.read(0, v), BusStatus::Ok);
 }
 

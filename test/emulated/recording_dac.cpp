@@ -10,9 +10,9 @@ std::vector<uint16_t> RecordingDac::codes() const {
 }
 
 BusStatus RecordingDac::do_write(uint16_t code) {
-  if (failing_ > 0) {
-    --failing_;
-    return BusStatus::BusError;
+  if (fail_count_ > 0) {
+    --fail_count_;
+    return fail_status_;
   }
   writes_.push_back({clock_ ? clock_->now_us() : 0u, code});
   return BusStatus::Ok;

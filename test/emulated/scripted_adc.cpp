@@ -3,8 +3,11 @@
 namespace ff::emulated {
 
 BusStatus ScriptedAdc::do_read(uint8_t channel, uint16_t& value) {
-  const uint32_t index = reads_++;
-  if (failing_.count(index) != 0) return BusStatus::BusError;
+  ++reads_;
+  if (fail_count_ > 0) {
+    --fail_count_;
+    return fail_status_;
+  }
   const std::vector<uint16_t>& s = scripts_[channel];
   if (s.empty()) {
     value = 0;

@@ -1,5 +1,8 @@
 // Golden traces: every bundled trace replayed through the whole pipeline and
-// compared with its stored output. Tolerances: position 1e-3 px, direction
+// compared with its stored output. The stored outputs were written by the
+// code they test (FF_UPDATE_GOLDEN=1): they are change detectors, not proofs.
+// Beside them, GoldenOutputsObeyTheSpec checks every stored row against an
+// independent double-precision form of the spec's rendering. Tolerances: position 1e-3 px, direction
 // 1e-4, amplitude 1e-5 (well under one DAC LSB = 2.4e-4), DAC code +-1 (a
 // half-code rounding may flip between compilers).
 // FF_UPDATE_GOLDEN=1 rewrites the files after an intended change.
@@ -11,6 +14,7 @@
 #include <memory>
 #include <sstream>
 
+#include "../core/reference_fields.hpp"
 #include "frictionfield/host/replay.hpp"
 #include "frictionfield/host/scene_spec.hpp"
 
@@ -104,6 +108,46 @@ TEST_P(GoldenReplay, MatchesStoredOutput) {
     ++i;
   }
   EXPECT_EQ(i, got.size()) << "replay has more ticks than the golden";
+}
+
+// The independent check: each stored row's amplitude follows from its own
+// position and direction by docs/spec.md#rendering and #amplitude, computed in
+// double from the spec (test/core/reference_fields.hpp), not by the core:
+//   heightmap:   A_s = 0.5 - s (vx, vy) . G / (2 max|G|)
+//   frictionmap: A_s = 0.5 + s (S5((30 - |u|) / 20) - 0.5)
+// and dac = round(4095 A_s) (the default calibration), or the idle output
+// (0, code 0) without a finger.
+TEST_P(GoldenReplay, GoldenOutputsObeyTheSpec) {
+  const GoldenCase& c = GetParam();
+  const double T = c.target == "top" ? -200.0 : (c.target == "bottom" ? 200.0 : 0.0);
+  const double s = c.strength;
+  const double max_gradient = c.scene == "heightmap" ? reference::heightmap_max_gradient_scan(T) : 0.0;
+  std::ifstream in(std::string(FF_TRACE_DIR) + "/" + c.golden_name());
+  ASSERT_TRUE(in);
+  std::string line;
+  std::getline(in, line);
+  int checked = 0;
+  while (std::getline(in, line)) {
+    const std::vector<double> v = fields(line);
+    ASSERT_EQ(v.size(), 7u);
+    const double x = v[1], y = v[2], vx = v[3], vy = v[4], amplitude = v[5], dac = v[6];
+    EXPECT_NEAR(dac, std::floor(amplitude * 4095.0 + 0.5), 1.0) << line;
+    if (amplitude == 0.0 && dac == 0.0 && vx == 0.0 && vy == 0.0) continue;  // idle (or sticky) output
+    double expected = 0.5;
+    if (c.scene == "heightmap") {
+      const reference::Grad g = reference::heightmap_gradient(x, y, T);
+      expected = 0.5 - s * (vx * g.x + vy * g.y) / (2.0 * max_gradient);
+    } else {
+      expected = 0.5 + s * (reference::frictionmap_amplitude(x, y, T) - 0.5);
+    }
+    // 1e-3: the stored position is rounded to 1e-3 px and direction to 1e-5,
+    // and the core's max|G| is searched between pixel centres.
+    EXPECT_NEAR(amplitude, expected, 1e-3) << c.golden_name() << ": " << line;
+    ++checked;
+  }
+  if (c.trace != "edge_no_finger.csv") {
+    EXPECT_GT(checked, 0) << c.golden_name();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Traces, GoldenReplay, ::testing::ValuesIn(load_manifest()),

@@ -1,4 +1,4 @@
-// The replay's timing is SPEC.md's: ticks at t0 + k * 500 us, samples at or
+// The replay's timing is docs/spec.md#tick-timing's: ticks at t0 + k * 500 us, samples at or
 // before a tick delivered before it.
 #include "frictionfield/host/replay.hpp"
 

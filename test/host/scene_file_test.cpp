@@ -16,7 +16,7 @@ float amp(const SceneDefinition& s, Vec2 p, Vec2 d) {
 
 TEST(SceneFile, TheHeightmapWrittenAsAGeneralSceneIsTheHeightmap) {
   const char* text =
-      "# SPEC.md heightmap, target top, as a general scene\n"
+      "# the spec's heightmap, target top, as a general scene\n"
       "rendering directional\n"
       "element path_sink weight 0.5 a 0.2 curve cubic -200\n"
       "element point_sink weight 0.5 centre 700 40\n";

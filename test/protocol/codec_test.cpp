@@ -67,10 +67,12 @@ TEST(Codec, QueryStatusIsTheHandDerivedFrame) {
   Message m;
   m.type = MessageType::QueryStatus;
   m.sequence = 7;
-  // 'F' 'F', version 2, type 0x02, sequence 7, length 0, then CRC-16/CCITT-FALSE
-  // of 02 02 07 00 00 = 0x3D77 (worked out by hand-checked script), little-endian.
+  // 'F' 'F', version 2, type 0x02, sequence 7, length 0, then CRC-16/CCITT-FALSE of
+  // 02 02 07 00 00 = 0x3D77, low byte first. Computed outside the project, by Python's
+  // binascii.crc_hqx(bytes([2, 2, 7, 0, 0]), 0xFFFF) (poly 0x1021, init 0xFFFF, no reflection, no final xor).
   const std::vector<uint8_t> expected = {'F', 'F', 2, 0x02, 7, 0, 0, 0x77, 0x3D};
   EXPECT_EQ(frame_of(m), expected);
+  EXPECT_EQ(crc16_ccitt(reinterpret_cast<const uint8_t*>("123456789"), 9), 0x29B1);  // the standard check value
 }
 
 TEST(Codec, ForceIsExplicitLittleEndian) {
@@ -78,7 +80,7 @@ TEST(Codec, ForceIsExplicitLittleEndian) {
   m.type = MessageType::Force;
   m.sequence = 9;
   m.force = {0x01020304u, 1.0f, true};
-  // t_us 04 03 02 01, 1.0f = 0x3F800000 -> 00 00 80 3F, over-force 01; CRC 0x08BE.
+  // t_us 04 03 02 01, 1.0f = 0x3F800000 -> 00 00 80 3F, over-force 01; CRC 0x08BE (binascii.crc_hqx as above).
   const std::vector<uint8_t> expected = {'F', 'F', 2, 0x83, 9, 9, 0, 0x04, 0x03, 0x02, 0x01,
                                          0x00, 0x00, 0x80, 0x3F, 0x01, 0xBE, 0x08};
   EXPECT_EQ(frame_of(m), expected);

@@ -56,7 +56,7 @@ TEST(FuzzRegression, BundledTracesThroughTheTraceTarget) {
 }
 
 TEST(FuzzRegression, SceneFileCorpus) {
-  EXPECT_GE(replay_all(fs::path(FF_FUZZ_CORPUS_DIR) / "scene_file", ff::fuzz::scene_file_one_input), 5u);
+  EXPECT_GE(replay_all(fs::path(FF_FUZZ_CORPUS_DIR) / "scene_file", ff::fuzz::scene_file_one_input), 6u);
 }
 
 // Fuzzer finds not fixed yet (scripts/stress-report saves them in
@@ -65,8 +65,8 @@ TEST(FuzzRegression, SceneFileCorpus) {
 TEST(FuzzRegression, DISABLED_TraceCsvOpenFinds) {
   replay_all(fs::path(FF_FUZZ_CORPUS_DIR) / "trace_csv_open", ff::fuzz::trace_csv_one_input);
 }
-TEST(FuzzRegression, SceneFileOpenFinds) {
-  EXPECT_GE(replay_all(fs::path(FF_FUZZ_CORPUS_DIR) / "scene_file_open", ff::fuzz::scene_file_one_input), 1u);
+TEST(FuzzRegression, DISABLED_SceneFileOpenFinds) {
+  replay_all(fs::path(FF_FUZZ_CORPUS_DIR) / "scene_file_open", ff::fuzz::scene_file_one_input);
 }
 
 TEST(FuzzRegression, EmptyAndBinaryInputs) {

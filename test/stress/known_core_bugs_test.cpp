@@ -104,7 +104,7 @@ TEST(CoreRegressions, ExtremeWeightsRenderFlat) {
 // is up to 27 % longer (or shorter) than 1. The thesis configuration (no
 // fade) renders v_hat at any speed; with the derivative from the previous
 // raw value dxhat decays through every subnormal at rest. The amplitude is
-// still clamped to [0, 1], but SPEC.md's unit direction and its output
+// still clamped to [0, 1], but the spec's unit direction and its output
 // identity fail for those ticks.
 TEST(CoreRegressions, DirectionLongerThanOneAtSubnormalSpeed) {
   TrackerConfig thesis = TrackerConfig::thesis();
@@ -163,7 +163,7 @@ TEST(CoreRegressions, TickClockLeapOfAnHourKeepsTheStaleFinger) {
 // This random general scene (from Precision.ClosedFormRenderingAgainstDouble
 // at 100 cases) gets max|G| 113.30 where a double 4 px scan with refinement
 // finds 122.76 (-7.7 %): G_norm reaches 0.54 and the amplitude saturates at
-// its clamp around the missed peaks. Safe (clamped), but not SPEC.md's
+// its clamp around the missed peaks. Safe (clamped), but not docs/spec.md#rendering's
 // G / (2 max|G|). Expected within 0.1 %.
 TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
   const char* text =
@@ -207,15 +207,15 @@ TEST(CoreRegressions, MaxGradientMissesATexturePeakNearTheEdge) {
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 71.73
 }
 
-// Bug 10, open (field_element.cpp, valley_slope): d|g|/du = a^2 u^2 /
+// Bug 10, fixed in d26ca17 (field_element.cpp, valley_slope): d|g|/du = a^2 u^2 /
 // (1 + a^2 u^2) is inf / inf = NaN once (a u)^2 overflows float (|a u| >
 // 1.8e19), e.g. a valley whose path runs off to y = 4e33 (a finite scene-file
 // value). normalized_gradient() then returns NaN (its contract: |G_norm| <=
 // 0.5) and the amplitude falls back to 0.5 through clamp_finite: safe, but the
 // field should saturate at slope +-1. Found by fuzz/scene_file_fuzz.cpp
-// (corpus/scene_file_open/). The scene parser also took "24\0..." as 24 (the
+// (its input now in corpus/scene_file/). The scene parser also took "24\0..." as 24 (the
 // NUL ends the C string strtof sees: host/scene_file.cpp Words::point).
-TEST(KnownCoreBugs, ValleyFarFromItsPathGivesANaNGradient) {
+TEST(CoreRegressions, ValleyFarFromItsPathGivesAFiniteGradient) {
   const Vec2 points[] = {{100.0f, 24.0f}, {700.0f, 4.04e33f}};
   SceneDefinition s;
   s.rendering = Rendering::Directional;
@@ -223,7 +223,7 @@ TEST(KnownCoreBugs, ValleyFarFromItsPathGivesANaNGradient) {
   auto plan = std::make_unique<ScenePlan>();
   ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
   const Vec2 g = plan->normalized_gradient({400.0f, 240.0f});  // u = 240 - 2e33
-  EXPECT_TRUE(is_finite(g));                     // got NaN
+  EXPECT_TRUE(is_finite(g));                     // was NaN
   EXPECT_LE(length(g), 0.5f + 1e-6f);
 }
 

@@ -1,5 +1,5 @@
 // float32 against the double reference (stress_precision.hpp, written from
-// SPEC.md): the rendering of every closed-form scene at random positions and
+// docs/spec.md#elements): the rendering of every closed-form scene at random positions and
 // directions, the core's max|G|, and the whole thesis chain (tracking +
 // rendering) on random clean traces. The worst deviations are printed and bounded.
 #include "stress_precision.hpp"
@@ -29,7 +29,7 @@ TEST(Precision, ClosedFormRenderingAgainstDouble) {
 }
 
 TEST(Precision, ThesisChainAgainstDouble) {
-  // SPEC.md's tracker and the heightmap, float32 end to end, against the
+  // The thesis tracker (docs/spec.md#thesis-tracker) and the heightmap, float32 end to end, against the
   // same chain in double on the same clean reports.
   const ChainPrecision r = thesis_chain_precision(base_seed(), cases_or(FF_STRESS_TEST_CASES));
   std::printf("[precision] thesis chain, %d traces, %llu ticks (%llu moving): worst position %.3g px, worst amplitude %.3g\n",

@@ -13,7 +13,7 @@ constexpr double kMaxX = 799.0, kMaxY = 479.0;
 double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 double clamp01(double v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
 
-// |(1/a) atan(a u) - u| and its derivative in u (SPEC.md heightmap).
+// |(1/a) atan(a u) - u| and its derivative in u (docs/spec.md#heightmap).
 double valley_height(double u, double a) { return std::fabs(std::atan(a * u) / a - u); }
 double valley_slope(double u, double a) {
   const double au2 = (a * u) * (a * u);
@@ -71,7 +71,7 @@ detail::DElement widen(const FieldElement& e) {
 void curve_at(const detail::DCurve& c, double x, double& y, double& slope) {
   switch (c.kind) {
     case CurveKind::Cubic: {
-      // SPEC.md: y = -2T/L^3 s^3 + 3T/L^2 s^2 + y0 on [x0, x0 + L], flat outside.
+      // docs/spec.md#paths: y = -2T/L^3 s^3 + 3T/L^2 s^2 + y0 on [x0, x0 + L], flat outside.
       const double L = c.length, T = c.rise;
       const double s = std::min(L, std::max(0.0, x - c.x0));
       y = -2.0 * T / (L * L * L) * s * s * s + 3.0 * T / (L * L) * s * s + c.y0;
@@ -122,7 +122,7 @@ double height_of(const detail::DElement& e, double x, double y) {
       curve_at(e.curve, x, yc, slope);
       return valley_height(y - yc, e.a);
     }
-    case ElementKind::Tunnel:  // SPEC.md pilots: H = | w/s atan(s/w (y - y_c)) - (y - y_c) |
+    case ElementKind::Tunnel:  // docs/spec.md#pilots: H = | w/s atan(s/w (y - y_c)) - (y - y_c) |
       return valley_height(y - e.t_yc, e.t_scale / tunnel_width(e, x));
     case ElementKind::Vortex:
       return 0.0;
@@ -157,7 +157,7 @@ DVec gradient_of(const detail::DElement& e, double x, double y) {
       const double dw_dx = inside ? (e.t_w1 - e.t_w0) / e.t_length : 0.0;
       return {-sign_of(dy) * dh_dw * dw_dx, valley_slope(dy, k)};
     }
-    case ElementKind::Vortex:  // SPEC.md: G = (-(y - yc), x - xc)
+    case ElementKind::Vortex:  // docs/spec.md#elements: G = (-(y - yc), x - xc)
       return {-(y - e.cy), x - e.cx};
     case ElementKind::Saddle:
       return {x - e.cx, -(y - e.cy)};
@@ -297,7 +297,7 @@ ReferenceAmplitude::ReferenceAmplitude(const AmplitudeSettings& s, bool calibrat
       amps_.push_back(s.calibration.amplitude[i]);
       codes_.push_back(s.calibration.code[i]);
     }
-  } else {  // SPEC.md's default: code = round(A * 4095)
+  } else {  // docs/spec.md#amplitude default: code = round(A * 4095)
     amps_ = {0.0, 1.0};
     codes_ = {0.0, 4095.0};
   }
@@ -319,18 +319,19 @@ int ReferenceAmplitude::dac(double a, bool* near_tie) const {
   return static_cast<int>(std::min(4095.0, std::max(0.0, std::floor(c + 0.5))));
 }
 
-double ReferenceThesisTracker::Euro::step(double x) {
-  const double fr = 2000.0;
-  auto alpha = [&](double fc) { return 1.0 / (1.0 + fr / (2.0 * kPiD * fc)); };
+double ReferenceOneEuro::operator()(double x) {
+  auto alpha = [&](double fc) { return 1.0 / (1.0 + rate_hz / (2.0 * kPiD * fc)); };
   if (!init) {
     init = true;
-    xhat = x;
+    xhat = xprev = x;
     dxhat = 0.0;
     return x;
   }
-  dxhat = alpha(25.0) * (x - xhat) * fr + (1.0 - alpha(25.0)) * dxhat;
-  const double a = alpha(20.0 + 0.0004 * std::fabs(dxhat));
+  const double dx = (x - (from_filtered ? xhat : xprev)) * rate_hz;
+  dxhat = alpha(derivative_cutoff_hz) * dx + (1.0 - alpha(derivative_cutoff_hz)) * dxhat;
+  const double a = alpha(min_cutoff_hz + beta * std::fabs(dxhat));
   xhat = a * x + (1.0 - a) * xhat;
+  xprev = x;
   return xhat;
 }
 
@@ -353,7 +354,7 @@ double ReferenceThesisTracker::filtered_speed() const { return std::hypot(ex_.dx
 void ReferenceThesisTracker::on_tick(DVec& position, DVec& direction) {
   const double h = static_cast<double>(n_) * 500.0;
   ++n_;
-  position = {ex_.step(x_ + vx_ * h), ey_.step(y_ + vy_ * h)};
+  position = {ex_(x_ + vx_ * h), ey_(y_ + vy_ * h)};
   const double speed = std::hypot(ex_.dxhat, ey_.dxhat);
   direction = speed > 0.0 ? DVec{ex_.dxhat / speed, ey_.dxhat / speed} : DVec{};
 }

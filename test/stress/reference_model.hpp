@@ -1,5 +1,5 @@
 #pragma once
-// Double-precision reference of SPEC.md's rendering chain, written from the
+// Double-precision reference of the rendering chain of docs/spec.md, written from the
 // spec and the scene data format, not from the core's code: every element's
 // gradient and position-only profile, max|G| by a dense scan, the strength
 // map, the DAC calibration, and the thesis tracker (algorithms 3/4 + 1-euro).
@@ -56,7 +56,7 @@ class ReferenceScene {
   // Normalise by another max|G| (the core's), so that the float32 evaluation
   // is compared apart from the accuracy of the core's search for the maximum.
   void use_max_gradient(double m) { max_gradient_ = m; }
-  // Raw amplitude in [0, 1] at p for the direction d (SPEC.md: A = 0.5 - d . G / (2 max|G|)).
+  // Raw amplitude in [0, 1] at p for the direction d (docs/spec.md#rendering: A = 0.5 - d . G / (2 max|G|)).
   double raw_amplitude(double px, double py, double dx, double dy) const;
 
  private:
@@ -66,7 +66,7 @@ class ReferenceScene {
   double max_gradient_ = 0.0;
 };
 
-// Strength, S-curve, idle amplitude and calibration as SPEC.md and the
+// Strength, S-curve, idle amplitude and calibration as docs/spec.md#amplitude and the
 // settings' documentation define them, with the sanitising the spec asks
 // for: NaN strength gives no modulation (0), others are clamped to [0, 1].
 class ReferenceAmplitude {
@@ -86,7 +86,19 @@ class ReferenceAmplitude {
   std::vector<double> amps_, codes_;
 };
 
-// SPEC.md "Finger tracking at 2 kHz" in double: v_raw between samples,
+// The 1-euro filter of docs/spec.md#thesis-tracker (thesis appendix G) in
+// double, at a fixed rate: the first value passes through with derivative 0;
+// the derivative from the previous filtered value (or, for the older variant,
+// the previous raw value).
+struct ReferenceOneEuro {
+  bool from_filtered = true;
+  double rate_hz = 2000.0, min_cutoff_hz = 20.0, beta = 0.0004, derivative_cutoff_hz = 25.0;
+  bool init = false;
+  double xhat = 0.0, xprev = 0.0, dxhat = 0.0;
+  double operator()(double x);
+};
+
+// docs/spec.md#thesis-tracker in double: v_raw between samples,
 // p_ext = p_k + v_raw n 500 us, 1-euro per axis (derivative from the
 // previous filtered value), v_hat = dxhat / |dxhat|. Clean input only (no
 // faults): the core's fault handling is not part of the spec's algorithm.
@@ -99,11 +111,7 @@ class ReferenceThesisTracker {
   double filtered_speed() const;  // |(dxhat, dyhat)|, px/s
 
  private:
-  struct Euro {
-    bool init = false;
-    double xhat = 0.0, dxhat = 0.0;
-    double step(double x);
-  } ex_, ey_;
+  ReferenceOneEuro ex_, ey_;
   bool have_ = false;
   double x_ = 0.0, y_ = 0.0, vx_ = 0.0, vy_ = 0.0;  // px, px/us
   uint32_t t_ = 0;

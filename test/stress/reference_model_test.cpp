@@ -1,6 +1,6 @@
 // The double reference itself: its closed-form gradients against central
 // differences of its own heights, its max|G| against a dense pixel scan, and
-// SPEC.md's strength and DAC numbers.
+// the strength and DAC numbers of docs/spec.md#amplitude.
 #include "reference_model.hpp"
 
 #include <gtest/gtest.h>

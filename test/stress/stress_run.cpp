@@ -81,7 +81,7 @@ void InvariantChecker::on_tick(const HapticPipeline& pipeline, const Tick& t) {
       o.position.y > kScreenMaxY) {
     return fail(t, "position not finite or off screen");
   }
-  // Unit length while moving, shorter while fading (SPEC.md). Here only a
+  // Unit length while moving, shorter while fading (docs/spec.md#replay-output). Here only a
   // sanity bound: the amplitude's own range is checked above, and the exact
   // unit length has its own class (direction_unit_length: the core misses it
   // by up to 27 % at subnormal speeds).

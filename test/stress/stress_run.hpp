@@ -1,5 +1,5 @@
 #pragma once
-// Drives a HapticPipeline through reports and tick times as SPEC.md times a
+// Drives a HapticPipeline through reports and tick times as docs/spec.md#tick-timing times a
 // replay (every report delivered at or before a tick goes in before it), and
 // checks every tick against the invariants and the double reference.
 #include <cstdint>
@@ -42,7 +42,7 @@ RunResult run_pipeline(const RunConfig& config, const std::vector<Report>& repor
                        const std::vector<TickTime>& ticks, TickObserver* observe = nullptr,
                        bool keep_ticks = true);
 
-// Per-tick invariants (SPEC.md "Strength and drive", "Trace files"):
+// Per-tick invariants (docs/spec.md#amplitude, #trace-files):
 // amplitude finite and inside [0.5 - s/2, 0.5 + s/2] with a finger, exactly
 // the idle amplitude without; DAC code in [0, 4095] and equal to the
 // calibration of the amplitude; position on screen; |direction| <= 1; and

@@ -1,4 +1,4 @@
-// The true motion: minimum-jerk profile, SPEC.md's paths, strokes and holds.
+// The true motion: minimum-jerk profile, the paths of docs/spec.md#paths, strokes and holds.
 #include <gtest/gtest.h>
 
 #include <cmath>

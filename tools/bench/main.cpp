@@ -30,7 +30,7 @@ constexpr const char* kDescription =
     "For each scene (the built-in ones and general sums of 1, 3 and 6 elements) and each strategy\n"
     "(closed form; tables at 1, 2, 4, 8, 16 px, float and int16, tabulated gradient or height +\n"
     "central differences, bilinear): the amplitude error against a double-precision reference written\n"
-    "from SPEC.md, over a grid between pixel centres and 16 directions of motion (max and RMS, in DAC\n"
+    "from docs/spec.md, over a grid between pixel centres and 16 directions of motion (max and RMS, in DAC\n"
     "LSB = 1/4095); table and plan bytes; host ns per evaluation, us per preparation, ns per whole\n"
     "tick with a finger moving; ns per tracker update for each tracker configuration.\n"
     "Writes host_cases.csv and host_trackers.csv into --out.";

@@ -412,7 +412,7 @@ def report(rows, m4, host_trackers, args):
       "`docs/benchmarks.csv` too." % datetime.date.today().isoformat())
     w("")
     w("- **Error**: amplitude of the float core against an independent double-precision implementation "
-      "written from SPEC.md (`tools/bench/reference_scene.cpp`), on the grid x = 0.5, 1.5, … 798.5, "
+      "written from the [spec](spec.md#scenes) (`tools/bench/reference_scene.cpp`), on the grid x = 0.5, 1.5, … 798.5, "
       "y = 0.5 … 478.5 (382,721 points, between pixel centres so never on a table node) and 16 directions "
       "of motion; max|G| of the reference by a scan of every pixel plus a compass search to 1e-9 px. "
       "In DAC LSB = 1/4095 of the amplitude range (strength 1). *max*: the worst sample; *p99*: 99 % of "

@@ -1,6 +1,6 @@
 #pragma once
 // An independent double-precision implementation of every benchmarked scene,
-// written from SPEC.md's formulas (and, for the numbers SPEC.md leaves open,
+// written from docs/spec.md's formulas (and, for the numbers it leaves open,
 // the values the built-in scenes document): heights, analytic gradients,
 // position-only profiles, max|G| by a dense scan plus refinement, and the
 // rendered amplitude. It never calls the float core.
@@ -18,7 +18,7 @@ struct Vec2d {
 enum class TermKind { Cone, Valley, Tunnel, Vortex, Saddle, Bumps };
 enum class CurveKind { Cubic, Sine };
 
-// y_path(x): SPEC.md's cubic (slope 0 at both joins, flat outside) or a sine.
+// y_path(x): docs/spec.md#paths' cubic (slope 0 at both joins, flat outside) or a sine.
 struct Curve {
   CurveKind kind = CurveKind::Cubic;
   double x0 = 100.0, y0 = 240.0, length = 600.0, rise = 0.0;  // cubic

@@ -63,7 +63,7 @@ struct Recording {
 bool record(DeviceClient& client, double seconds, Recording& out, std::string& error,
             const std::function<bool(double done_s, size_t samples, size_t ticks)>& progress = nullptr);
 
-// NAME.csv: the sensor trace of SPEC.md (t_us,x,y,touch: ff-replay reads it),
+// NAME.csv: the sensor trace of docs/spec.md#sensor-trace (t_us,x,y,touch: ff-replay reads it),
 // plus the device column taken_us (the tick that took the report, -1 unknown)
 // when the firmware said; NAME.ticks.csv: the device's ticks
 // (t_us,amplitude,dac,present); NAME.condition: the condition (in words as a

@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
   std::string record_out;
   double seconds = 0.0;
   ff::host::SceneSpec record_spec;
-  auto* rec = app.add_subcommand("record", "stream the raw sensor reports (SPEC.md trace, ff-replay reads it) and every rendered tick to files");
+  auto* rec = app.add_subcommand("record", "stream the raw sensor reports (docs/spec.md sensor trace, ff-replay reads it) and every rendered tick to files");
   rec->add_option("-o,--output", record_out, "trace CSV (ticks go to NAME.ticks.csv)")->required();
   rec->add_option("--seconds", seconds, "how long to record (default: until Ctrl-C)");
   ff::host::add_scene_options(*rec, record_spec);

@@ -2,7 +2,7 @@
 """Plot a replay: the finger's path over the scene, coloured by the rendered
 amplitude, and the amplitude against time.
 
-Inputs are the files of SPEC.md "Trace files": the sensor trace given to
+Inputs are the files of docs/spec.md#trace-files: the sensor trace given to
 ff-replay (t_us,x,y,touch; optional ground truth x_true,y_true) and its output
 (t_us,x,y,vx,vy,amplitude,dac). With --scene the scene is drawn behind the path
 (heightmap: its height Z with contours, downhill is slippery; frictionmap: the
@@ -14,7 +14,7 @@ Example:
   ff-replay --scene heightmap --target top --strength 0.66 test/traces/gen_across_high_px.csv -o out.csv
   plot_replay.py test/traces/gen_across_high_px.csv out.csv --scene heightmap --target top \\
       --strength 0.66 -o replay.png
-Needs only numpy and matplotlib; the scene is computed from SPEC.md's formulas.
+Needs only numpy and matplotlib; the scene is computed from the formulas of docs/spec.md#scenes.
 """
 import argparse
 import csv
@@ -33,7 +33,7 @@ TICK_US = 500
 LIFT_TIMEOUT_US = 250_000  # a tick this long after the last report draws no finger
 
 
-# ---- SPEC.md "Paths and targets" and "Scenes" -------------------------------
+# ---- docs/spec.md#paths and #scenes -------------------------------
 
 def path_y(x, rise):
     d = np.clip(np.asarray(x, dtype=float) - 100.0, 0.0, 600.0)

@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
               rp.scenes, with_commas(rp.evaluations).c_str(), rp.worst_amplitude);
   std::printf("| max\\|G\\| search: the thesis' scenes / random general scenes | %d scenes | relative %.2g / %.2g |\n", rp.scenes,
               rp.worst_max_builtin, rp.worst_max_general);
-  std::printf("| thesis chain end to end (SPEC.md tracker + heightmap), %d traces | %s ticks (%s moving >= 50 px/s) | "
+  std::printf("| thesis chain end to end (spec.md#thesis-tracker + heightmap), %d traces | %s ticks (%s moving >= 50 px/s) | "
               "position %.2g px, amplitude %.2g (moving) |\n", cp.traces, with_commas(cp.ticks).c_str(),
               with_commas(cp.moving_ticks).c_str(), cp.worst_position, cp.worst_amplitude);
 

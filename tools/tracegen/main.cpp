@@ -25,7 +25,7 @@ constexpr const char* kDescription =
     "The zForce sensor is simulated at --rate Hz with timing jitter, Gaussian noise and optional\n"
     "quantisation, and each fault the tracker must handle can be inserted on request.\n"
     "\n"
-    "Output (SPEC.md 'Trace files'): t_us,x,y,touch,x_true,y_true[,event]\n"
+    "Output (docs/spec.md#trace-files): t_us,x,y,touch,x_true,y_true[,event]\n"
     "  x_true, y_true  the true finger at t_us (readers ignore these columns; nan while lifted)\n"
     "  event           with --events: what each row exercises (touch-down, lift-off, late, jump, ...)\n"
     "The same seed and options always give the same file.";

@@ -12,11 +12,11 @@ struct Point {
   double y = 0.0;
 };
 
-// Screen units (SPEC.md "Coordinates"): 1 px ~ 0.2 mm.
+// Screen units (docs/spec.md#coordinates): 1 px ~ 0.2 mm.
 constexpr double kMmPerPx = 0.2;
 constexpr double kPxPerMm = 1.0 / kMmPerPx;
 
-// SPEC.md "Paths and targets": y of the path to the target at 240 + rise.
+// docs/spec.md#paths: y of the path to the target at 240 + rise.
 double path_y(double x, double rise);
 double path_slope(double x, double rise);
 

@@ -8,7 +8,7 @@ namespace ff::tracegen {
 
 namespace {
 
-constexpr double kRises[3] = {-200.0, 0.0, 200.0};  // top, middle, bottom (SPEC.md)
+constexpr double kRises[3] = {-200.0, 0.0, 200.0};  // top, middle, bottom (docs/spec.md#paths)
 constexpr double kMinX = 30.0, kMaxX = 770.0, kMinY = 20.0, kMaxY = 460.0;
 
 Point clamp_to_screen(Point p) { return {std::clamp(p.x, kMinX, kMaxX), std::clamp(p.y, kMinY, kMaxY)}; }

@@ -39,7 +39,7 @@ struct TraceSample {
   SampleEvent event = SampleEvent::Normal;
 };
 
-// Noise presets: 1 sigma per axis. "~1 mm accuracy" (SPEC.md) is 5 px; high
+// Noise presets: 1 sigma per axis. "~1 mm accuracy" (docs/spec.md#sensor) is 5 px; high
 // noise puts 95 % of reports within ~1.2 mm, low within ~0.5 mm.
 constexpr double kNoiseLowPx = 1.0;
 constexpr double kNoiseHighPx = 2.5;

@@ -1,5 +1,5 @@
 #pragma once
-// Writes generated traces in SPEC.md's sensor-trace format, with the ground
+// Writes generated traces in the sensor-trace format of docs/spec.md#sensor-trace, with the ground
 // truth as extra columns readers ignore, and the truth at every 500 us tick.
 #include <cstdint>
 #include <functional>
@@ -20,7 +20,7 @@ void write_trace(std::ostream& out, const GeneratedTrace& trace, bool with_event
 using Progress = std::function<void(double fraction)>;
 
 // `t_us,x_true,y_true,vx_true,vy_true,touch` at t0 + k * 500 us from the first
-// report to the tick at or after the last one (SPEC.md "Timing of a replay").
+// report to the tick at or after the last one (docs/spec.md#tick-timing).
 // vx, vy in px/s; x_true, y_true nan while lifted. Returns the rows written.
 uint64_t write_truth_ticks(std::ostream& out, const GeneratedTrace& trace, const Progress& progress = {});
 

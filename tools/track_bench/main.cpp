@@ -105,7 +105,7 @@ std::vector<LevelSet> prepare_levels(double duration_s) {
   std::vector<LevelSet> levels;
   for (auto [label, noise] : {std::pair<const char*, double>{"low", 1.0}, {"high", 2.5}}) {
     LevelSet level{label, noise, {}};
-    for (const BenchCase& c : standard_cases(noise, duration_s)) level.cases.push_back(prepare_case(c));
+    for (const TrackCase& c : standard_cases(noise, duration_s)) level.cases.push_back(prepare_case(c));
     levels.push_back(std::move(level));
   }
   return levels;

@@ -78,7 +78,7 @@ double time_tracker(const TrackerConfig& config, const PreparedCase& c) {
 
 }  // namespace
 
-std::vector<BenchCase> standard_cases(double noise_px, double duration_s) {
+std::vector<TrackCase> standard_cases(double noise_px, double duration_s) {
   struct Shape {
     const char* name;
     tracegen::Strategy strategy;
@@ -92,10 +92,10 @@ std::vector<BenchCase> standard_cases(double noise_px, double duration_s) {
       {"across-middle", tracegen::Strategy::Across, Target::Middle},
       {"across-bottom", tracegen::Strategy::Across, Target::Bottom},
   };
-  std::vector<BenchCase> cases;
+  std::vector<TrackCase> cases;
   uint64_t seed = 101;
   for (const Shape& shape : kShapes) {
-    BenchCase c;
+    TrackCase c;
     c.name = shape.name;
     c.target = shape.target;
     tracegen::TraceOptions& o = c.options;
@@ -112,7 +112,7 @@ std::vector<BenchCase> standard_cases(double noise_px, double duration_s) {
   return cases;
 }
 
-PreparedCase prepare_case(const BenchCase& spec) {
+PreparedCase prepare_case(const TrackCase& spec) {
   PreparedCase c;
   c.spec = spec;
   c.trace = tracegen::generate_trace(spec.options);

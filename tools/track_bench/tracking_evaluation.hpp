@@ -1,6 +1,6 @@
 #pragma once
 // Runs a tracker configuration over generated traces, tick for tick as the
-// replay does (SPEC.md "Timing of a replay"), and measures what is felt:
+// replay does (docs/spec.md#tick-timing), and measures what is felt:
 // position, lag, direction and the rendered amplitude against an ideal
 // renderer fed the true position and the true direction.
 #include <iosfwd>
@@ -15,7 +15,7 @@
 
 namespace ff::bench {
 
-struct BenchCase {
+struct TrackCase {
   std::string name;
   tracegen::TraceOptions options;
   Target target = Target::Middle;  // of the heightmap and frictionmap scenes
@@ -24,7 +24,7 @@ struct BenchCase {
 // The fixed benchmark set at one noise level (1 sigma, px): both search
 // strategies, all three targets, zForce quantisation, 200 Hz with jitter,
 // rests and a lift. The motion does not depend on the noise level.
-std::vector<BenchCase> standard_cases(double noise_px, double duration_s);
+std::vector<TrackCase> standard_cases(double noise_px, double duration_s);
 
 // The truth at one tick and what the ideal renderer outputs there.
 struct TickTruth {
@@ -35,7 +35,7 @@ struct TickTruth {
 };
 
 struct PreparedCase {
-  BenchCase spec;
+  TrackCase spec;
   tracegen::GeneratedTrace trace;
   std::vector<TickTruth> ticks;  // t0 + k * 500 us, t0 = the first report
   std::unique_ptr<ScenePlan> heightmap;
@@ -44,7 +44,7 @@ struct PreparedCase {
 
 // Generates the trace, prepares both scenes (closed form) and the ideal
 // amplitudes at every tick.
-PreparedCase prepare_case(const BenchCase& spec);
+PreparedCase prepare_case(const TrackCase& spec);
 
 struct EvalOptions {
   double moving_speed_px_s = 50.0;  // the finger "moves" above 10 mm/s

@@ -1,6 +1,6 @@
 #pragma once
 // A path as y(x): the centre line of a valley or of a slippery band. Offsets
-// from it are vertical (u = y - y_path(x)), as in SPEC.md.
+// from it are vertical (u = y - y_path(x)), as in docs/spec.md#paths.
 #include <cstdint>
 
 #include "frictionfield/core/geometry.hpp"
@@ -8,7 +8,7 @@
 namespace ff {
 
 enum class CurveKind : uint8_t {
-  Cubic,     // SPEC.md's experiment paths: slope 0 at both joins
+  Cubic,     // docs/spec.md#paths: experiment paths: slope 0 at both joins
   Sine,      // familiarisation: y0 + amplitude sin(2 pi (x - x0) / wavelength)
   Polyline,  // any path drawn as points with increasing x
 };

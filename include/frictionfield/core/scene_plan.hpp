@@ -23,11 +23,13 @@ enum class PrepareStatus : uint8_t {
   InvalidParameter,  // NaN / infinite / out-of-range parameter
   TableTooLarge,     // over the slot budget: scene unchanged
   InvalidSampledMap,
+  NonFiniteField,    // the field overflows float where the tick evaluates it (e.g. a
+                     // height table of a saddle far off-screen: inf - inf at every node)
 };
 const char* to_string(PrepareStatus s);
 
 struct PlanStats {
-  float max_gradient = 0.0f;        // max|G| over the screen (Directional)
+  float max_gradient = 0.0f;        // max|G| over the screen (Directional); FLT_MAX if larger
   uint32_t gradient_evaluations = 0;  // work spent at preparation
   uint32_t table_bytes = 0;
   uint32_t plan_bytes = 0;          // sizeof(ScenePlan)

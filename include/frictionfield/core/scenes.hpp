@@ -5,7 +5,7 @@
 
 namespace ff::scenes {
 
-// Experiment conditions (SPEC.md "Scenes").
+// Experiment conditions (docs/spec.md#scenes).
 SceneDefinition heightmap(Target target);    // 1/2 valley (a = 1/5) + 1/2 cone
 SceneDefinition frictionmap(Target target);  // 20 px slippery path, 20 px feather
 SceneDefinition neutral();                   // A = 0.5

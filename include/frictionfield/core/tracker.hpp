@@ -47,7 +47,7 @@ struct TrackerConfig {
   uint32_t max_tick_step_us = 100000;     // a longer step between ticks is suspect until confirmed
   uint32_t max_sample_lead_us = 2000;     // a report may be stamped this far after the last tick
 
-  static TrackerConfig thesis();       // exactly SPEC.md / the thesis (no fade)
+  static TrackerConfig thesis();       // exactly the thesis (docs/spec.md#thesis-tracker) (no fade)
   static TrackerConfig recommended();  // the benchmarked default
 };
 
@@ -112,7 +112,8 @@ class Tracker {
     void start(float z, float r);
     void predict(float dt_s, float q);
     void update(float z, float r);
-  } kx_, ky_, px_, py_;  // direction (or only) filter; SplitKalman's position filter
+  } direction_x_, direction_y_,  // the direction (or only) filter
+      position_x_, position_y_;    // SplitKalman's position filter
   bool filters_fresh_ = false;  // filters restarted from the last sample on next use
   uint32_t last_tick_us_ = 0;
   bool have_tick_ = false;

@@ -46,7 +46,7 @@ constexpr uint32_t kFrequencyWordMax = (1u << kFrequencyBits) - 1u;
 constexpr uint16_t kHalfMask = 0x3FFF;  // 14 bits
 constexpr uint16_t kPhaseWordMax = 0x0FFF;  // 12 bits: 2 pi / 4096 per step
 
-constexpr uint32_t kMclkHz = 75000000;  // SPEC.md: the board's master clock
+constexpr uint32_t kMclkHz = 75000000;  // docs/spec.md#dac: the board's master clock
 constexpr uint32_t kMaxSclkHz = 40000000;
 constexpr SpiConfig kSpiConfig{SpiMode::Mode2, 10000000};
 

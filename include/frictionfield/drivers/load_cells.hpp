@@ -1,5 +1,5 @@
 #pragma once
-// The four load cells under the plate fixtures (SPEC.md "Load cells"): every
+// The four load cells under the plate fixtures (docs/spec.md#load-cells): every
 // 30 ms the four ADC readings are summed, converted with
 //   load_mN = 1.0712 * load * 9.81      (load: summed counts above the zero)
 // and averaged over the last 5 readings. The zero is the mean of the first 5

@@ -1,5 +1,5 @@
 #pragma once
-// Replays a sensor trace through the 2 kHz pipeline exactly as SPEC.md times
+// Replays a sensor trace through the 2 kHz pipeline exactly as docs/spec.md#tick-timing times
 // it: ticks at t0 + k * 500 us (t0 = first sample), every sample at or before
 // a tick delivered before that tick. The firmware's tick, tick for tick.
 // Rows arrive in file order: a row stamped more than 20 ms after the next row

@@ -1,5 +1,5 @@
 #pragma once
-// Trace files (SPEC.md "Trace files"): sensor traces in, replay output out.
+// Trace files (docs/spec.md#trace-files): sensor traces in, replay output out.
 // Host only: std::string and streams are fine here.
 #include <cstdint>
 #include <iosfwd>

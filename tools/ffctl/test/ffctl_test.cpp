@@ -432,7 +432,7 @@ TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
   std::ifstream trace(path);
   std::string header;
   std::getline(trace, header);
-  EXPECT_EQ(header, "t_us,x,y,touch,taken_us");  // SPEC.md's columns, then the device's: ff-replay reads it
+  EXPECT_EQ(header, "t_us,x,y,touch,taken_us");  // docs/spec.md#sensor-trace's columns, then the device's: ff-replay reads it
   std::vector<host::TraceRow> replay_rows;  // what ff-replay's reader makes of it
   host::TraceError trace_error;
   ASSERT_TRUE(host::read_sensor_trace_file(path, replay_rows, trace_error)) << trace_error.to_string(path);

@@ -1,5 +1,6 @@
 #pragma once
 // A DAC that remembers every code written (and when, if given a clock).
+// Failures are injected as in every test double here: fail_next(count, status).
 #include <cstdint>
 #include <vector>
 
@@ -19,7 +20,11 @@ class RecordingDac final : public Dac12 {
   const std::vector<Write>& writes() const { return writes_; }
   std::vector<uint16_t> codes() const;
   uint16_t last() const { return writes_.empty() ? 0 : writes_.back().code; }
-  void fail_next(uint32_t count) { failing_ = count; }
+  // The next `count` writes fail with `status` (nothing recorded).
+  void fail_next(uint32_t count, BusStatus status = BusStatus::BusError) {
+    fail_count_ = count;
+    fail_status_ = status;
+  }
   void clear() { writes_.clear(); }
 
  private:
@@ -27,7 +32,8 @@ class RecordingDac final : public Dac12 {
 
   const MonotonicClock* clock_;
   std::vector<Write> writes_;
-  uint32_t failing_ = 0;
+  uint32_t fail_count_ = 0;
+  BusStatus fail_status_ = BusStatus::Ok;
 };
 
 }  // namespace ff::emulated

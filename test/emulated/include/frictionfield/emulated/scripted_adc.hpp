@@ -1,9 +1,9 @@
 #pragma once
 // An ADC whose every conversion is scripted per channel: a list of values
-// read in turn (the last one repeats), and failures on chosen reads.
+// read in turn (the last one repeats). Failures are injected as in every
+// test double here: fail_next(count, status).
 #include <cstddef>
 #include <cstdint>
-#include <set>
 #include <vector>
 
 #include "frictionfield/bus/adc.hpp"
@@ -19,8 +19,11 @@ class ScriptedAdc final : public Adc {
     scripts_.at(channel) = std::move(values);
     next_.at(channel) = 0;
   }
-  // The read with this 0-based index (over all channels) fails with BusError.
-  void fail_read(uint32_t index) { failing_.insert(index); }
+  // The next `count` reads (any channel) fail with `status`.
+  void fail_next(uint32_t count, BusStatus status = BusStatus::BusError) {
+    fail_count_ = count;
+    fail_status_ = status;
+  }
   uint32_t reads() const { return reads_; }
 
   uint8_t channel_count() const override { return static_cast<uint8_t>(scripts_.size()); }
@@ -32,7 +35,8 @@ class ScriptedAdc final : public Adc {
   uint8_t bits_;
   std::vector<std::vector<uint16_t>> scripts_;
   std::vector<size_t> next_;
-  std::set<uint32_t> failing_;
+  uint32_t fail_count_ = 0;
+  BusStatus fail_status_ = BusStatus::Ok;
   uint32_t reads_ = 0;
 };
 
