@@ -193,7 +193,7 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   ASSERT_TRUE(client.request(heightmap_top(), reply, error)) << error;
   Recording r;
   int progress_calls = 0;
-  ASSERT_TRUE(record(client, 2.5, r, error, [&](double, size_t, size_t) {
+  ASSERT_TRUE(record(client, 2.5, r, error, [&](const RecordProgress&) {
     ++progress_calls;
     return true;
   })) << error;
@@ -234,9 +234,9 @@ TEST(Ffctl, RecordingEndsWhenProgressSaysSo) {
   Recording r;
   std::string error;
   int calls = 0;
-  ASSERT_TRUE(record(client, 0.0, r, error, [&](double done, size_t, size_t) {
+  ASSERT_TRUE(record(client, 0.0, r, error, [&](const RecordProgress& p) {
     ++calls;
-    return done < 0.2;  // Ctrl-C after 0.2 s
+    return p.done_s < 0.2;  // Ctrl-C after 0.2 s
   })) << error;
   EXPECT_NEAR(static_cast<double>(r.ticks.size()), 400.0, 40.0);
   Message q, reply;
