@@ -8,13 +8,20 @@
 
 namespace ff::firmware {
 
+struct UdpEndpoint {
+  uint32_t ip = 0;  // as the bytes stand on the wire, first octet lowest
+  uint16_t port = 0;
+};
+
 class Board {
  public:
   // USB absolute mouse (Mouse.moveTo on a screenSize(800, 480) mouse).
-  virtual void mouse_move_to(int x, int y) = 0;
-  // One UDP datagram from the experiment host, if one is waiting.
-  virtual bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size) = 0;
-  virtual void udp_send(const uint8_t* data, size_t size) = 0;
+  // False: not sent, because it would have waited for a host that does not poll.
+  virtual bool mouse_move_to(int x, int y) = 0;
+  // One UDP datagram from the experiment host, if one is waiting, and who sent it.
+  virtual bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size, UdpEndpoint& from) = 0;
+  // False: the send timed out (no ARP answer), after a bounded wait (host_link_limits.hpp).
+  virtual bool udp_send(const UdpEndpoint& to, const uint8_t* data, size_t size) = 0;
   // One 64-byte report of the USB HID host channel, if one is waiting.
   virtual bool hid_receive(uint8_t* report64) = 0;
   virtual void hid_send(const uint8_t* report64) = 0;

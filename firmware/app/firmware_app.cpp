@@ -1,6 +1,7 @@
 #include "firmware/app/firmware_app.hpp"
 
 #include "frictionfield/core/geometry.hpp"
+#include "frictionfield/core/scenes.hpp"
 #include "frictionfield/drivers/ad9834_registers.hpp"
 
 namespace ff::firmware {
@@ -31,12 +32,17 @@ FirmwareApp::FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pi
 }
 
 void FirmwareApp::begin(uint32_t now_us) {
-  rest_plate();  // the plate rests until a scene is set
+  // The plate rests until a scene is set, in the board's own DAC direction.
+  Condition resting;
+  resting.scene = scenes::neutral();
+  resting.amplitude.calibration = wiring_calibration();
+  pipeline_.set_condition(resting);
+  rest_plate();
   dds_.start(kDefaultCarrierHz);
   zforce_.begin(now_us);
   load_cells_.start(now_us);
   heartbeat_us_.store(now_us, std::memory_order_release);
-  last_mouse_us_ = ticks_seen_us_ = stream_due_since_us_ = now_us;
+  last_mouse_us_ = ticks_seen_us_ = stream_due_since_us_ = last_loop_us_ = now_us;
   seen_ticks_ = pipeline_.ticks();
 }
 
@@ -87,6 +93,7 @@ FirmwareCounters FirmwareApp::counters() const {
   FirmwareCounters c = counters_;
   c.watchdog_trips = watchdog_trips_.load(std::memory_order_relaxed);
   c.stream_overruns += ring_overruns_.load(std::memory_order_relaxed);
+  c.udp_send_failures = udp_peer_.send_failures();
   return c;
 }
 
@@ -99,6 +106,9 @@ float FirmwareApp::carrier_hz() const {
 
 void FirmwareApp::loop(uint32_t now_us) {
   heartbeat_us_.store(now_us, std::memory_order_release);
+  const uint32_t pass_us = now_us - last_loop_us_;  // the previous pass, interrupts included
+  last_loop_us_ = now_us;
+  if (pass_us > loop_pass_max_us_) loop_pass_max_us_ = pass_us;
   preparing_.store(false, std::memory_order_release);
 
   const bool ticking = tick_alive(now_us);
@@ -162,7 +172,9 @@ void FirmwareApp::read_sensor(uint32_t now_us) {
 
 void FirmwareApp::read_host(uint32_t now_us) {
   size_t size = 0;
-  for (int i = 0; i < kMaxDatagramsPerLoop && board_.udp_receive(frame_, sizeof frame_, size); ++i) {
+  UdpEndpoint from;
+  for (int i = 0; i < kMaxDatagramsPerLoop && board_.udp_receive(frame_, sizeof frame_, size, from); ++i) {
+    udp_peer_.heard_from(from);
     handle_frame(frame_, size, Channel::Udp, now_us);
   }
   uint8_t report[protocol::kHidReportBytes];
@@ -177,8 +189,10 @@ void FirmwareApp::move_mouse(uint32_t now_us) {
   last_mouse_us_ += kMouseIntervalUs;
   if (now_us - last_mouse_us_ >= kMouseIntervalUs) last_mouse_us_ = now_us;  // after a stall: no burst
   if (!present_.load(std::memory_order_acquire)) return;
-  board_.mouse_move_to(screen_pixel(mouse_x_.load(std::memory_order_relaxed), kScreenMaxX),
-                       screen_pixel(mouse_y_.load(std::memory_order_relaxed), kScreenMaxY));
+  if (!board_.mouse_move_to(screen_pixel(mouse_x_.load(std::memory_order_relaxed), kScreenMaxX),
+                            screen_pixel(mouse_y_.load(std::memory_order_relaxed), kScreenMaxY))) {
+    ++counters_.mouse_moves_skipped;
+  }
 }
 
 // Raw sensor reports and rendered ticks for `ffctl record`, over USB only.
@@ -191,7 +205,7 @@ void FirmwareApp::stream(uint32_t now_us, bool final) {
     out_.type = MessageType::Samples;
     out_.sequence = 0;
     out_.samples = pending_samples_;
-    if (send(Channel::Hid)) {
+    if (send(stream_channel_)) {
       pending_samples_.count = 0;
     } else {
       sent_all = false;
@@ -210,7 +224,7 @@ void FirmwareApp::stream(uint32_t now_us, bool final) {
     out_.type = MessageType::Ticks;
     out_.sequence = 0;
     out_.ticks = pending_ticks_;
-    if (!send(Channel::Hid)) {
+    if (!send(stream_channel_)) {
       sent_all = false;
       break;
     }
@@ -232,7 +246,9 @@ void FirmwareApp::send_force() {
   out_.sequence = 0;
   out_.force = {force_.t_us, force_.force_mN, force_.over_force};
   send(Channel::Udp);
-  if (streaming_.load(std::memory_order_relaxed) && !send(Channel::Hid)) ++counters_.hid_frames_dropped;
+  if (streaming_.load(std::memory_order_relaxed) && stream_channel_ == Channel::Hid && !send(Channel::Hid)) {
+    ++counters_.hid_frames_dropped;
+  }
 }
 
 bool FirmwareApp::send(Channel channel) {
@@ -242,8 +258,8 @@ bool FirmwareApp::send(Channel channel) {
     return true;
   }
   if (channel == Channel::Udp) {
-    board_.udp_send(frame_, n);
-    return true;
+    if (udp_peer_.reachable() && !board_.udp_send(udp_peer_.endpoint(), frame_, n)) udp_peer_.send_failed();
+    return true;  // datagrams are not queued: a lost one is the network's
   }
   const size_t count = protocol::split_into_reports(frame_, n, reports_, protocol::kMaxHidReports);
   if (board_.hid_tx_room() < count) return false;  // whole frames or nothing: the host reassembles
@@ -317,6 +333,13 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       st.finger_present = present_.load(std::memory_order_acquire);
       st.carrier_hz = carrier_hz();
       st.faults = pipeline_.faults();
+      st.isr_cycles_mean = interrupt_cycles_.mean();
+      st.isr_cycles_max = interrupt_cycles_.max();
+      st.isr_cycles_p99 = interrupt_cycles_.percentile_permille(990);
+      st.prepare_us_last = pipeline_.last_prepare_us();
+      st.loop_pass_max_us = loop_pass_max_us_;
+      st.zforce_layout_beside = zforce_.count(ZforceCount::TimestampBeside);
+      st.zforce_layout_inside = zforce_.count(ZforceCount::TimestampInside);
       break;
     }
     case MessageType::StartStream: {
@@ -327,6 +350,7 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       }
       stream_due_since_us_ = now_us;
       decimation_.store(in_.stream.tick_decimation, std::memory_order_relaxed);  // >= 1: the codec checks
+      stream_channel_ = channel;
       streaming_.store(true, std::memory_order_release);
       break;
     }

@@ -12,7 +12,10 @@
 #include <cstdint>
 
 #include "firmware/app/board.hpp"
+#include "firmware/app/cycle_histogram.hpp"
+#include "firmware/app/dac_wiring.hpp"
 #include "firmware/app/tick_ring.hpp"
+#include "firmware/app/udp_peer.hpp"
 #include "frictionfield/bus/adc.hpp"
 #include "frictionfield/bus/dac.hpp"
 #include "frictionfield/bus/data_ready.hpp"
@@ -67,6 +70,8 @@ struct FirmwareCounters {
   uint32_t stream_overruns = 0;     // streamed records dropped: the host did not read in time
   uint32_t hid_frames_dropped = 0;  // replies or telemetry the USB host channel had no room for
   uint32_t sensor_restarts = 0;     // zForce configuration started again after it failed
+  uint32_t mouse_moves_skipped = 0; // the USB host did not poll the mouse: no move queued
+  uint32_t udp_send_failures = 0;   // the reply address did not answer ARP: quiet until it speaks again
 };
 
 class FirmwareApp {
@@ -76,6 +81,11 @@ class FirmwareApp {
   void begin(uint32_t now_us);  // plate idle, carrier at 34.9 kHz, sensor, tare
   void loop(uint32_t now_us);   // main loop: call as often as possible
   void tick(uint32_t now_us);   // the 2 kHz interrupt
+  // The whole interrupt handler's cost in DWT cycles, as the board measured
+  // it around tick() (entry to exit of its handler); tick only.
+  void note_interrupt_cycles(uint32_t cycles) { interrupt_cycles_.add(cycles); }
+  const CycleHistogram& interrupt_cycles() const { return interrupt_cycles_; }
+  uint32_t loop_pass_max_us() const { return loop_pass_max_us_; }
 
   FirmwareCounters counters() const;
   uint32_t tick_cycles_mean() const;
@@ -127,6 +137,7 @@ class FirmwareApp {
   std::atomic<uint32_t> cycles_max_{0};
   std::atomic<uint32_t> cycles_count_{0};  // also the sequence that makes cycles_sum_ readable
   uint64_t cycles_sum_ = 0;
+  CycleHistogram interrupt_cycles_;
   bool watchdog_tripped_ = false;  // tick only
   uint32_t stream_tick_ = 0;       // tick only
 
@@ -135,6 +146,10 @@ class FirmwareApp {
   protocol::ConditionMessage condition_;  // what the host last set (status)
   LoadReading force_;
   uint32_t last_mouse_us_ = 0;
+  uint32_t last_loop_us_ = 0;
+  uint32_t loop_pass_max_us_ = 0;
+  UdpPeer udp_peer_;
+  Channel stream_channel_ = Channel::Hid;
   uint32_t seen_ticks_ = 0;
   uint32_t ticks_seen_us_ = 0;
   bool tick_stalled_ = false;

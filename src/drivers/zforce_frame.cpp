@@ -169,6 +169,7 @@ FrameError FrameDecoder::decode_notification(const uint8_t* p, size_t n, Message
       uint32_t v = 0;
       if (!ber::read_unsigned(t, v)) return FrameError::MalformedTag;
       if (t.tag == kTimestamp) {
+        if (out.has_timestamp) return FrameError::MalformedTag;  // one per message, either layout
         out.has_timestamp = true;
         out.timestamp = v;
       }
@@ -183,12 +184,25 @@ FrameError FrameDecoder::decode_notification(const uint8_t* p, size_t n, Message
           const ber::Status ts = ber::read_tlv(t.value + q, t.length - q, touch);
           if (ts != ber::Status::Ok) return from_ber(ts);
           q += touch.size;
+          if (touch.tag == kTimestamp || touch.tag == kLatency) {
+            // The other layout: the timestamp inside the sequence.
+            if (out.has_timestamp) return FrameError::MalformedTag;
+            uint32_t v = 0;
+            if (!ber::read_unsigned(touch, v)) return FrameError::MalformedTag;
+            if (touch.tag == kTimestamp) {
+              out.has_timestamp = true;
+              out.timestamp_inside = true;
+              out.timestamp = v;
+            }
+            continue;
+          }
           if (touch.tag != kTouchNotification) return FrameError::UnknownTag;
           if (out.touch_count >= kMaxTouches) return FrameError::ImpossibleValue;
           const FrameError e = decode_touch(touch.value, touch.length, out.touches[out.touch_count]);
           if (e != FrameError::None) return e;
           ++out.touch_count;
         }
+        if (out.touch_count == 0 && out.timestamp_inside) return FrameError::MalformedTag;  // a stamp of nothing
       } else if (t.tag == kTouchNotification) {
         out.kind = MessageKind::Touches;
         const FrameError e = decode_touch(t.value, t.length, out.touches[0]);

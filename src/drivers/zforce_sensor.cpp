@@ -32,6 +32,8 @@ const char* to_string(ZforceCount c) {
     case ZforceCount::ConfigRetry: return "config retry";
     case ZforceCount::SensorRebooted: return "sensor rebooted";
     case ZforceCount::TrackLost: return "track lost";
+    case ZforceCount::TimestampBeside: return "timestamp beside the touches";
+    case ZforceCount::TimestampInside: return "timestamp inside the touches";
     case ZforceCount::kCount: break;
   }
   return "?";
@@ -279,6 +281,7 @@ bool ZforceSensor::poll(uint32_t now_us, SensorSample& out) {
         break;
       case zforce::MessageKind::Response: on_response(msg, now_us); break;
       case zforce::MessageKind::Touches:
+        if (msg.has_timestamp) add(msg.timestamp_inside ? ZforceCount::TimestampInside : ZforceCount::TimestampBeside);
         if (on_touches(msg, frame_us, out)) {
           add(ZforceCount::Samples);
           return true;

@@ -1,5 +1,7 @@
 #include "frictionfield/protocol/codec.hpp"
 
+#include <initializer_list>
+
 #include "frictionfield/core/scenes.hpp"
 #include "wire.hpp"
 
@@ -278,6 +280,10 @@ void put_payload(WireWriter& w, const Message& m) {
       w.f32(s.force_mN);
       w.u8(static_cast<uint8_t>((s.over_force ? 1 : 0) | (s.finger_present ? 2 : 0)));
       w.f32(s.carrier_hz);
+      for (uint32_t v : {s.isr_cycles_mean, s.isr_cycles_max, s.isr_cycles_p99, s.prepare_us_last, s.loop_pass_max_us,
+                         s.zforce_layout_beside, s.zforce_layout_inside}) {
+        w.u32(v);
+      }
       w.u8(static_cast<uint8_t>(Fault::kCount));
       for (int i = 0; i < static_cast<int>(Fault::kCount); ++i) w.u32(s.faults.count[i]);
       break;
@@ -375,6 +381,10 @@ bool get_payload(WireReader& r, Message& m) {
       s.over_force = flags & 1;
       s.finger_present = flags & 2;
       s.carrier_hz = r.f32();
+      for (uint32_t* v : {&s.isr_cycles_mean, &s.isr_cycles_max, &s.isr_cycles_p99, &s.prepare_us_last,
+                          &s.loop_pass_max_us, &s.zforce_layout_beside, &s.zforce_layout_inside}) {
+        *v = r.u32();
+      }
       const uint8_t n = r.u8();  // newer firmware may count more faults: keep what we know
       s.faults = FaultCounters{};
       for (int i = 0; i < n; ++i) {

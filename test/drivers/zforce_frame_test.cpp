@@ -111,6 +111,36 @@ TEST(ZforceDecoder, DecodesATouchNotification) {
   EXPECT_EQ(m.timestamp, 32u);
 }
 
+// The same touch with the timestamp inside the touch sequence: A0 0E { 42 09 ... 58 01 20 }.
+// Lengths by hand: touch sequence 11 + 3 = 14 (0x0E), notification 4 + 2 + 14 = 20 (0x14).
+const Bytes kTouchStampInside{0xEE, 0x16, 0xF0, 0x14, 0x40, 0x02, 0x02, 0x00, 0xA0, 0x0E, 0x42, 0x09,
+                              0x00, 0x00, 0x01, 0x90, 0x03, 0xC0, 0x00, 0x30, 0x64, 0x58, 0x01, 0x20};
+
+TEST(ZforceDecoder, TakesTheTimestampInsideTheTouchSequenceToo) {
+  Message beside, inside;
+  ASSERT_EQ(decode(kTouch, beside), FrameError::None);
+  ASSERT_EQ(decode(kTouchStampInside, inside), FrameError::None);
+  EXPECT_FALSE(beside.timestamp_inside);
+  EXPECT_TRUE(inside.timestamp_inside);
+  ASSERT_EQ(inside.touch_count, 1);
+  EXPECT_EQ(inside.touches[0].x, 400u);
+  EXPECT_EQ(inside.touches[0].y, 960u);
+  EXPECT_TRUE(inside.has_timestamp);
+  EXPECT_EQ(inside.timestamp, 32u);
+  // Still malformed: a stamp in both places, two stamps inside, a sequence with a stamp and no touch.
+  Bytes both = one_touch(0, 0, 400, 960);
+  both.insert(both.end(), {0x58, 0x01, 0x20});
+  Bytes framed = touch_frame(both);
+  framed.insert(framed.end(), {0x58, 0x01, 0x20});
+  framed[1] = static_cast<uint8_t>(framed.size() - 2);
+  framed[3] = static_cast<uint8_t>(framed.size() - 4);
+  EXPECT_EQ(decode(framed), FrameError::MalformedTag);
+  Bytes twice = one_touch(0, 0, 400, 960);
+  twice.insert(twice.end(), {0x58, 0x01, 0x20, 0x58, 0x01, 0x21});
+  EXPECT_EQ(decode(touch_frame(twice)), FrameError::MalformedTag);
+  EXPECT_EQ(decode(touch_frame(Bytes{0x58, 0x01, 0x20})), FrameError::MalformedTag);
+}
+
 TEST(ZforceDecoder, DecodesTwoTouchesASingleTouchAndLongLengths) {
   Bytes two = one_touch(0, 1, 100, 200);
   const Bytes second = one_touch(3, 0, 300, 400);

@@ -377,6 +377,21 @@ TEST(ZforceSensor, LearnsTheSensorsTouchFormat) {
   EXPECT_EQ(rig.sensor.errors(), 0u);
 }
 
+TEST(ZforceSensor, TakesEitherTimestampLayoutAndCountsWhichItSaw) {
+  for (const bool inside : {false, true}) {
+    ZforceModel::Options o;
+    o.timestamp_inside = inside;
+    ZforceRig rig(ZforceConfig(), o);
+    rig.configure();
+    const std::vector<SensorSample> trace = stroke(100000, 10);
+    rig.model.load_trace(trace);
+    expect_samples(rig.run(100000, trace.back().t_us + 1000), trace);
+    EXPECT_EQ(rig.sensor.errors(), 0u);
+    EXPECT_EQ(rig.sensor.count(ZforceCount::TimestampInside), inside ? trace.size() : 0u);
+    EXPECT_EQ(rig.sensor.count(ZforceCount::TimestampBeside), inside ? 0u : trace.size());
+  }
+}
+
 TEST(ZforceSensor, RetriesThenGivesUpOnASilentSensor) {
   ZforceModel::Options o;
   o.answer_requests = false;

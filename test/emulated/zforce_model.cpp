@@ -83,13 +83,18 @@ void ZforceModel::to_sensor(float x_px, float y_px, uint32_t& x, uint32_t& y) co
   y = static_cast<uint32_t>(std::lround(std::clamp(ry, 0.0, max_y)));
 }
 
+namespace {
+uint32_t sensor_ticks(uint32_t t_us) {  // the sensor's 32768 Hz clock, 16 bits
+  return static_cast<uint32_t>((static_cast<uint64_t>(t_us) * 32768u / 1000000u) & 0xFFFFu);
+}
+}  // namespace
+
 std::vector<uint8_t> ZforceModel::notification(const std::vector<uint8_t>& body, bool with_timestamp,
                                                uint32_t t_us) const {
   std::vector<uint8_t> content{kAddressTag, 2, 0x02, 0x00};  // zForce Air device 0
   content.insert(content.end(), body.begin(), body.end());
   if (with_timestamp) {
-    const uint32_t ticks = static_cast<uint32_t>((static_cast<uint64_t>(t_us) * 32768u / 1000000u) & 0xFFFFu);
-    put_item(content, kTimestampTag, unsigned_content(ticks));
+    put_item(content, kTimestampTag, unsigned_content(sensor_ticks(t_us)));
   }
   std::vector<uint8_t> payload;
   put_item(payload, kNotificationTag, content);
@@ -129,9 +134,11 @@ std::vector<uint8_t> ZforceModel::touch_frame(const uint8_t* ids, const uint8_t*
     }
     put_item(touches, kTouchTag, b);
   }
+  const bool inside = options_.timestamps && options_.timestamp_inside;
+  if (inside) put_item(touches, kTimestampTag, unsigned_content(sensor_ticks(t_us)));
   std::vector<uint8_t> body;
   put_item(body, kTouchSequenceTag, touches);
-  return notification(body, options_.timestamps, t_us);
+  return notification(body, options_.timestamps && !inside, t_us);
 }
 
 void ZforceModel::schedule(Frame f) {

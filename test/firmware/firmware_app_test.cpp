@@ -43,15 +43,19 @@ class FakeBoard final : public Board {
   explicit FakeBoard(const uint32_t& now) : now_(now) {}
 
   struct Move { uint32_t t_us; int x, y; };
-  void mouse_move_to(int x, int y) override { mouse.push_back({now_, x, y}); }
-  bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size) override {
+  bool mouse_move_to(int x, int y) override {
+    mouse.push_back({now_, x, y});
+    return true;
+  }
+  bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size, UdpEndpoint& from) override {
     if (udp_in.empty() || udp_in.front().size() > capacity) return false;
+    from = {0x0101A8C0u, 50000};
     size = udp_in.front().size();
     std::copy(udp_in.front().begin(), udp_in.front().end(), buffer);
     udp_in.pop_front();
     return true;
   }
-  void udp_send(const uint8_t* data, size_t size) override {
+  bool udp_send(const UdpEndpoint& /*to*/, const uint8_t* data, size_t size) override {
     Message m;
     if (protocol::decode(data, size, m) == protocol::DecodeStatus::Ok) {
       udp_out.push_back(m);
@@ -59,6 +63,7 @@ class FakeBoard final : public Board {
     } else {
       ++undecodable;
     }
+    return true;
   }
   bool hid_receive(uint8_t* report) override {
     if (hid_in.empty()) return false;
@@ -329,9 +334,18 @@ TEST(FirmwareApp, MouseEvery3msAtTheFilteredPositionWhileTheFingerIsDown) {
   }
 }
 
+TEST(FirmwareApp, NoForceBeforeAHostHasSpoken) {
+  Device d;
+  d.run_until(500000);
+  EXPECT_TRUE(d.board.udp_of(MessageType::Force).empty());
+}
+
 TEST(FirmwareApp, ForceTelemetryEvery30msAveragedOver5Readings) {
   Device d;
   d.zforce_model.load_trace(stroke());
+  Message hello;
+  hello.type = MessageType::QueryStatus;
+  d.board.send_udp(hello);  // force goes to the host that spoke last
   d.run_until(1500000);  // tared at 100 counts per cell (a finger present does not rezero)
   for (uint8_t ch = 0; ch < 4; ++ch) d.adc.set(ch, 110);  // +40 counts
   d.run_until(1800000);

@@ -42,6 +42,10 @@ struct Message {
   Touch touches[kMaxTouches];
   bool has_timestamp = false;
   uint32_t timestamp = 0;     // sensor clock, 32768 Hz
+  // Where the timestamp stood: beside the touch sequence (A0 ... 58 ...) or
+  // inside it (A0 { 42 ... 58 ... }). Neonode's own library reads touches by
+  // fixed offsets and takes both; no capture of the thesis' module says which.
+  bool timestamp_inside = false;
   uint16_t response_to = 0;   // Response: the command answered (kEnable, kTouchFormat, ...)
   bool has_format = false;    // Response to kTouchFormat carried a usable descriptor
   TouchFormat format;

@@ -55,6 +55,8 @@ enum class ZforceCount : uint8_t {
   ConfigRetry,         // a configuration request sent again after a timeout
   SensorRebooted,      // boot-complete while running: configured again
   TrackLost,           // the tracked finger stopped reporting without an up event
+  TimestampBeside,     // touch notifications with the timestamp beside the touch sequence
+  TimestampInside,     // ... or inside it (both layouts are accepted; the first board run tells which)
   kCount
 };
 const char* to_string(ZforceCount c);

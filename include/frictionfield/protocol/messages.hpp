@@ -70,6 +70,17 @@ struct StatusMessage {
   bool over_force = false;
   bool finger_present = false;
   float carrier_hz = 0.0f;
+  // What only silicon can tell (docs/firmware.md): the whole tick interrupt
+  // in DWT cycles (180 per us; the tick's budget is 90,000), the last scene
+  // preparation, the slowest main-loop pass since boot, and which zForce
+  // timestamp layout the sensor sends.
+  uint32_t isr_cycles_mean = 0;
+  uint32_t isr_cycles_max = 0;
+  uint32_t isr_cycles_p99 = 0;  // upper edge of the histogram bin holding the 99th percentile
+  uint32_t prepare_us_last = 0;
+  uint32_t loop_pass_max_us = 0;
+  uint32_t zforce_layout_beside = 0;
+  uint32_t zforce_layout_inside = 0;
   FaultCounters faults;
 };
 

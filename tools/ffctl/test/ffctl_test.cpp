@@ -89,9 +89,9 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   }
 
   // Board.
-  void mouse_move_to(int, int) override {}
-  bool udp_receive(uint8_t*, size_t, size_t&) override { return false; }
-  void udp_send(const uint8_t*, size_t) override {}
+  bool mouse_move_to(int, int) override { return true; }
+  bool udp_receive(uint8_t*, size_t, size_t&, firmware::UdpEndpoint&) override { return false; }
+  bool udp_send(const firmware::UdpEndpoint&, const uint8_t*, size_t) override { return true; }
   // The Teensy binding's part: raw OUT packets joined in pairs.
   bool hid_receive(uint8_t* report) override {
     if (packets_to_device_.size() < 2) return false;

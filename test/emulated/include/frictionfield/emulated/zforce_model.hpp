@@ -47,6 +47,7 @@ class ZforceModel final : public I2cTarget, public DataReadyInput {
     zforce::TouchFormat format = zforce::TouchFormat::assumed_default();
     bool boot_complete = true;      // a boot-complete notification at t = 0
     bool timestamps = true;         // notificationTimestamp (32768 Hz) on touches
+    bool timestamp_inside = false;  // ... inside the touch sequence instead of beside it
     bool answer_requests = true;    // false: requests are accepted but never answered
   };
 
