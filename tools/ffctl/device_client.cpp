@@ -284,7 +284,8 @@ RecordingWriter::~RecordingWriter() {
   }
 }
 
-bool RecordingWriter::open(const std::string& path, const std::vector<std::string>& metadata, std::string& error) {
+bool RecordingWriter::open(const std::string& path, const std::vector<std::string>& metadata, const Recording& r,
+                           std::string& error) {
   path_ = path;
   trace_ = std::fopen(path.c_str(), "w");
   ticks_ = std::fopen(ticks_path_for(path).c_str(), "w");
@@ -302,7 +303,10 @@ bool RecordingWriter::open(const std::string& path, const std::vector<std::strin
   std::fputs("t_us,x,y,touch,taken_us\n", trace_);
   std::fputs("t_us,amplitude,dac,present\n", ticks_);
   std::fputs("t_us,force_mN,over_force\n", force_);
-  return flush() || (error = "writing " + path + " failed", false);
+  if (!flush()) return error = "writing " + path + " failed", false;
+  if (r.has_condition) return write_condition(condition_path_for(path), r.condition, error);
+  std::remove(condition_path_for(path).c_str());  // a stale one would mislead verify
+  return true;
 }
 
 void RecordingWriter::sample(const DeviceSample& s) {
@@ -328,26 +332,23 @@ bool RecordingWriter::flush() {
   return !failed_;
 }
 
-bool RecordingWriter::close(const Recording& r, std::string& error) {
+bool RecordingWriter::close(std::string& error) {
   bool ok = flush();
   for (std::FILE** f : {&trace_, &ticks_, &force_}) {
     if (*f && std::fclose(*f) != 0) ok = false;
     *f = nullptr;
   }
-  if (!ok) return error = "writing " + path_ + " failed (disk full?)", false;
-  if (r.has_condition) return write_condition(condition_path_for(path_), r.condition, error);
-  std::remove(condition_path_for(path_).c_str());  // a stale one would mislead verify
-  return true;
+  return ok || (error = "writing " + path_ + " failed (disk full?)", false);
 }
 
 bool write_recording(const std::string& path, const Recording& r, std::string& error,
                      const std::vector<std::string>& metadata) {
   RecordingWriter w;
-  if (!w.open(path, metadata, error)) return false;
+  if (!w.open(path, metadata, r, error)) return false;
   for (const DeviceSample& s : r.samples) w.sample(s);
   for (const DeviceTick& t : r.ticks) w.tick(t);
   for (const DeviceForce& f : r.forces) w.force(f);
-  return w.close(r, error);
+  return w.close(error);
 }
 
 namespace {

@@ -126,13 +126,14 @@ class RecordingWriter final : public RecordSink {
   ~RecordingWriter() override;
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;
-  bool open(const std::string& trace_path, const std::vector<std::string>& metadata, std::string& error);
+  // Also writes NAME.condition now when `r` has one (removes a stale one otherwise).
+  bool open(const std::string& trace_path, const std::vector<std::string>& metadata, const Recording& r,
+            std::string& error);
   void sample(const DeviceSample& s) override;
   void tick(const DeviceTick& t) override;
   void force(const DeviceForce& f) override;
   bool flush() override;
-  // Flushes and closes; writes NAME.condition when known (removes a stale one otherwise).
-  bool close(const Recording& condition_holder, std::string& error);
+  bool close(std::string& error);  // flushes and closes
 
  private:
   std::FILE* trace_ = nullptr;

@@ -12,7 +12,6 @@
 #include <memory>
 #include <sstream>
 #include <thread>
-#include <type_traits>
 
 #include "device_client.hpp"
 #include "frictionfield/host/scene_spec.hpp"
@@ -130,32 +129,18 @@ bool wait_for_bootloader(int seconds) {
 constexpr double kTickCycles = 90000.0;
 constexpr double kTickUs = 500.0;
 
-// What only silicon can tell (whole-interrupt DWT cycles, preparation, loop
-// pass, zForce notification layout), printed once the protocol carries it.
-template <typename S, typename = void>
-struct HasSiliconFields : std::false_type {};
-template <typename S>
-struct HasSiliconFields<S, std::void_t<decltype(S::isr_cycles_mean), decltype(S::isr_cycles_max),
-                                       decltype(S::isr_cycles_p99), decltype(S::prepare_us_last),
-                                       decltype(S::loop_pass_max_us), decltype(S::zforce_layout_beside),
-                                       decltype(S::zforce_layout_inside)>> : std::true_type {};
-
-template <typename S>
-void print_silicon(const S& s) {
-  if constexpr (HasSiliconFields<S>::value) {
-    const auto pct = [](double cycles) { return 100.0 * cycles / kTickCycles; };
-    std::printf("interrupt (whole, DWT): mean %u, p99 %u, max %u cycles (%.1f%% / %.1f%% / %.1f%% of a 500 us tick)\n",
-                static_cast<unsigned>(s.isr_cycles_mean), static_cast<unsigned>(s.isr_cycles_p99),
-                static_cast<unsigned>(s.isr_cycles_max), pct(s.isr_cycles_mean), pct(s.isr_cycles_p99),
-                pct(s.isr_cycles_max));
-    std::printf("last scene preparation %u us (%.1f ticks), longest main-loop pass %u us (%.1f%% of a tick)\n",
-                static_cast<unsigned>(s.prepare_us_last), s.prepare_us_last / kTickUs,
-                static_cast<unsigned>(s.loop_pass_max_us), 100.0 * s.loop_pass_max_us / kTickUs);
-    std::printf("zForce touch notifications: %u with the timestamp beside the touches, %u inside them\n",
-                static_cast<unsigned>(s.zforce_layout_beside), static_cast<unsigned>(s.zforce_layout_inside));
-  } else {
-    (void)s;
-  }
+// What only silicon can tell: the whole interrupt (DWT cycles, entry to
+// exit), the last scene preparation, the longest main-loop pass, and which
+// zForce notification layout the sensor sends.
+void print_silicon(const ff::protocol::StatusMessage& s) {
+  const auto pct = [](double cycles) { return 100.0 * cycles / kTickCycles; };
+  std::printf("interrupt (whole, DWT): mean %u, p99 %u, max %u cycles (%.1f%% / %.1f%% / %.1f%% of a 500 us tick)\n",
+              s.isr_cycles_mean, s.isr_cycles_p99, s.isr_cycles_max, pct(s.isr_cycles_mean), pct(s.isr_cycles_p99),
+              pct(s.isr_cycles_max));
+  std::printf("last scene preparation %u us (%.1f ticks), longest main-loop pass %u us (%.1f%% of a tick)\n",
+              s.prepare_us_last, s.prepare_us_last / kTickUs, s.loop_pass_max_us, 100.0 * s.loop_pass_max_us / kTickUs);
+  std::printf("zForce touch notifications: %u with the timestamp beside the touches, %u inside them\n",
+              s.zforce_layout_beside, s.zforce_layout_inside);
 }
 
 void print_status(const ff::protocol::StatusMessage& s) {
@@ -540,7 +525,7 @@ int main(int argc, char** argv) {
                     reply.status.firmware_version & 0xFF, ff::protocol::kVersion);
       metadata.push_back(fw);
       ff::ffctl::RecordingWriter writer;
-      if (!writer.open(record_out, metadata, error)) return usage(error);
+      if (!writer.open(record_out, metadata, r, error)) return usage(error);
       const bool live = progress_line || ::isatty(STDERR_FILENO) != 0;
       std::signal(SIGINT, on_interrupt);
       const bool ok = ff::ffctl::record(client, seconds, writer, error, [&](const ff::ffctl::RecordProgress& p) {
@@ -558,7 +543,7 @@ int main(int argc, char** argv) {
       });
       if (live) std::fprintf(stderr, "\n");
       std::string werr;
-      if (!writer.close(r, werr)) return fail(werr);
+      if (!writer.close(werr)) return fail(werr);
       std::fprintf(stderr, "wrote %s, %s, %s%s\n", record_out.c_str(), ff::ffctl::ticks_path_for(record_out).c_str(),
                    ff::ffctl::force_path_for(record_out).c_str(),
                    r.has_condition ? (" and " + ff::ffctl::condition_path_for(record_out)).c_str() : "");
