@@ -61,6 +61,26 @@ bool DeviceClient::request(Message command, Message& reply, std::string& error, 
   }
 }
 
+bool command(DeviceClient& client, const Message& m, std::string& error) {
+  Message reply;
+  if (!client.request(m, reply, error)) return false;
+  if (reply.type == MessageType::Ack && reply.ack.status != protocol::AckStatus::Ok) {
+    return error = "the device refused the command", false;
+  }
+  return true;
+}
+
+bool reboot_device(Transport& transport, std::string& error, bool& by_transport, int timeout_ms) {
+  DeviceClient client(transport);
+  Message m, reply;
+  m.type = MessageType::RebootToBootloader;
+  by_transport = false;
+  if (client.request(m, reply, error, timeout_ms)) return true;
+  if (!transport.request_bootloader()) return false;
+  by_transport = true;
+  return true;
+}
+
 // --- recording ---------------------------------------------------------------
 
 namespace {

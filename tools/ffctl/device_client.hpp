@@ -36,6 +36,16 @@ class DeviceClient {
 
 const char* to_string(protocol::ErrorCode code);
 
+// A command answered with an Ack; false with `error` if it was refused or not answered.
+bool command(DeviceClient& client, const protocol::Message& m, std::string& error);
+
+// Asks a running device to restart into the bootloader: the protocol's
+// RebootToBootloader first (the firmware rests the plate before it jumps),
+// the transport's own request (USB: the SEREMU feature report) only if no
+// Ack arrives: that one jumps from the USB interrupt with the DAC as it is,
+// but works when the firmware's loop hangs. `by_transport` says which.
+bool reboot_device(Transport& transport, std::string& error, bool& by_transport, int timeout_ms = 2000);
+
 // A recording: the sensor reports and the ticks the device rendered (64-bit
 // device microseconds, unwrapped), and the condition, if known.
 struct DeviceSample {

@@ -91,31 +91,6 @@ bool set_condition(ff::ffctl::DeviceClient& client, const ff::host::SceneSpec& s
   return true;
 }
 
-// A command answered with an Ack; a refusal is an error.
-bool command(ff::ffctl::DeviceClient& client, const Message& m, std::string& error) {
-  Message reply;
-  if (!client.request(m, reply, error)) return false;
-  if (reply.type == MessageType::Ack && reply.ack.status != ff::protocol::AckStatus::Ok) {
-    return error = "the device refused the command", false;
-  }
-  return true;
-}
-
-// Asks a running device to restart into the bootloader: the protocol's
-// RebootToBootloader first (the firmware rests the plate before it jumps),
-// the SEREMU feature report only if no Ack arrives (it jumps from the USB
-// interrupt, whatever the plate does, but works when the firmware's loop hangs).
-bool reboot_device(ff::ffctl::Transport& transport, std::string& error, bool& by_feature_report) {
-  ff::ffctl::DeviceClient client(transport);
-  Message m;
-  m.type = MessageType::RebootToBootloader;
-  by_feature_report = false;
-  if (command(client, m, error)) return true;
-  if (!transport.request_bootloader()) return false;
-  by_feature_report = true;
-  return true;
-}
-
 bool wait_for_bootloader(int seconds) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
   while (std::chrono::steady_clock::now() < deadline) {
@@ -396,7 +371,7 @@ int main(int argc, char** argv) {
       if (!ff::ffctl::halfkay_present() && !ff::ffctl::list_devices().empty()) {
         ff::ffctl::HidTransport transport(serial);
         bool by_feature = false;
-        if (!reboot_device(transport, error, by_feature)) {
+        if (!ff::ffctl::reboot_device(transport, error, by_feature)) {
           return fail("could not restart the device into its bootloader: " + error);
         }
         std::fprintf(stderr, "asked the device to restart into its bootloader%s\n",
@@ -437,7 +412,7 @@ int main(int argc, char** argv) {
     std::string error;
     if (*reboot) {
       bool by_feature = false;
-      if (!reboot_device(*transport, error, by_feature)) return fail(error);
+      if (!ff::ffctl::reboot_device(*transport, error, by_feature)) return fail(error);
       if (by_feature) std::fprintf(stderr, "the firmware did not answer: restarted by the SEREMU feature report\n");
       if (!udp.empty()) {
         std::printf("the device acknowledged: it rests the plate and restarts into its bootloader\n");
@@ -491,7 +466,7 @@ int main(int argc, char** argv) {
       Message m;
       m.type = MessageType::SetCarrier;
       m.carrier.frequency_hz = static_cast<float>(carrier_hz);
-      if (!command(client, m, error)) return fail(error);
+      if (!ff::ffctl::command(client, m, error)) return fail(error);
       std::printf("carrier set to %.1f Hz\n", carrier_hz);
       return kExitOk;
     }
@@ -499,7 +474,7 @@ int main(int argc, char** argv) {
       Message m;
       m.type = MessageType::StartSweep;
       m.sweep = {static_cast<float>(sweep_start), static_cast<float>(sweep_end), sweep_ms};
-      if (!command(client, m, error)) return fail(error);
+      if (!ff::ffctl::command(client, m, error)) return fail(error);
       std::printf("sweeping %.1f .. %.1f Hz over %u ms\n", sweep_start, sweep_end, sweep_ms);
       return kExitOk;
     }

@@ -75,7 +75,7 @@ ReceiveResult UdpTransport::receive(std::vector<uint8_t>& frame, int timeout_ms)
     if (left <= 0) return ReceiveResult::Timeout;
     pollfd p{socket_, POLLIN, 0};
     const int ready = ::poll(&p, 1, left);
-    if (ready < 0 && errno == EINTR) return ReceiveResult::Timeout;  // Ctrl-C: let the caller look
+    if (ready < 0 && errno == EINTR) continue;  // Ctrl-C: the caller looks once a frame or the deadline comes
     if (ready <= 0) return ready == 0 ? ReceiveResult::Timeout : ReceiveResult::Disconnected;
     frame.resize(protocol::kMaxFrame + 1);  // one more: an oversized datagram shows as a length error
     const ssize_t n = ::recv(socket_, frame.data(), frame.size(), 0);

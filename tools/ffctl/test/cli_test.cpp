@@ -355,6 +355,34 @@ TEST(FfctlCli, VerifyFailsAnotherSceneWhenTheFingerNeverLifts) {
   }
 }
 
+TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
+  UdpDevice device(strokes);
+  const std::string out = ::testing::TempDir() + "monitor.out";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const std::string port = "127.0.0.1:" + std::to_string(device.port());
+    std::freopen(out.c_str(), "w", stdout);  // not a terminal: one line per change
+    execl(FFCTL_BINARY, FFCTL_BINARY, "--udp", port.c_str(), "monitor", "--interval", "0.05",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // The finger comes and goes every 0.8 s: over 2 s, at least two changes.
+  std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+  ASSERT_EQ(::kill(child, SIGINT), 0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const std::string text = slurp(out);
+  const auto lines = std::count(text.begin(), text.end(), '\n');
+  EXPECT_GE(lines, 3) << text;
+  EXPECT_LT(lines, 30) << text;  // not every 50 ms query: only changes
+  EXPECT_NE(text.find("finger down"), std::string::npos) << text;
+  EXPECT_NE(text.find("finger up"), std::string::npos) << text;
+  EXPECT_EQ(text.find('\r'), std::string::npos);  // no refreshing line into a file
+}
+
 TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
   UdpDevice device(strokes);
   const std::string path = ::testing::TempDir() + "udp_killed.csv";

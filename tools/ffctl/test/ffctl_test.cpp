@@ -273,6 +273,41 @@ TEST(Ffctl, TheRebootRequestGoesBelowTheProtocolAndTheMessageStillWorks) {
   EXPECT_EQ(device.reboots, 1);
 }
 
+TEST(Ffctl, RebootAsksTheFirmwareFirstSoThePlateRests) {
+  SimulatedDevice device;
+  std::string error;
+  bool by_transport = true;
+  ASSERT_TRUE(reboot_device(device, error, by_transport)) << error;
+  EXPECT_FALSE(by_transport);
+  EXPECT_EQ(device.reboots, 1);          // the firmware's own reboot: it rests the plate first
+  EXPECT_EQ(device.feature_reboots, 0);  // no feature report when the firmware answers
+}
+
+// A device whose firmware never answers, but whose USB stack takes the feature report.
+class SilentDevice final : public Transport {
+ public:
+  bool send(const uint8_t*, size_t) override {
+    ++commands;
+    return true;
+  }
+  ReceiveResult receive(std::vector<uint8_t>&, int) override { return ReceiveResult::Timeout; }
+  bool request_bootloader() override {
+    ++feature_reboots;
+    return true;
+  }
+  int commands = 0, feature_reboots = 0;
+};
+
+TEST(Ffctl, RebootFallsBackToTheFeatureReportWithoutAnAck) {
+  SilentDevice device;
+  std::string error;
+  bool by_transport = false;
+  ASSERT_TRUE(reboot_device(device, error, by_transport, 20)) << error;
+  EXPECT_TRUE(by_transport);
+  EXPECT_EQ(device.commands, 1);  // the protocol message went first
+  EXPECT_EQ(device.feature_reboots, 1);
+}
+
 // --- a scripted device -----------------------------------------------------------
 
 // Answers each command with whatever the test queued for it (frames, already
