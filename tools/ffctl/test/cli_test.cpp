@@ -383,6 +383,31 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
   EXPECT_EQ(text.find('\r'), std::string::npos);  // no refreshing line into a file
 }
 
+TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
+  UdpDevice device(strokes);
+  const std::string path = ::testing::TempDir() + "udp_ctrl_c.csv";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const std::string port = "127.0.0.1:" + std::to_string(device.port());
+    std::freopen("/dev/null", "w", stderr);
+    execl(FFCTL_BINARY, FFCTL_BINARY, "--udp", port.c_str(), "record", "-o", path.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_EQ(::kill(child, SIGINT), 0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  Recording rec;
+  std::string error;
+  ASSERT_TRUE(read_recording(path, rec, error)) << error;
+  EXPECT_GT(rec.ticks.size(), 500u);
+  EXPECT_FALSE(rec.has_condition);  // no scene words: none set, none claimed
+  EXPECT_NE(slurp(path).find("# condition not set by this recording"), std::string::npos);
+}
+
 TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
   UdpDevice device(strokes);
   const std::string path = ::testing::TempDir() + "udp_killed.csv";
