@@ -2,6 +2,7 @@
 // codes; over UDP against the firmware app (firmware/app on emulated
 // devices) behind a real socket on 127.0.0.1 in this process.
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -21,6 +22,7 @@
 #include <thread>
 
 #include "device_client.hpp"
+#include "hex_record.hpp"
 #include "firmware/app/firmware_app.hpp"
 #include "frictionfield/emulated/ad9834_model.hpp"
 #include "frictionfield/emulated/i2c_bus.hpp"
@@ -183,6 +185,34 @@ CliRun ffctl(const std::string& args) {
 
 std::string udp(const UdpDevice& d) { return "--udp 127.0.0.1:" + std::to_string(d.port()) + " "; }
 
+// ffctl "--udp 127.0.0.1:PORT" + args, run for `run_ms`, then sent `signal`;
+// stdout to `stdout_path` (not a terminal). Returns the wait status.
+int run_then_signal(const UdpDevice& device, std::vector<std::string> args, int run_ms, int signal,
+                    const std::string& stdout_path = "/dev/null") {
+  args.insert(args.begin(), {FFCTL_BINARY, "--udp", "127.0.0.1:" + std::to_string(device.port())});
+  // Everything allocated before fork(): the device's thread may hold the heap's lock.
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const int out = ::open(stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int null = ::open("/dev/null", O_WRONLY);
+  const pid_t child = fork();
+  if (child == 0) {
+    ::dup2(out, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    ::execv(FFCTL_BINARY, argv.data());
+    _exit(127);
+  }
+  ::close(out);
+  ::close(null);
+  if (child < 0) return -1;
+  std::this_thread::sleep_for(std::chrono::milliseconds(run_ms));
+  ::kill(child, signal);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return status;
+}
+
 TEST(FfctlCli, BadUsageIsExitTwoBeforeAnyDeviceIsTouched) {
   // No device at all: each of these must be refused by its arguments alone.
   CliRun r = ffctl("--udp 127.0.0.1:9 record -o /nonexistent/dir/x.csv --seconds 1");
@@ -222,21 +252,12 @@ TEST(FfctlCli, BadUsageIsExitTwoBeforeAnyDeviceIsTouched) {
 
 std::string write_hex(const std::string& name, uint32_t sp, uint32_t reset) {
   // The vector table's first two words as one data record at 0, then EOF.
-  std::vector<uint8_t> rec = {8, 0, 0, 0};
+  std::vector<uint8_t> words;
   for (uint32_t w : {sp, reset}) {
-    for (int i = 0; i < 4; ++i) rec.push_back(static_cast<uint8_t>(w >> (8 * i)));
-  }
-  uint8_t sum = 0;
-  for (uint8_t b : rec) sum = static_cast<uint8_t>(sum + b);
-  rec.push_back(static_cast<uint8_t>(-sum));
-  std::string line = ":";
-  char buf[3];
-  for (uint8_t b : rec) {
-    std::snprintf(buf, sizeof buf, "%02X", b);
-    line += buf;
+    for (int i = 0; i < 4; ++i) words.push_back(static_cast<uint8_t>(w >> (8 * i)));
   }
   const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << line << "\n:00000001FF\n";
+  std::ofstream(path) << hex_record(0, 0x00, words) << hex_record(0, 0x01, {});
   return path;
 }
 
@@ -358,20 +379,8 @@ TEST(FfctlCli, VerifyFailsAnotherSceneWhenTheFingerNeverLifts) {
 TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
   UdpDevice device(strokes);
   const std::string out = ::testing::TempDir() + "monitor.out";
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    const std::string port = "127.0.0.1:" + std::to_string(device.port());
-    std::freopen(out.c_str(), "w", stdout);  // not a terminal: one line per change
-    execl(FFCTL_BINARY, FFCTL_BINARY, "--udp", port.c_str(), "monitor", "--interval", "0.05",
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
   // The finger comes and goes every 0.8 s: over 2 s, at least two changes.
-  std::this_thread::sleep_for(std::chrono::milliseconds(2000));
-  ASSERT_EQ(::kill(child, SIGINT), 0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
+  const int status = run_then_signal(device, {"monitor", "--interval", "0.05"}, 2000, SIGINT, out);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
   const std::string text = slurp(out);
@@ -386,18 +395,7 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
 TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
   UdpDevice device(strokes);
   const std::string path = ::testing::TempDir() + "udp_ctrl_c.csv";
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    const std::string port = "127.0.0.1:" + std::to_string(device.port());
-    std::freopen("/dev/null", "w", stderr);
-    execl(FFCTL_BINARY, FFCTL_BINARY, "--udp", port.c_str(), "record", "-o", path.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  ASSERT_EQ(::kill(child, SIGINT), 0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
+  const int status = run_then_signal(device, {"record", "-o", path}, 1500, SIGINT);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
   Recording rec;
@@ -411,19 +409,7 @@ TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
 TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
   UdpDevice device(strokes);
   const std::string path = ::testing::TempDir() + "udp_killed.csv";
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    const std::string port = "127.0.0.1:" + std::to_string(device.port());
-    std::freopen("/dev/null", "w", stderr);
-    execl(FFCTL_BINARY, FFCTL_BINARY, "--udp", port.c_str(), "record", "-o", path.c_str(), "--scene", "heightmap",
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
-  ASSERT_EQ(::kill(child, SIGKILL), 0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
+  const int status = run_then_signal(device, {"record", "-o", path, "--scene", "heightmap"}, 2500, SIGKILL);
   EXPECT_TRUE(WIFSIGNALED(status));
   // Every line whole, every file readable: about the second before the kill is there.
   for (const std::string& p : {path, ticks_path_for(path), force_path_for(path)}) {

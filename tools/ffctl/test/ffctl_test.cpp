@@ -24,6 +24,7 @@
 #include "frictionfield/host/trace_csv.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
 #include "halfkay.hpp"
+#include "hex_record.hpp"
 #include "hid_transport.hpp"
 #include "intel_hex.hpp"
 
@@ -566,21 +567,6 @@ std::vector<uint32_t> loader_cli_blocks(const std::vector<std::pair<uint32_t, st
   return blocks;
 }
 
-std::string hex_record(uint16_t offset, uint8_t type, const std::vector<uint8_t>& data) {
-  std::vector<uint8_t> rec = {static_cast<uint8_t>(data.size()), static_cast<uint8_t>(offset >> 8),
-                              static_cast<uint8_t>(offset), type};
-  rec.insert(rec.end(), data.begin(), data.end());
-  uint8_t sum = 0;
-  for (uint8_t b : rec) sum = static_cast<uint8_t>(sum + b);
-  rec.push_back(static_cast<uint8_t>(-sum));
-  std::string line = ":";
-  char buf[3];
-  for (uint8_t b : rec) {
-    std::snprintf(buf, sizeof buf, "%02X", b);
-    line += buf;
-  }
-  return line + "\n";
-}
 
 TEST(HalfKay, SameBlocksAsTeensyLoaderCliWouldWrite) {
   // Records: data in block 0; only 0xFF in block 2; data and 0xFF in block 5;
