@@ -23,12 +23,7 @@
 
 #include "device_client.hpp"
 #include "hex_record.hpp"
-#include "firmware/app/firmware_app.hpp"
-#include "frictionfield/emulated/ad9834_model.hpp"
-#include "frictionfield/emulated/i2c_bus.hpp"
-#include "frictionfield/emulated/recording_dac.hpp"
-#include "frictionfield/emulated/scripted_adc.hpp"
-#include "frictionfield/emulated/zforce_model.hpp"
+#include "emulated_firmware.hpp"
 #include "intel_hex.hpp"
 #include "udp_transport.hpp"
 
@@ -43,15 +38,10 @@ class UdpDevice final : public firmware::Board {
  public:
   // finger(t_us): where the finger is at device time t (touch false: lifted).
   explicit UdpDevice(const std::function<SensorSample(uint32_t)>& finger) {
-    const ZforceConfig config;
-    i2c_.attach(config.address, zforce_);
-    zforce_.set_calibration(config.calibration);
-    for (uint8_t ch = 0; ch < 4; ++ch) adc_.set(ch, 100);
     std::vector<SensorSample> trace;
     for (uint32_t t = 0; t <= 120000000; t += 5000) trace.push_back(finger(t));
-    zforce_.load_trace(trace);
-    app_ = std::make_unique<firmware::FirmwareApp>(firmware::Peripherals{dds_, 0, i2c_, zforce_, dac_, adc_}, *this,
-                                                   *pipeline_);
+    fw_.zforce.load_trace(trace);
+    fw_.start(*this);
     socket_ = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in a{};
     a.sin_family = AF_INET;
@@ -61,7 +51,6 @@ class UdpDevice final : public firmware::Board {
     socklen_t len = sizeof a;
     ::getsockname(socket_, reinterpret_cast<sockaddr*>(&a), &len);
     port_ = ntohs(a.sin_port);
-    app_->begin(now_);
     thread_ = std::thread([this] { run(); });
   }
   ~UdpDevice() {
@@ -118,28 +107,16 @@ class UdpDevice final : public firmware::Board {
         d.from = {a.sin_addr.s_addr, ntohs(a.sin_port)};
         inbox_.push_back(std::move(d));
       }
-      for (int i = 0; i < 10; ++i) {  // 1 ms of device time
-        now_ += 100;
-        zforce_.advance_to(now_);
-        app_->loop(now_);
-        if (now_ % 500 == 0) app_->tick(now_);
-      }
-      const auto device = start + std::chrono::microseconds(now_);
+      for (int i = 0; i < 10; ++i) fw_.step();  // 1 ms of device time
+      const auto device = start + std::chrono::microseconds(fw_.now);
       if (device > std::chrono::steady_clock::now()) std::this_thread::sleep_until(device);
     }
   }
 
-  emulated::Ad9834Model dds_;
-  emulated::ZforceModel zforce_;
-  emulated::EmulatedI2cBus i2c_;
-  emulated::RecordingDac dac_;
-  emulated::ScriptedAdc adc_;
-  std::unique_ptr<HapticPipeline> pipeline_ = std::make_unique<HapticPipeline>();
-  std::unique_ptr<firmware::FirmwareApp> app_;
+  EmulatedFirmware fw_;
   std::deque<Datagram> inbox_;
   int socket_ = -1;
   uint16_t port_ = 0;
-  uint32_t now_ = 0;
   uint32_t cycles_ = 0;
   std::atomic<bool> stop_{false};
   std::thread thread_;

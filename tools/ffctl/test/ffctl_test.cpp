@@ -23,6 +23,7 @@
 #include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/host/trace_csv.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
+#include "emulated_firmware.hpp"
 #include "halfkay.hpp"
 #include "hex_record.hpp"
 #include "hid_transport.hpp"
@@ -37,20 +38,14 @@ using protocol::MessageType;
 class SimulatedDevice final : public Transport, public firmware::Board {
  public:
   SimulatedDevice() {
-    const ZforceConfig config;
-    i2c_.attach(config.address, zforce_);
-    zforce_.set_calibration(config.calibration);
-    for (uint8_t ch = 0; ch < 4; ++ch) adc_.set(ch, 100);
-    app_ = std::make_unique<firmware::FirmwareApp>(firmware::Peripherals{dds_, 0, i2c_, zforce_, dac_, adc_}, *this,
-                                                   *pipeline_);
-    app_->begin(now_);
-    while (app_->sensor().state() != ZforceState::Running && now_ < 1000000) step();
+    fw_.start(*this);
+    while (fw_.app->sensor().state() != ZforceState::Running && fw_.now < 1000000) fw_.step();
     // A finger along the middle path at 300 px/s for 3 s.
     std::vector<SensorSample> trace;
     for (uint32_t t = 1000000; t <= 4000000; t += 5000) {
       trace.push_back({t, 100.0f + 200.0f * static_cast<float>(t - 1000000) * 1e-6f, 240.0f, true});
     }
-    zforce_.load_trace(trace);
+    fw_.zforce.load_trace(trace);
   }
 
   // Transport: as HidTransport writes them, each 64-byte report as two
@@ -72,8 +67,8 @@ class SimulatedDevice final : public Transport, public firmware::Board {
     return true;
   }
   ReceiveResult receive(std::vector<uint8_t>& frame, int timeout_ms) override {
-    const uint32_t until = now_ + static_cast<uint32_t>(timeout_ms) * 1000u;
-    while (from_device_.empty() && static_cast<int32_t>(until - now_) > 0) step();
+    const uint32_t until = fw_.now + static_cast<uint32_t>(timeout_ms) * 1000u;
+    while (from_device_.empty() && static_cast<int32_t>(until - fw_.now) > 0) fw_.step();
     if (from_device_.empty()) return ReceiveResult::Timeout;
     if (disconnect_after_frames >= 0 && frames_delivered_ >= disconnect_after_frames) {
       disconnected = true;
@@ -116,23 +111,9 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   int feature_reboots = 0;
 
  private:
-  void step() {  // 100 us of device time: loop every step, tick every 5th
-    now_ += 100;
-    zforce_.advance_to(now_);
-    app_->loop(now_);
-    if (now_ % 500 == 0) app_->tick(now_);
-  }
-
-  emulated::Ad9834Model dds_;
-  emulated::ZforceModel zforce_;
-  emulated::EmulatedI2cBus i2c_;
-  emulated::RecordingDac dac_;
-  emulated::ScriptedAdc adc_;
-  std::unique_ptr<HapticPipeline> pipeline_ = std::make_unique<HapticPipeline>();
-  std::unique_ptr<firmware::FirmwareApp> app_;
+  EmulatedFirmware fw_;
   protocol::HidReassembler reassembler_;
   std::deque<std::vector<uint8_t>> packets_to_device_, from_device_;
-  uint32_t now_ = 0;
   uint32_t cycles_ = 0;
   int frames_delivered_ = 0;
 };
