@@ -8,6 +8,10 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
 
 #include "frictionfield/host/scene_file.hpp"
 
@@ -57,6 +61,26 @@ bool DeviceClient::request(Message command, Message& reply, std::string& error, 
   }
 }
 
+bool command(DeviceClient& client, const Message& m, std::string& error) {
+  Message reply;
+  if (!client.request(m, reply, error)) return false;
+  if (reply.type == MessageType::Ack && reply.ack.status != protocol::AckStatus::Ok) {
+    return error = "the device refused the command", false;
+  }
+  return true;
+}
+
+bool reboot_device(Transport& transport, std::string& error, bool& by_transport, int timeout_ms) {
+  DeviceClient client(transport);
+  Message m, reply;
+  m.type = MessageType::RebootToBootloader;
+  by_transport = false;
+  if (client.request(m, reply, error, timeout_ms)) return true;
+  if (!transport.request_bootloader()) return false;
+  by_transport = true;
+  return true;
+}
+
 // --- recording ---------------------------------------------------------------
 
 namespace {
@@ -84,19 +108,21 @@ class Unwrapper {
 
 }  // namespace
 
-bool record(DeviceClient& client, double seconds, Recording& out, std::string& error,
-            const std::function<bool(double, size_t, size_t)>& progress) {
+bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string& error,
+            const std::function<bool(const RecordProgress&)>& progress) {
   Message start, reply;
   start.type = MessageType::StartStream;
   start.stream.tick_decimation = 1;
   if (!client.request(start, reply, error)) return false;
   Unwrapper unwrap;
   uint64_t first = 0;
+  RecordProgress p;
   bool ok = true;
   for (;;) {
     Message m;
     const ReceiveResult r = client.next(m, 1000);
     if (r == ReceiveResult::Disconnected) {
+      sink.flush();
       error = "the device disconnected while recording";
       return false;  // no StopStream: there is nobody to tell
     }
@@ -108,24 +134,51 @@ bool record(DeviceClient& client, double seconds, Recording& out, std::string& e
     if (m.type == MessageType::Samples) {
       for (int i = 0; i < m.samples.count; ++i) {
         const SensorSample& s = m.samples.samples[i];
-        out.samples.push_back({{unwrap(s.t_us), s.x, s.y, s.touch}, false, 0});
+        DeviceSample d{{unwrap(s.t_us), s.x, s.y, s.touch}, m.samples.has_taken_times, 0};
+        if (d.taken_known) d.taken_us = unwrap(m.samples.taken_us[i]);
+        sink.sample(d);
+        p.finger = s.touch;
+        p.x = s.x;
+        p.y = s.y;
+        ++p.samples;
       }
       continue;
     }
+    if (m.type == MessageType::Force) {
+      const DeviceForce f{unwrap(m.force.t_us), m.force.force_mN, m.force.over_force};
+      sink.force(f);
+      p.have_force = true;
+      p.last_force = f;
+      ++p.forces;
+      continue;
+    }
     if (m.type != MessageType::Ticks || m.ticks.count == 0) continue;
-    if (out.ticks.empty()) first = unwrap(m.ticks.ticks[0].t_us);
     for (int i = 0; i < m.ticks.count; ++i) {
       const protocol::TickRecord& t = m.ticks.ticks[i];
-      out.ticks.push_back({unwrap(t.t_us), t.amplitude, t.dac, t.present});
+      const DeviceTick d{unwrap(t.t_us), t.amplitude, t.dac, t.present};
+      if (p.ticks == 0) {
+        first = d.t_us;
+      } else if (d.t_us - p.last_tick.t_us > 3 * kTickPeriodUs / 2) {
+        p.lost_ticks += static_cast<size_t>((d.t_us - p.last_tick.t_us + kTickPeriodUs / 2) / kTickPeriodUs) - 1;
+      }
+      sink.tick(d);
+      p.last_tick = d;
+      ++p.ticks;
     }
-    const double done = static_cast<double>(out.ticks.back().t_us - first) * 1e-6;
-    if (progress && !progress(done, out.samples.size(), out.ticks.size())) break;
-    if (seconds > 0.0 && done >= seconds) break;
+    if (!sink.flush()) {
+      error = "writing the recording failed (disk full?)";
+      ok = false;
+      break;
+    }
+    p.done_s = static_cast<double>(p.last_tick.t_us - first) * 1e-6;
+    if (progress && !progress(p)) break;
+    if (seconds > 0.0 && p.done_s >= seconds) break;
   }
   Message stop;
   stop.type = MessageType::StopStream;
   std::string ignored;
   client.request(stop, reply, ignored);
+  sink.flush();
   return ok;
 }
 
@@ -194,8 +247,8 @@ bool read_condition(const std::string& path, protocol::ConditionMessage& c, std:
 }
 
 // The device column of a trace ffctl wrote: taken_us per data row (-1: unknown).
-bool read_taken_column(const std::string& path, std::vector<DeviceSample>& samples, std::string& error) {
-  std::ifstream in(path);
+bool read_taken_column(std::istream& in, const std::string& path, int skipped, std::vector<DeviceSample>& samples,
+                       std::string& error) {
   std::string line;
   std::getline(in, line);
   int column = -1, index = 0;
@@ -207,7 +260,7 @@ bool read_taken_column(const std::string& path, std::vector<DeviceSample>& sampl
   }
   if (column < 0) return true;  // a plain sensor trace: by timestamps
   size_t row = 0;
-  for (int line_no = 2; std::getline(in, line); ++line_no) {
+  for (int line_no = 2 + skipped; std::getline(in, line); ++line_no) {
     if (line.empty() || line == "\r") continue;
     std::istringstream fields(line);
     std::string field;
@@ -227,47 +280,143 @@ bool read_taken_column(const std::string& path, std::vector<DeviceSample>& sampl
 }  // namespace
 
 std::string ticks_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".ticks.csv"; }
+std::string force_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".force.csv"; }
 std::string condition_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".condition"; }
 
-bool write_recording(const std::string& path, const Recording& r, std::string& error) {
-  std::ofstream trace(path), ticks(ticks_path_for(path));
-  if (!trace || !ticks) return error = "cannot write " + path + " or " + ticks_path_for(path), false;
-  const bool taken = std::any_of(r.samples.begin(), r.samples.end(), [](const DeviceSample& s) { return s.taken_known; });
-  trace << (taken ? "t_us,x,y,touch,taken_us\n" : "t_us,x,y,touch\n");
-  char buf[160];
-  for (const DeviceSample& s : r.samples) {
-    int n = std::snprintf(buf, sizeof buf, "%llu,%.9g,%.9g,%d", static_cast<unsigned long long>(s.row.t_us),
-                          static_cast<double>(s.row.x), static_cast<double>(s.row.y), s.row.touch ? 1 : 0);
-    if (taken) {
-      std::snprintf(buf + n, sizeof buf - static_cast<size_t>(n), ",%lld",
-                    s.taken_known ? static_cast<long long>(s.taken_us) : -1LL);
-    }
-    trace << buf << "\n";
+bool check_output_path(const std::string& trace_path, std::string& error) {
+  if (trace_path.empty()) return error = "-o: no file name", false;
+  struct stat st{};
+  if (::stat(trace_path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+    return error = "-o " + trace_path + ": is a folder; give a file name such as " + trace_path + "/run1.csv", false;
   }
-  ticks << "t_us,amplitude,dac,present\n";
-  for (const DeviceTick& t : r.ticks) {
-    std::snprintf(buf, sizeof buf, "%llu,%.9g,%u,%d\n", static_cast<unsigned long long>(t.t_us),
-                  static_cast<double>(t.amplitude), static_cast<unsigned>(t.dac), t.present ? 1 : 0);
-    ticks << buf;
+  const size_t slash = trace_path.rfind('/');
+  const std::string folder = slash == std::string::npos ? "." : trace_path.substr(0, slash == 0 ? 1 : slash);
+  if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    return error = "-o " + trace_path + ": the folder " + folder + " does not exist", false;
   }
-  if (!trace || !ticks) return error = "writing " + path + " failed (disk full?)", false;
+  if (::access(folder.c_str(), W_OK) != 0) return error = "-o " + trace_path + ": the folder " + folder + " is not writable", false;
+  return true;
+}
+
+RecordingWriter::~RecordingWriter() {
+  for (std::FILE* f : {trace_, ticks_, force_}) {
+    if (f) std::fclose(f);
+  }
+}
+
+bool RecordingWriter::open(const std::string& path, const std::vector<std::string>& metadata, const Recording& r,
+                           std::string& error) {
+  path_ = path;
+  trace_ = std::fopen(path.c_str(), "w");
+  ticks_ = std::fopen(ticks_path_for(path).c_str(), "w");
+  force_ = std::fopen(force_path_for(path).c_str(), "w");
+  if (!trace_ || !ticks_ || !force_) {
+    return error = "cannot write " + path + ", " + ticks_path_for(path) + " or " + force_path_for(path) + ": " +
+                   std::strerror(errno),
+           false;
+  }
+  // Large buffers, flushed explicitly after whole rows: a kill never leaves half a row.
+  for (std::FILE* f : {trace_, ticks_, force_}) {
+    std::setvbuf(f, nullptr, _IOFBF, 1 << 20);
+    for (const std::string& line : metadata) std::fprintf(f, "# %s\n", line.c_str());
+  }
+  std::fputs("t_us,x,y,touch,taken_us\n", trace_);
+  std::fputs("t_us,amplitude,dac,present\n", ticks_);
+  std::fputs("t_us,force_mN,over_force\n", force_);
+  if (!flush()) return error = "writing " + path + " failed", false;
   if (r.has_condition) return write_condition(condition_path_for(path), r.condition, error);
   std::remove(condition_path_for(path).c_str());  // a stale one would mislead verify
   return true;
 }
 
+void RecordingWriter::sample(const DeviceSample& s) {
+  std::fprintf(trace_, "%llu,%.9g,%.9g,%d,%lld\n", static_cast<unsigned long long>(s.row.t_us),
+               static_cast<double>(s.row.x), static_cast<double>(s.row.y), s.row.touch ? 1 : 0,
+               s.taken_known ? static_cast<long long>(s.taken_us) : -1LL);
+}
+
+void RecordingWriter::tick(const DeviceTick& t) {
+  std::fprintf(ticks_, "%llu,%.9g,%u,%d\n", static_cast<unsigned long long>(t.t_us), static_cast<double>(t.amplitude),
+               static_cast<unsigned>(t.dac), t.present ? 1 : 0);
+}
+
+void RecordingWriter::force(const DeviceForce& f) {
+  std::fprintf(force_, "%llu,%.9g,%d\n", static_cast<unsigned long long>(f.t_us), static_cast<double>(f.force_mN),
+               f.over_force ? 1 : 0);
+}
+
+bool RecordingWriter::flush() {
+  for (std::FILE* f : {trace_, ticks_, force_}) {
+    if (f && (std::fflush(f) != 0 || std::ferror(f))) failed_ = true;
+  }
+  return !failed_;
+}
+
+bool RecordingWriter::close(std::string& error) {
+  bool ok = flush();
+  for (std::FILE** f : {&trace_, &ticks_, &force_}) {
+    if (*f && std::fclose(*f) != 0) ok = false;
+    *f = nullptr;
+  }
+  return ok || (error = "writing " + path_ + " failed (disk full?)", false);
+}
+
+bool write_recording(const std::string& path, const Recording& r, std::string& error,
+                     const std::vector<std::string>& metadata) {
+  RecordingWriter w;
+  if (!w.open(path, metadata, r, error)) return false;
+  for (const DeviceSample& s : r.samples) w.sample(s);
+  for (const DeviceTick& t : r.ticks) w.tick(t);
+  for (const DeviceForce& f : r.forces) w.force(f);
+  return w.close(error);
+}
+
+namespace {
+
+// A CSV without its leading `# ` metadata lines; `skipped` says how many.
+std::string without_metadata(const std::string& path, size_t& skipped, bool& opened) {
+  std::ifstream in(path);
+  opened = static_cast<bool>(in);
+  std::string line, rest;
+  skipped = 0;
+  bool header_seen = false;
+  while (std::getline(in, line)) {
+    if (!header_seen && !line.empty() && line[0] == '#') {
+      ++skipped;
+      continue;
+    }
+    header_seen = true;
+    rest += line;
+    rest += '\n';
+  }
+  return rest;
+}
+
+}  // namespace
+
 bool read_recording(const std::string& path, Recording& r, std::string& error) {
+  size_t skipped = 0;
+  bool opened = false;
+  const std::string trace_text = without_metadata(path, skipped, opened);
+  if (!opened) return error = path + ": cannot open: " + std::strerror(errno), false;
   std::vector<host::TraceRow> rows;
   host::TraceError terr;
-  if (!host::read_sensor_trace_file(path, rows, terr)) return error = terr.to_string(path), false;
+  std::istringstream trace_in(trace_text);
+  if (!host::read_sensor_trace(trace_in, rows, terr)) {
+    if (terr.line > 0) terr.line += skipped;
+    return error = terr.to_string(path), false;
+  }
   for (const host::TraceRow& row : rows) r.samples.push_back({row, false, 0});
-  if (!read_taken_column(path, r.samples, error)) return false;
+  std::istringstream taken_in(trace_text);
+  if (!read_taken_column(taken_in, path, static_cast<int>(skipped), r.samples, error)) return false;
   const std::string tpath = ticks_path_for(path);
-  std::ifstream in(tpath);
-  if (!in) return error = tpath + ": cannot open (ffctl record writes it next to the trace)", false;
+  size_t tskipped = 0;
+  const std::string ticks_text = without_metadata(tpath, tskipped, opened);
+  if (!opened) return error = tpath + ": cannot open (ffctl record writes it next to the trace)", false;
+  std::istringstream in(ticks_text);
   std::string line;
   std::getline(in, line);
-  for (int line_no = 2; std::getline(in, line); ++line_no) {
+  for (int line_no = 2 + static_cast<int>(tskipped); std::getline(in, line); ++line_no) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     unsigned long long time = 0;
@@ -364,8 +513,14 @@ VerifyResult replay(const Recording& r, const Condition& condition, const Tracke
 }  // namespace
 
 VerifyResult verify(const Recording& r, const Condition& condition, const TrackerConfig& tracker) {
-  const VerifyResult v = replay(r, condition, tracker, false);
-  return v.prepared && !v.synchronised ? replay(r, condition, tracker, true) : v;
+  VerifyResult v = replay(r, condition, tracker, false);
+  if (v.prepared && !v.synchronised) v = replay(r, condition, tracker, true);
+  v.recorded = r.ticks.size();
+  return v;
+}
+
+bool verify_passed(const VerifyResult& v, double min_coverage) {
+  return v.prepared && v.compared > 0 && v.beyond_one_code == 0 && v.coverage() >= min_coverage;
 }
 
 }  // namespace ff::ffctl

@@ -1,6 +1,7 @@
 #pragma once
 // Commands and replies over a Transport, recording and verification.
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -35,6 +36,16 @@ class DeviceClient {
 
 const char* to_string(protocol::ErrorCode code);
 
+// A command answered with an Ack; false with `error` if it was refused or not answered.
+bool command(DeviceClient& client, const protocol::Message& m, std::string& error);
+
+// Asks a running device to restart into the bootloader: the protocol's
+// RebootToBootloader first (the firmware rests the plate before it jumps),
+// the transport's own request (USB: the SEREMU feature report) only if no
+// Ack arrives: that one jumps from the USB interrupt with the DAC as it is,
+// but works when the firmware's loop hangs. `by_transport` says which.
+bool reboot_device(Transport& transport, std::string& error, bool& by_transport, int timeout_ms = 2000);
+
 // A recording: the sensor reports and the ticks the device rendered (64-bit
 // device microseconds, unwrapped), and the condition, if known.
 struct DeviceSample {
@@ -50,27 +61,106 @@ struct DeviceTick {
   bool present = false;
 };
 
+struct DeviceForce {
+  uint64_t t_us = 0;
+  float force_mN = 0.0f;
+  bool over_force = false;
+};
+
 struct Recording {
   std::vector<DeviceSample> samples;
   std::vector<DeviceTick> ticks;
+  std::vector<DeviceForce> forces;
   bool has_condition = false;
   protocol::ConditionMessage condition;
 };
 
-// Streams every tick into `out` until `seconds` of device time have passed
+// Where record() puts what arrives, message by message.
+class RecordSink {
+ public:
+  virtual ~RecordSink() = default;
+  virtual void sample(const DeviceSample& s) = 0;
+  virtual void tick(const DeviceTick& t) = 0;
+  virtual void force(const DeviceForce& f) = 0;
+  // After each streamed message: make what arrived so far durable. false: stop (e.g. disk full).
+  virtual bool flush() { return true; }
+};
+
+// Keeps everything in memory (tests, verify).
+class MemorySink final : public RecordSink {
+ public:
+  explicit MemorySink(Recording& r) : r_(r) {}
+  void sample(const DeviceSample& s) override { r_.samples.push_back(s); }
+  void tick(const DeviceTick& t) override { r_.ticks.push_back(t); }
+  void force(const DeviceForce& f) override { r_.forces.push_back(f); }
+
+ private:
+  Recording& r_;
+};
+
+// What the live line shows while recording.
+struct RecordProgress {
+  double done_s = 0.0;  // device time since the first tick
+  size_t samples = 0, ticks = 0, forces = 0;
+  size_t lost_ticks = 0;  // gaps in the tick stream (the device overran, or datagrams were lost)
+  DeviceTick last_tick;
+  bool finger = false;  // the last sensor report's touch
+  float x = 0.0f, y = 0.0f;
+  bool have_force = false;
+  DeviceForce last_force;
+};
+
+// Streams every tick into `sink` until `seconds` of device time have passed
 // (seconds <= 0: until progress() returns false, e.g. on Ctrl-C). progress()
 // is called as ticks arrive; returning false ends the recording.
-bool record(DeviceClient& client, double seconds, Recording& out, std::string& error,
-            const std::function<bool(double done_s, size_t samples, size_t ticks)>& progress = nullptr);
+bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string& error,
+            const std::function<bool(const RecordProgress&)>& progress = nullptr);
+inline bool record(DeviceClient& client, double seconds, Recording& out, std::string& error,
+                   const std::function<bool(const RecordProgress&)>& progress = nullptr) {
+  MemorySink sink(out);
+  return record(client, seconds, sink, error, progress);
+}
 
-// NAME.csv: the sensor trace of docs/spec.md#sensor-trace (t_us,x,y,touch: ff-replay reads it),
-// plus the device column taken_us (the tick that took the report, -1 unknown)
-// when the firmware said; NAME.ticks.csv: the device's ticks
-// (t_us,amplitude,dac,present); NAME.condition: the condition (in words as a
-// comment, and as a protocol frame in hex), when known.
-bool write_recording(const std::string& trace_path, const Recording& r, std::string& error);
+// Files of a recording, written row by row as the rows arrive:
+// NAME.csv: the sensor trace of docs/spec.md (t_us,x,y,touch: ff-replay
+// reads it) plus the device column taken_us (the tick that took the report,
+// -1 unknown); NAME.ticks.csv: the device's ticks (t_us,amplitude,dac,present);
+// NAME.force.csv: the load cells (t_us,force_mN,over_force); NAME.condition:
+// the condition (in words as a comment, and as a protocol frame in hex), when
+// known. Each CSV starts with `# ` metadata lines (the `metadata` given, one
+// per line), then its header. flush() writes whole rows only, so a recorder
+// killed at any moment leaves valid files up to its last flush.
+class RecordingWriter final : public RecordSink {
+ public:
+  RecordingWriter() = default;
+  ~RecordingWriter() override;
+  RecordingWriter(const RecordingWriter&) = delete;
+  RecordingWriter& operator=(const RecordingWriter&) = delete;
+  // Also writes NAME.condition now when `r` has one (removes a stale one otherwise).
+  bool open(const std::string& trace_path, const std::vector<std::string>& metadata, const Recording& r,
+            std::string& error);
+  void sample(const DeviceSample& s) override;
+  void tick(const DeviceTick& t) override;
+  void force(const DeviceForce& f) override;
+  bool flush() override;
+  bool close(std::string& error);  // flushes and closes
+
+ private:
+  std::FILE* trace_ = nullptr;
+  std::FILE* ticks_ = nullptr;
+  std::FILE* force_ = nullptr;
+  std::string path_;
+  bool failed_ = false;
+};
+
+// Whether `trace_path` can be written (its folder exists, it is not a folder): checked before the device is touched.
+bool check_output_path(const std::string& trace_path, std::string& error);
+
+bool write_recording(const std::string& trace_path, const Recording& r, std::string& error,
+                     const std::vector<std::string>& metadata = {});
 bool read_recording(const std::string& trace_path, Recording& r, std::string& error);
 std::string ticks_path_for(const std::string& trace_path);
+std::string force_path_for(const std::string& trace_path);
 std::string condition_path_for(const std::string& trace_path);
 // "heightmap, target top, strength 0.66, ..." for humans.
 std::string describe(const protocol::ConditionMessage& c);
@@ -104,7 +194,14 @@ struct VerifyResult {
   bool exact_alignment = false;   // every report said which tick took it
   std::vector<MismatchRun> runs;  // the first kMaxRuns
   size_t run_count = 0;
+  size_t recorded = 0;            // ticks in the recording
+  // Ticks compared / ticks recorded: a verify that compared little proved little.
+  double coverage() const { return recorded == 0 ? 0.0 : static_cast<double>(compared) / static_cast<double>(recorded); }
 };
+constexpr double kDefaultMinCoverage = 0.9;
+// Whether a verification passes: something compared, at least `min_coverage`
+// of the recorded ticks, and none beyond one DAC code.
+bool verify_passed(const VerifyResult& v, double min_coverage);
 constexpr size_t kMaxRuns = 20;
 
 // Replays the recorded reports through a native pipeline at the device's own

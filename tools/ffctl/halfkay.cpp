@@ -24,12 +24,16 @@ std::vector<HalfKayWrite> halfkay_writes(const FlashImage& image) {
               w.report.begin() + kHalfKayHeader);
     out.push_back(std::move(w));
   }
+  out.push_back(halfkay_boot_command());
+  return out;
+}
+
+HalfKayWrite halfkay_boot_command() {
   HalfKayWrite boot;
   boot.address = 0xFFFFFF;
   boot.report.assign(kHalfKayHeader + kHalfKayBlock, 0);
   boot.report[0] = boot.report[1] = boot.report[2] = 0xFF;
-  out.push_back(std::move(boot));
-  return out;
+  return boot;
 }
 
 namespace {
@@ -85,7 +89,8 @@ bool halfkay_flash(const std::vector<HalfKayWrite>& writes, const std::function<
   libusb_device_handle* dev = nullptr;
   int open_error = 0;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(wait_for_device_s);
-  while (!(dev = open_halfkay(ctx, open_error)) && std::chrono::steady_clock::now() < deadline) {
+  while (!(dev = open_halfkay(ctx, open_error)) && open_error != LIBUSB_ERROR_ACCESS &&
+         (wait_for_device_s <= 0 || std::chrono::steady_clock::now() < deadline)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(250));
   }
   if (!dev) {
@@ -121,6 +126,15 @@ bool halfkay_flash(const std::vector<HalfKayWrite>& writes, const std::function<
   libusb_close(dev);
   libusb_exit(ctx);
   return ok;
+}
+
+bool halfkay_boot(std::string& error) {
+  if (!halfkay_present()) {
+    return error = "no Teensy bootloader (16c0:0478) on USB: `ffctl reset` starts the firmware from the bootloader "
+                   "(a running device is already running it)",
+           false;
+  }
+  return halfkay_flash({halfkay_boot_command()}, nullptr, error, 2);
 }
 
 }  // namespace ff::ffctl

@@ -33,7 +33,12 @@ bool halfkay_present();
 // over libusb with teensy_loader_cli's timing (45 s for each of the first five
 // blocks: they erase; 0.5 s after); progress(done, total). false with a
 // readable `error` (no bootloader, permissions, a failed block).
+// wait_for_device_s <= 0: wait until the bootloader comes (Ctrl-C ends the program).
 bool halfkay_flash(const std::vector<HalfKayWrite>& writes, const std::function<void(size_t, size_t)>& progress,
                    std::string& error, int wait_for_device_s = 10);
+
+// HalfKay's boot command alone: run the firmware already in flash (teensy_loader_cli -b).
+HalfKayWrite halfkay_boot_command();
+bool halfkay_boot(std::string& error);
 
 }  // namespace ff::ffctl

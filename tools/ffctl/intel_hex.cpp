@@ -1,5 +1,7 @@
 #include "intel_hex.hpp"
 
+#include <cstdio>
+
 #include <sstream>
 
 namespace ff::ffctl {
@@ -72,6 +74,31 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
   }
   if (!ended) return fail("no end-of-file record (truncated file?)");
   if (image.highest == 0) return fail("no data");
+  return true;
+}
+
+bool check_mk66_image(const FlashImage& image, std::string& error) {
+  if (image.highest > kMk66FlashBytes) return error = "larger than the MK66's 1 MiB flash", false;
+  if (image.highest < 8) return error = "no vector table at address 0 (not a Teensy 3.6 image)", false;
+  const auto word = [&](size_t at) {
+    return static_cast<uint32_t>(image.bytes[at]) | static_cast<uint32_t>(image.bytes[at + 1]) << 8 |
+           static_cast<uint32_t>(image.bytes[at + 2]) << 16 | static_cast<uint32_t>(image.bytes[at + 3]) << 24;
+  };
+  const uint32_t sp = word(0), reset = word(4);
+  char buf[200];
+  // The stack grows down from its initial value: the end of RAM is a valid start.
+  if (sp <= kMk66RamStart || sp > kMk66RamEnd) {
+    std::snprintf(buf, sizeof buf,
+                  "initial stack pointer 0x%08X is outside the MK66's RAM (0x%08X..0x%08X): not a Teensy 3.6 image", sp,
+                  kMk66RamStart, kMk66RamEnd);
+    return error = buf, false;
+  }
+  if ((reset & 1u) == 0 || (reset & ~1u) >= image.highest) {
+    std::snprintf(buf, sizeof buf,
+                  "reset vector 0x%08X is not an odd (Thumb) address inside the image (0..0x%zX): not a Teensy 3.6 image",
+                  reset, image.highest);
+    return error = buf, false;
+  }
   return true;
 }
 

@@ -14,7 +14,12 @@ bool condition_message(const host::SceneSpec& spec, protocol::ConditionMessage& 
   m.target = spec.target == "top" ? Target::Top : spec.target == "bottom" ? Target::Bottom : Target::Middle;
   // A table-evaluated heightmap is a different rendering: it goes whole.
   const bool closed_form = spec.evaluation == "closed";
-  if (closed_form && spec.scene == "heightmap") {
+  // A scene file is whatever make_condition made of it (--scene-file implies
+  // the file scene there): it travels whole, whatever --scene says.
+  if (!spec.scene_file.empty()) {
+    m.kind = protocol::ConditionKind::General;
+    m.scene = c.scene;
+  } else if (closed_form && spec.scene == "heightmap") {
     m.kind = protocol::ConditionKind::Heightmap;
   } else if (closed_form && spec.scene == "frictionmap") {
     m.kind = protocol::ConditionKind::Frictionmap;

@@ -23,7 +23,9 @@
 #include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/host/trace_csv.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
+#include "emulated_firmware.hpp"
 #include "halfkay.hpp"
+#include "hex_record.hpp"
 #include "hid_transport.hpp"
 #include "intel_hex.hpp"
 
@@ -36,20 +38,14 @@ using protocol::MessageType;
 class SimulatedDevice final : public Transport, public firmware::Board {
  public:
   SimulatedDevice() {
-    const ZforceConfig config;
-    i2c_.attach(config.address, zforce_);
-    zforce_.set_calibration(config.calibration);
-    for (uint8_t ch = 0; ch < 4; ++ch) adc_.set(ch, 100);
-    app_ = std::make_unique<firmware::FirmwareApp>(firmware::Peripherals{dds_, 0, i2c_, zforce_, dac_, adc_}, *this,
-                                                   *pipeline_);
-    app_->begin(now_);
-    while (app_->sensor().state() != ZforceState::Running && now_ < 1000000) step();
+    fw_.start(*this);
+    while (fw_.app->sensor().state() != ZforceState::Running && fw_.now < 1000000) fw_.step();
     // A finger along the middle path at 300 px/s for 3 s.
     std::vector<SensorSample> trace;
     for (uint32_t t = 1000000; t <= 4000000; t += 5000) {
       trace.push_back({t, 100.0f + 200.0f * static_cast<float>(t - 1000000) * 1e-6f, 240.0f, true});
     }
-    zforce_.load_trace(trace);
+    fw_.zforce.load_trace(trace);
   }
 
   // Transport: as HidTransport writes them, each 64-byte report as two
@@ -71,8 +67,8 @@ class SimulatedDevice final : public Transport, public firmware::Board {
     return true;
   }
   ReceiveResult receive(std::vector<uint8_t>& frame, int timeout_ms) override {
-    const uint32_t until = now_ + static_cast<uint32_t>(timeout_ms) * 1000u;
-    while (from_device_.empty() && static_cast<int32_t>(until - now_) > 0) step();
+    const uint32_t until = fw_.now + static_cast<uint32_t>(timeout_ms) * 1000u;
+    while (from_device_.empty() && static_cast<int32_t>(until - fw_.now) > 0) fw_.step();
     if (from_device_.empty()) return ReceiveResult::Timeout;
     if (disconnect_after_frames >= 0 && frames_delivered_ >= disconnect_after_frames) {
       disconnected = true;
@@ -115,23 +111,9 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   int feature_reboots = 0;
 
  private:
-  void step() {  // 100 us of device time: loop every step, tick every 5th
-    now_ += 100;
-    zforce_.advance_to(now_);
-    app_->loop(now_);
-    if (now_ % 500 == 0) app_->tick(now_);
-  }
-
-  emulated::Ad9834Model dds_;
-  emulated::ZforceModel zforce_;
-  emulated::EmulatedI2cBus i2c_;
-  emulated::RecordingDac dac_;
-  emulated::ScriptedAdc adc_;
-  std::unique_ptr<HapticPipeline> pipeline_ = std::make_unique<HapticPipeline>();
-  std::unique_ptr<firmware::FirmwareApp> app_;
+  EmulatedFirmware fw_;
   protocol::HidReassembler reassembler_;
   std::deque<std::vector<uint8_t>> packets_to_device_, from_device_;
-  uint32_t now_ = 0;
   uint32_t cycles_ = 0;
   int frames_delivered_ = 0;
 };
@@ -193,7 +175,7 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   ASSERT_TRUE(client.request(heightmap_top(), reply, error)) << error;
   Recording r;
   int progress_calls = 0;
-  ASSERT_TRUE(record(client, 2.5, r, error, [&](double, size_t, size_t) {
+  ASSERT_TRUE(record(client, 2.5, r, error, [&](const RecordProgress&) {
     ++progress_calls;
     return true;
   })) << error;
@@ -234,9 +216,9 @@ TEST(Ffctl, RecordingEndsWhenProgressSaysSo) {
   Recording r;
   std::string error;
   int calls = 0;
-  ASSERT_TRUE(record(client, 0.0, r, error, [&](double done, size_t, size_t) {
+  ASSERT_TRUE(record(client, 0.0, r, error, [&](const RecordProgress& p) {
     ++calls;
-    return done < 0.2;  // Ctrl-C after 0.2 s
+    return p.done_s < 0.2;  // Ctrl-C after 0.2 s
   })) << error;
   EXPECT_NEAR(static_cast<double>(r.ticks.size()), 400.0, 40.0);
   Message q, reply;
@@ -271,6 +253,41 @@ TEST(Ffctl, TheRebootRequestGoesBelowTheProtocolAndTheMessageStillWorks) {
   ASSERT_TRUE(client.request(m, reply, error)) << error;
   EXPECT_EQ(reply.ack.command, MessageType::RebootToBootloader);
   EXPECT_EQ(device.reboots, 1);
+}
+
+TEST(Ffctl, RebootAsksTheFirmwareFirstSoThePlateRests) {
+  SimulatedDevice device;
+  std::string error;
+  bool by_transport = true;
+  ASSERT_TRUE(reboot_device(device, error, by_transport)) << error;
+  EXPECT_FALSE(by_transport);
+  EXPECT_EQ(device.reboots, 1);          // the firmware's own reboot: it rests the plate first
+  EXPECT_EQ(device.feature_reboots, 0);  // no feature report when the firmware answers
+}
+
+// A device whose firmware never answers, but whose USB stack takes the feature report.
+class SilentDevice final : public Transport {
+ public:
+  bool send(const uint8_t*, size_t) override {
+    ++commands;
+    return true;
+  }
+  ReceiveResult receive(std::vector<uint8_t>&, int) override { return ReceiveResult::Timeout; }
+  bool request_bootloader() override {
+    ++feature_reboots;
+    return true;
+  }
+  int commands = 0, feature_reboots = 0;
+};
+
+TEST(Ffctl, RebootFallsBackToTheFeatureReportWithoutAnAck) {
+  SilentDevice device;
+  std::string error;
+  bool by_transport = false;
+  ASSERT_TRUE(reboot_device(device, error, by_transport, 20)) << error;
+  EXPECT_TRUE(by_transport);
+  EXPECT_EQ(device.commands, 1);  // the protocol message went first
+  EXPECT_EQ(device.feature_reboots, 1);
 }
 
 // --- a scripted device -----------------------------------------------------------
@@ -531,21 +548,6 @@ std::vector<uint32_t> loader_cli_blocks(const std::vector<std::pair<uint32_t, st
   return blocks;
 }
 
-std::string hex_record(uint16_t offset, uint8_t type, const std::vector<uint8_t>& data) {
-  std::vector<uint8_t> rec = {static_cast<uint8_t>(data.size()), static_cast<uint8_t>(offset >> 8),
-                              static_cast<uint8_t>(offset), type};
-  rec.insert(rec.end(), data.begin(), data.end());
-  uint8_t sum = 0;
-  for (uint8_t b : rec) sum = static_cast<uint8_t>(sum + b);
-  rec.push_back(static_cast<uint8_t>(-sum));
-  std::string line = ":";
-  char buf[3];
-  for (uint8_t b : rec) {
-    std::snprintf(buf, sizeof buf, "%02X", b);
-    line += buf;
-  }
-  return line + "\n";
-}
 
 TEST(HalfKay, SameBlocksAsTeensyLoaderCliWouldWrite) {
   // Records: data in block 0; only 0xFF in block 2; data and 0xFF in block 5;

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
+#include <fstream>
 #include <vector>
 
+#include "frictionfield/core/scenes.hpp"
 #include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/protocol/codec.hpp"
 #include "scene_command.hpp"
@@ -92,6 +94,20 @@ TEST(SceneCommand, EverythingElseTravelsWholeAsAGeneralScene) {
   EXPECT_EQ(t.message.scene.evaluation, Evaluation::Table);
   EXPECT_FLOAT_EQ(t.message.scene.table.spacing_px, 8.0f);
   expect_same_condition_as_ff_replay(t);
+  // A scene file travels whole as what ff-replay builds from the same words,
+  // with or without --scene file (src/host decides what --scene-file implies).
+  const std::string path = ::testing::TempDir() + "scene_command_file.scene";
+  {
+    std::ofstream out(path);
+    out << host::format_scene_text(scenes::heightmap(Target::Bottom));
+  }
+  for (const std::vector<std::string>& words : std::vector<std::vector<std::string>>{
+           {"--scene", "file", "--scene-file", path}, {"--scene-file", path}}) {
+    const Parsed f = parse(words);
+    if (!f.ok) continue;  // src/host may refuse a combination: then nothing is sent
+    EXPECT_EQ(f.message.kind, protocol::ConditionKind::General) << words.size();
+    expect_same_condition_as_ff_replay(f);
+  }
 }
 
 TEST(SceneCommand, WordsThatMakeNoConditionSaySo) {

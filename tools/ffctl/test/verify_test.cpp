@@ -166,3 +166,32 @@ TEST(Verify, AnotherConditionIsCaught) {
 
 }  // namespace
 }  // namespace ff::ffctl
+
+namespace ff::ffctl {
+namespace {
+
+TEST(Verify, CoverageSaysHowMuchWasComparedAndAMinimumFailsTheRest) {
+  // Recorded from 0.1 s, the finger down until 1.525 s: nothing before the
+  // lift can be compared (the device's filters hold reports the recording
+  // lacks), so at most (2.6 - 1.525) / 0.0005 + 1 = 2151 of the 5001 ticks.
+  const Recording r = model_device(heightmap_top(), 700, 100000);
+  const VerifyResult v = verify(r, heightmap_top());
+  ASSERT_EQ(v.recorded, 5001u);
+  EXPECT_EQ(v.compared + v.warm_up, v.recorded);
+  EXPECT_EQ(v.beyond_one_code, 0u);
+  EXPECT_LE(v.compared, 2151u);
+  EXPECT_GT(v.compared, 1500u);  // the tracker lets go within ~0.3 s of the lift
+  EXPECT_NEAR(v.coverage(), static_cast<double>(v.compared) / 5001.0, 1e-12);
+  EXPECT_FALSE(verify_passed(v, kDefaultMinCoverage));  // agreement on 43 % proves little
+  EXPECT_TRUE(verify_passed(v, 0.25));                  // unless asked otherwise
+  // A full recording passes the default; one tampered tick fails any minimum.
+  Recording full = model_device(heightmap_top(), 700);
+  EXPECT_TRUE(verify_passed(verify(full, heightmap_top()), kDefaultMinCoverage));
+  full.ticks[3000].dac = static_cast<uint16_t>(full.ticks[3000].dac ^ 0x100);
+  EXPECT_FALSE(verify_passed(verify(full, heightmap_top()), 0.0));
+  // Nothing compared never passes.
+  EXPECT_FALSE(verify_passed(VerifyResult{}, 0.0));
+}
+
+}  // namespace
+}  // namespace ff::ffctl
