@@ -85,7 +85,7 @@ std::string number(float v) {
 // Refused, never clamped: a condition that is not what was asked for is worse than none.
 bool check_ranges(const SceneSpec& spec, const std::string& scene, std::string& error) {
   if (!(spec.strength > 0.0f && spec.strength <= 1.0f)) {
-    error = "strength " + number(spec.strength) + " is outside (0, 1] (the experiment uses 1, 0.66 and 0.33)";
+    error = "strength must be in (0, 1], got " + number(spec.strength) + " (the experiment uses 1, 0.66 and 0.33)";
     return false;
   }
   if (!(spec.idle_amplitude >= 0.0f && spec.idle_amplitude <= 1.0f)) {

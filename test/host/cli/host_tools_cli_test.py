@@ -223,7 +223,7 @@ class SceneWords(Case):
             (["--scene-file", self.tmp], "directory"),
             (["--scene-file", empty], "no directives"),
             (["--scene-file", seven], "constant 7 is outside [0, 1]"),
-            (["--strength", "1.5"], "outside (0, 1]"),
+            (["--strength", "1.5"], "strength must be in (0, 1], got 1.5"),
             (["--idle-amplitude", "-1"], "outside [0, 1]"),
             (["--scene", "tunnel-converging", "--width-end", "0"], "--width-end"),
         ]
