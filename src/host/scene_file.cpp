@@ -1,5 +1,6 @@
 #include "frictionfield/host/scene_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -217,13 +218,10 @@ bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string
     if (!w.done()) return fail("unexpected '" + w.take() + "'");
   }
   // An empty scene would silently render flat: say so instead.
-  if (!any_directive) {
-    error = "no directives: a scene needs at least 'rendering ...' (see docs)";
-    return false;
-  }
+  line_no = std::max(line_no, 1);  // errors name a line, also for an empty text
+  if (!any_directive) return fail("no directives: a scene needs at least 'rendering ...' (see docs)");
   if (s.rendering != Rendering::Constant && s.element_count == 0) {
-    error = "a position or directional scene needs at least one 'element' line";
-    return false;
+    return fail("a position or directional scene needs at least one 'element' line");
   }
   out = s;
   return true;
