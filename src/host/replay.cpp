@@ -1,41 +1,114 @@
 #include "frictionfield/host/replay.hpp"
 
 #include <algorithm>
+#include <deque>
 
 namespace ff::host {
 
-ReplaySummary replay(const std::vector<TraceRow>& rows, HapticPipeline& pipeline, const TickSink& sink,
-                     uint64_t extra_ticks) {
-  ReplaySummary summary;
-  if (rows.empty()) return summary;
-  const uint64_t t0 = rows.front().t_us;
-  uint64_t t_last = t0;
-  for (const TraceRow& r : rows) t_last = std::max(t_last, r.t_us);
-  const uint64_t last_tick = (t_last - t0 + kTickPeriodUs - 1) / kTickPeriodUs + extra_ticks;
+uint64_t ReplaySummary::rejected_samples() const {
+  const uint64_t rejected = uint64_t{faults[Fault::NonFiniteCoordinate]} + faults[Fault::OffScreen] +
+                            faults[Fault::NonIncreasingTime] + faults[Fault::JumpRejected] +
+                            faults[Fault::MailboxOverflow] + faults[Fault::SampleTimeImplausible];
+  return std::min(rejected, samples);
+}
 
-  // Rows arrive in file order. A row stamped far ahead of the rows behind it
-  // (a clock glitch, more than kMaxHoldUs) arrives with the next one instead
-  // of holding the whole trace back; smaller inversions keep the spec's rule
-  // (the tracker then judges the earlier stamp). Monotonic traces: docs/spec.md#tick-timing exactly.
-  constexpr uint64_t kMaxHoldUs = 20000;
-  std::vector<uint64_t> arrival(rows.size());
-  uint64_t next_arrival = UINT64_MAX;
-  for (size_t i = rows.size(); i-- > 0;) {
-    const bool glitch = next_arrival != UINT64_MAX && rows[i].t_us > next_arrival + kMaxHoldUs;
-    arrival[i] = glitch ? next_arrival : rows[i].t_us;
-    next_arrival = arrival[i];
+namespace {
+
+// Rows with their arrival time. A row stamped far ahead of the rows behind it
+// (a clock glitch, more than kMaxHoldUs) arrives with the next one instead of
+// holding the whole trace back; smaller inversions keep docs/spec.md's rule
+// (the tracker then judges the earlier stamp). Monotonic traces: the spec exactly.
+// Arrivals are worked out backwards over a window of rows; the window looks
+// kLookahead rows past the rows it hands out, so only a chain of more than
+// kLookahead glitches in a row could be judged differently from the whole file.
+class ArrivalQueue {
+ public:
+  explicit ArrivalQueue(const RowSource& source) : source_(source) {}
+
+  // The next row in file order without taking it; false at the end.
+  bool peek(TraceRow& row, uint64_t& arrival) {
+    if (ready_ == 0 && !refill()) return false;
+    row = rows_.front().row;
+    arrival = rows_.front().arrival;
+    return true;
+  }
+  void pop() {
+    rows_.pop_front();
+    --ready_;
+  }
+  // Drops what is left and counts it (reading the rest of the source).
+  uint64_t discard_rest() {
+    uint64_t n = rows_.size();
+    rows_.clear();
+    ready_ = 0;
+    TraceRow r;
+    while (!ended_ && source_(r)) ++n;
+    ended_ = true;
+    return n;
   }
 
-  size_t next = 0;
+ private:
+  struct Pending {
+    TraceRow row;
+    uint64_t arrival;
+  };
+  static constexpr size_t kBlock = 4096;
+  static constexpr size_t kLookahead = 64;
+
+  bool refill() {
+    TraceRow r;
+    while (!ended_ && rows_.size() < kBlock + kLookahead) {
+      if (source_(r)) rows_.push_back({r, r.t_us});
+      else ended_ = true;
+    }
+    if (rows_.empty()) return false;
+    uint64_t next_arrival = UINT64_MAX;
+    for (size_t i = rows_.size(); i-- > 0;) {
+      const bool glitch = next_arrival != UINT64_MAX && rows_[i].row.t_us > next_arrival + kMaxHoldUs;
+      rows_[i].arrival = glitch ? next_arrival : rows_[i].row.t_us;
+      next_arrival = rows_[i].arrival;
+    }
+    ready_ = ended_ ? rows_.size() : rows_.size() - kLookahead;
+    return true;
+  }
+
+  static constexpr uint64_t kMaxHoldUs = 20000;
+  const RowSource& source_;
+  std::deque<Pending> rows_;
+  size_t ready_ = 0;  // rows at the front whose arrival is final
+  bool ended_ = false;
+};
+
+}  // namespace
+
+ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const TickSink& sink,
+                     const ReplayOptions& options) {
+  ReplaySummary summary;
+  ArrivalQueue queue(source);
+  TraceRow row;
+  uint64_t arrival = 0;
+  if (!queue.peek(row, arrival)) return summary;
+  const uint64_t t0 = row.t_us;
+  uint64_t last_due = t0;  // the latest arrival delivered so far
   double amplitude_sum = 0.0;
   summary.amplitude_min = 1.0f;
-  for (uint64_t k = 0; k <= last_tick; ++k) {
+  uint64_t extra_left = options.extra_ticks;
+  bool more = true;
+  for (uint64_t k = 0;; ++k) {
     const uint64_t now = t0 + k * kTickPeriodUs;
     // Samples due at or before this tick, in file order; the tracker judges their stamps.
-    while (next < rows.size() && arrival[next] <= now) {
-      const TraceRow& r = rows[next++];
-      pipeline.post_sample({static_cast<uint32_t>(r.t_us), r.x, r.y, r.touch});
+    while (more && (more = queue.peek(row, arrival)) && arrival <= now) {
+      pipeline.post_sample({static_cast<uint32_t>(row.t_us), row.x, row.y, row.touch});
       ++summary.samples;
+      last_due = std::max(last_due, arrival);
+      queue.pop();
+    }
+    if (more && arrival > last_due && arrival - last_due > options.max_gap_us) {
+      summary.time_jump = true;
+      summary.time_jump_from_us = last_due;
+      summary.time_jump_to_us = arrival;
+      summary.rows_after_time_jump = queue.discard_rest();
+      more = false;
     }
     const TickOutput out = pipeline.tick(static_cast<uint32_t>(now));
     ++summary.ticks;
@@ -44,10 +117,28 @@ ReplaySummary replay(const std::vector<TraceRow>& rows, HapticPipeline& pipeline
     summary.amplitude_max = std::max(summary.amplitude_max, out.amplitude);
     amplitude_sum += static_cast<double>(out.amplitude);
     if (sink) sink(now, out);
+    // The tick at or after the last sample, then the extra ticks.
+    if (!more && now >= last_due) {
+      if (extra_left == 0) break;
+      --extra_left;
+    }
   }
   summary.amplitude_mean = static_cast<float>(amplitude_sum / static_cast<double>(summary.ticks));
   summary.faults = pipeline.faults();
   return summary;
+}
+
+ReplaySummary replay(const std::vector<TraceRow>& rows, HapticPipeline& pipeline, const TickSink& sink,
+                     uint64_t extra_ticks) {
+  size_t next = 0;
+  const RowSource source = [&](TraceRow& r) {
+    if (next == rows.size()) return false;
+    r = rows[next++];
+    return true;
+  };
+  ReplayOptions options;
+  options.extra_ticks = extra_ticks;
+  return replay(source, pipeline, sink, options);
 }
 
 }  // namespace ff::host

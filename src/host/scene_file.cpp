@@ -1,9 +1,11 @@
 #include "frictionfield/host/scene_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -88,6 +90,36 @@ bool parse_curve(Words& w, PathCurve& curve, std::string& err) {
   return err = "unknown curve '" + kind + "' (cubic, sine, polyline)", false;
 }
 
+std::string number_text(float v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+// Values a scene cannot mean are refused with the key that carries them.
+bool check_element(const FieldElement& e, const std::string& kind, std::string& err) {
+  struct Bound { const char* key; float value; bool zero_ok; };
+  const Bound bounds[] = {
+      {"radius", e.point.radius, true},       {"feather", e.point.feather, true},
+      {"a", e.valley.a, false},               {"band", e.valley.band_half_width, true},
+      {"band", e.valley.band_feather, true},  {"length", e.tunnel.length, false},
+      {"width", e.tunnel.width_start, false}, {"width", e.tunnel.width_end, false},
+      {"scale", e.tunnel.scale, false},       {"wavelength", e.texture.wavelength_x, false},
+      {"wavelength", e.texture.wavelength_y, false},
+  };
+  for (const Bound& b : bounds) {
+    if (b.zero_ok ? b.value < 0.0f : b.value <= 0.0f) {
+      err = std::string("element ") + kind + ": '" + b.key + "' " + number_text(b.value) + " must be " +
+            (b.zero_ok ? ">= 0" : "> 0");
+      return false;
+    }
+  }
+  if (e.kind == ElementKind::PathSink && e.valley.curve.kind == CurveKind::Sine && !(e.valley.curve.wavelength > 0.0f)) {
+    return err = "curve sine: the wavelength must be > 0", false;
+  }
+  return true;
+}
+
 bool parse_element(Words& w, FieldElement& e, std::string& err) {
   const std::string kind = w.take();
   if (kind == "point_sink") e.kind = ElementKind::PointSink;
@@ -118,7 +150,7 @@ bool parse_element(Words& w, FieldElement& e, std::string& err) {
     else return err = "unknown key '" + key + "' for element " + kind, false;
     if (!ok) return err = "'" + key + "' needs finite number(s)", false;
   }
-  return true;
+  return check_element(e, kind, err);
 }
 
 }  // namespace
@@ -133,10 +165,12 @@ bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string
     error = "line " + std::to_string(line_no) + ": " + msg;
     return false;
   };
+  bool any_directive = false;
   while (std::getline(in, line)) {
     ++line_no;
     Words w(line);
     if (w.empty()) continue;
+    any_directive = true;
     const std::string key = w.take();
     std::string err;
     if (key == "rendering") {
@@ -147,8 +181,12 @@ bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string
       else return fail("rendering is constant, position or directional (got '" + r + "')");
     } else if (key == "constant") {
       if (!w.number(s.constant)) return fail("constant needs a number");
+      if (!(s.constant >= 0.0f && s.constant <= 1.0f)) {
+        return fail("constant " + number_text(s.constant) + " is outside [0, 1] (an amplitude)");
+      }
     } else if (key == "bias") {
       if (!w.number(s.bias)) return fail("bias needs a number");
+      if (!(s.bias >= -1.0f && s.bias <= 1.0f)) return fail("bias " + number_text(s.bias) + " is outside [-1, 1]");
     } else if (key == "evaluation") {
       const std::string e = w.take();
       if (e == "closed") {
@@ -156,6 +194,9 @@ bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string
       } else if (e == "table") {
         s.evaluation = Evaluation::Table;
         if (!w.number(s.table.spacing_px)) return fail("evaluation table needs the spacing in px");
+        if (!(s.table.spacing_px >= 1.0f && s.table.spacing_px <= 100.0f)) {
+          return fail("table spacing " + number_text(s.table.spacing_px) + " is outside [1, 100] px");
+        }
         const std::string storage = w.take();
         if (storage == "int16" || storage.empty()) s.table.storage = TableStorage::Int16;
         else if (storage == "float") s.table.storage = TableStorage::Float32;
@@ -176,11 +217,22 @@ bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string
     }
     if (!w.done()) return fail("unexpected '" + w.take() + "'");
   }
+  // An empty scene would silently render flat: say so instead.
+  line_no = std::max(line_no, 1);  // errors name a line, also for an empty text
+  if (!any_directive) return fail("no directives: a scene needs at least 'rendering ...' (see docs)");
+  if (s.rendering != Rendering::Constant && s.element_count == 0) {
+    return fail("a position or directional scene needs at least one 'element' line");
+  }
   out = s;
   return true;
 }
 
 bool read_scene_file(const std::string& path, SceneDefinition& out, std::string& error) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    error = path + ": is a directory, not a scene file";
+    return false;
+  }
   std::ifstream in(path);
   if (!in) {
     error = path + ": cannot open: " + std::strerror(errno);

@@ -1,6 +1,8 @@
 #include "frictionfield/host/scene_spec.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
 
 #include "frictionfield/core/scenes.hpp"
 #include "frictionfield/host/scene_file.hpp"
@@ -14,11 +16,21 @@ const char* scene_names() {
 
 void add_scene_options(CLI::App& app, SceneSpec& spec) {
   app.add_option("--scene", spec.scene, std::string("scene to render: ") + scene_names())
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([&spec](const std::string&) { spec.scene_given = true; });
   app.add_option("--target", spec.target, "path target: top, middle or bottom")->capture_default_str();
   app.add_option("--strength", spec.strength, "haptic strength s in (0, 1]: 1, 0.66, 0.33 in the experiment")
       ->capture_default_str();
-  app.add_option("--scene-file", spec.scene_file, "general scene definition (with --scene file)");
+  // CLI11 runs option callbacks in the order the options were added, so
+  // --scene is known here whatever the order on the command line.
+  app.add_option("--scene-file", spec.scene_file, "general scene definition (implies --scene file)")
+      ->each([&spec](const std::string&) {
+        if (spec.scene_given && spec.scene != "file") {
+          throw CLI::ValidationError("a scene file is --scene file, not --scene " + spec.scene +
+                                     ": drop one of the two");
+        }
+        spec.scene = "file";
+      });
   app.add_option("--tunnel-x-start", spec.tunnel_x_start, "steering tunnel: start x (px)")->capture_default_str();
   app.add_option("--tunnel-length", spec.tunnel_length, "steering tunnel: length (px)")->capture_default_str();
   app.add_option("--width-start", spec.tunnel_width_start, "steering tunnel: width at the start (px)")
@@ -53,16 +65,86 @@ bool parse_target(const std::string& name, Target& out) {
 
 }  // namespace
 
+std::string resolved_scene(const SceneSpec& spec) {
+  return spec.scene_file.empty() || spec.scene_given ? spec.scene : std::string("file");
+}
+
+namespace {
+
+bool uses_target(const std::string& scene) {
+  return scene == "heightmap" || scene == "frictionmap" || scene == "pilot-c";
+}
+bool is_tunnel(const std::string& scene) { return scene.rfind("tunnel-", 0) == 0; }
+
+std::string number(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", static_cast<double>(v));
+  return buf;
+}
+
+// Refused, never clamped: a condition that is not what was asked for is worse than none.
+bool check_ranges(const SceneSpec& spec, const std::string& scene, std::string& error) {
+  if (!(spec.strength > 0.0f && spec.strength <= 1.0f)) {
+    error = "strength must be in (0, 1], got " + number(spec.strength) + " (the experiment uses 1, 0.66 and 0.33)";
+    return false;
+  }
+  if (!(spec.idle_amplitude >= 0.0f && spec.idle_amplitude <= 1.0f)) {
+    error = "idle amplitude " + number(spec.idle_amplitude) + " is outside [0, 1]";
+    return false;
+  }
+  if (is_tunnel(scene)) {
+    const struct { const char* name; float value; } positive[] = {
+        {"--tunnel-length", spec.tunnel_length}, {"--width-start", spec.tunnel_width_start},
+        {"--width-end", spec.tunnel_width_end}, {"--tunnel-scale", spec.tunnel_scale}};
+    for (const auto& p : positive) {
+      if (!(p.value > 0.0f && std::isfinite(p.value))) {
+        error = std::string(p.name) + " " + number(p.value) + " must be a positive number";
+        return false;
+      }
+    }
+    if (!std::isfinite(spec.tunnel_x_start)) return error = "--tunnel-x-start must be a number", false;
+  }
+  if (spec.evaluation == "table" && !(spec.table_spacing >= 1.0f && spec.table_spacing <= 100.0f)) {
+    error = "--table-spacing " + number(spec.table_spacing) + " is outside [1, 100] px";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string scene_words(const SceneSpec& spec) {
+  const std::string scene = resolved_scene(spec);
+  std::string w = "--scene " + scene;
+  if (scene == "file") w += " --scene-file " + spec.scene_file;
+  if (uses_target(scene)) w += " --target " + spec.target;
+  w += " --strength " + number(spec.strength);
+  if (is_tunnel(scene)) {
+    w += " --tunnel-x-start " + number(spec.tunnel_x_start) + " --tunnel-length " + number(spec.tunnel_length) +
+         " --width-start " + number(spec.tunnel_width_start) + " --width-end " + number(spec.tunnel_width_end) +
+         " --tunnel-scale " + number(spec.tunnel_scale);
+  }
+  if (spec.evaluation == "table") {
+    w += " --evaluation table --table-spacing " + number(spec.table_spacing) + " --table-storage " +
+         spec.table_storage + " --table-source " + spec.table_source;
+  }
+  if (spec.idle_amplitude != 0.0f) w += " --idle-amplitude " + number(spec.idle_amplitude);
+  if (spec.inverted_dac) w += " --inverted-dac";
+  return w;
+}
+
 bool make_condition(const SceneSpec& spec, Condition& out, std::string& error) {
+  const std::string s = resolved_scene(spec);
+  if (!spec.scene_file.empty() && s != "file") {
+    error = "a scene file is --scene file, not --scene " + s + ": drop one of the two";
+    return false;
+  }
   Target target;
   if (!parse_target(spec.target, target)) {
     error = "unknown target '" + spec.target + "': use top, middle or bottom";
     return false;
   }
-  if (!(spec.strength > 0.0f && spec.strength <= 1.0f)) {
-    error = "strength must be in (0, 1] (the experiment uses 1, 0.66 and 0.33)";
-    return false;
-  }
+  if (!check_ranges(spec, s, error)) return false;
   TunnelParams tunnel;
   tunnel.x_start = spec.tunnel_x_start;
   tunnel.length = spec.tunnel_length;
@@ -71,7 +153,6 @@ bool make_condition(const SceneSpec& spec, Condition& out, std::string& error) {
   tunnel.scale = spec.tunnel_scale;
 
   Condition c;
-  const std::string& s = spec.scene;
   if (s == "heightmap") c.scene = scenes::heightmap(target);
   else if (s == "frictionmap") c.scene = scenes::frictionmap(target);
   else if (s == "neutral") c.scene = scenes::neutral();

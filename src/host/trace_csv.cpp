@@ -9,6 +9,7 @@
 #include <istream>
 #include <ostream>
 #include <sstream>
+#include <algorithm>
 
 namespace ff::host {
 
@@ -60,63 +61,81 @@ std::string TraceError::to_string(const std::string& file) const {
   return s.str();
 }
 
-bool read_sensor_trace(std::istream& in, std::vector<TraceRow>& rows, TraceError& error) {
+bool SensorTraceReader::next_data_line(std::string& line) {
+  while (std::getline(in_, line)) {
+    ++line_no_;
+    if (line_no_ == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // UTF-8 BOM
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;  // blank lines and metadata
+    return true;
+  }
+  return false;
+}
+
+bool SensorTraceReader::read_header(TraceError& error) {
   std::string line;
-  size_t line_no = 0;
-  if (!std::getline(in, line)) {
-    error = {1, 0, "empty file: expected a header row 't_us,x,y,touch'"};
+  if (!next_data_line(line)) {
+    error = {line_no_ + (line_no_ == 0 ? 1 : 0), 0, "empty file: expected a header row 't_us,x,y,touch'"};
     return false;
   }
-  ++line_no;
   const std::vector<std::string> header = split(line);
-  int col_t = -1, col_x = -1, col_y = -1, col_touch = -1;
   for (size_t i = 0; i < header.size(); ++i) {
     const std::string name = trim(header[i]);
     const int c = static_cast<int>(i);
-    if (name == "t_us") col_t = c;
-    else if (name == "x") col_x = c;
-    else if (name == "y") col_y = c;
-    else if (name == "touch") col_touch = c;
+    if (name == "t_us") col_t_ = c;
+    else if (name == "x") col_x_ = c;
+    else if (name == "y") col_y_ = c;
+    else if (name == "touch") col_touch_ = c;
   }
-  if (col_t < 0 || col_x < 0 || col_y < 0 || col_touch < 0) {
-    error = {1, 0, "header must name the columns t_us, x, y and touch (got '" + trim(line) + "')"};
+  if (col_t_ < 0 || col_x_ < 0 || col_y_ < 0 || col_touch_ < 0) {
+    error = {line_no_, 0, "header must name the columns t_us, x, y and touch (got '" + trim(line) + "')"};
     return false;
   }
-  const size_t needed = static_cast<size_t>(std::max(std::max(col_t, col_x), std::max(col_y, col_touch))) + 1;
+  needed_ = static_cast<size_t>(std::max(std::max(col_t_, col_x_), std::max(col_y_, col_touch_))) + 1;
+  return true;
+}
 
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::vector<std::string> f = split(line);
-    if (f.size() < needed) {
-      error = {line_no, f.size() + 1, "expected at least " + std::to_string(needed) + " fields, got " +
-                                          std::to_string(f.size())};
-      return false;
-    }
-    TraceRow row;
-    if (!parse_u64(trim(f[col_t]), row.t_us)) {
-      error = {line_no, static_cast<size_t>(col_t) + 1, "t_us must be a non-negative integer (got '" + trim(f[col_t]) + "')"};
-      return false;
-    }
-    uint64_t touch = 0;
-    if (!parse_u64(trim(f[col_touch]), touch) || touch > 1) {
-      error = {line_no, static_cast<size_t>(col_touch) + 1, "touch must be 0 or 1 (got '" + trim(f[col_touch]) + "')"};
-      return false;
-    }
-    row.touch = touch == 1;
-    // Without a finger x and y are ignored, so they may be empty.
-    const std::string xs = trim(f[col_x]), ys = trim(f[col_y]);
-    if (!parse_float(xs, row.x) && (row.touch || !xs.empty())) {
-      error = {line_no, static_cast<size_t>(col_x) + 1, "x is not a number (got '" + xs + "')"};
-      return false;
-    }
-    if (!parse_float(ys, row.y) && (row.touch || !ys.empty())) {
-      error = {line_no, static_cast<size_t>(col_y) + 1, "y is not a number (got '" + ys + "')"};
-      return false;
-    }
-    rows.push_back(row);
+bool SensorTraceReader::next(TraceRow& row, TraceError& error) {
+  error = {};
+  std::string line;
+  if (!next_data_line(line)) return false;
+  const std::vector<std::string> f = split(line);
+  if (f.size() < needed_) {
+    error = {line_no_, f.size() + 1,
+             "expected at least " + std::to_string(needed_) + " fields, got " + std::to_string(f.size())};
+    return false;
+  }
+  row = TraceRow{};
+  const std::string ts = trim(f[col_t_]), touchs = trim(f[col_touch_]);
+  if (!parse_u64(ts, row.t_us)) {
+    error = {line_no_, static_cast<size_t>(col_t_) + 1, "t_us must be a non-negative integer (got '" + ts + "')"};
+    return false;
+  }
+  uint64_t touch = 0;
+  if (!parse_u64(touchs, touch) || touch > 1) {
+    error = {line_no_, static_cast<size_t>(col_touch_) + 1, "touch must be 0 or 1 (got '" + touchs + "')"};
+    return false;
+  }
+  row.touch = touch == 1;
+  // Without a finger x and y are ignored, so they may be empty.
+  const std::string xs = trim(f[col_x_]), ys = trim(f[col_y_]);
+  if (!parse_float(xs, row.x) && (row.touch || !xs.empty())) {
+    error = {line_no_, static_cast<size_t>(col_x_) + 1, "x is not a number (got '" + xs + "')"};
+    return false;
+  }
+  if (!parse_float(ys, row.y) && (row.touch || !ys.empty())) {
+    error = {line_no_, static_cast<size_t>(col_y_) + 1, "y is not a number (got '" + ys + "')"};
+    return false;
   }
   return true;
+}
+
+bool read_sensor_trace(std::istream& in, std::vector<TraceRow>& rows, TraceError& error) {
+  SensorTraceReader reader(in);
+  if (!reader.read_header(error)) return false;
+  TraceRow row;
+  while (reader.next(row, error)) rows.push_back(row);
+  return error.message.empty();
 }
 
 bool read_sensor_trace_file(const std::string& path, std::vector<TraceRow>& rows, TraceError& error) {
@@ -128,15 +147,24 @@ bool read_sensor_trace_file(const std::string& path, std::vector<TraceRow>& rows
   return read_sensor_trace(in, rows, error);
 }
 
-void write_replay_header(std::ostream& out) { out << "t_us,x,y,vx,vy,amplitude,dac\n"; }
+void write_replay_header(std::ostream& out) { out << "t_us,x,y,vx,vy,amplitude,dac,present\n"; }
 
 void write_replay_row(std::ostream& out, uint64_t t_us, const TickOutput& t) {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "%llu,%.3f,%.3f,%.5f,%.5f,%.6f,%u\n", static_cast<unsigned long long>(t_us),
+  std::snprintf(buf, sizeof buf, "%llu,%.3f,%.3f,%.5f,%.5f,%.6f,%u,%d\n", static_cast<unsigned long long>(t_us),
                 static_cast<double>(t.position.x), static_cast<double>(t.position.y),
                 static_cast<double>(t.direction.x), static_cast<double>(t.direction.y),
-                static_cast<double>(t.amplitude), static_cast<unsigned>(t.dac));
+                static_cast<double>(t.amplitude), static_cast<unsigned>(t.dac), t.present ? 1 : 0);
   out << buf;
 }
 
+void write_metadata(std::ostream& out, const Metadata& metadata) {
+  for (const auto& [key, value] : metadata) {
+    std::string v = value;
+    for (char& c : v) if (c == '\n' || c == '\r') c = ' ';
+    out << "# " << key << ": " << v << "\n";
+  }
+}
+
 }  // namespace ff::host
+

@@ -5,7 +5,9 @@
 // independent double-precision form of the spec's rendering. Tolerances: position 1e-3 px, direction
 // 1e-4, amplitude 1e-5 (well under one DAC LSB = 2.4e-4), DAC code +-1 (a
 // half-code rounding may flip between compilers).
-// FF_UPDATE_GOLDEN=1 rewrites the files after an intended change.
+// FF_UPDATE_GOLDEN=1 rewrites the files after an intended change (or
+// test/traces/generate.sh with the build folder). They are change detectors;
+// replay_test.cpp checks the timing and the end of a replay independently.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -87,22 +89,29 @@ TEST_P(GoldenReplay, MatchesStoredOutput) {
   const std::string path = std::string(FF_TRACE_DIR) + "/" + c.golden_name();
   if (std::getenv("FF_UPDATE_GOLDEN") != nullptr) {
     std::ofstream out(path);
-    out << "t_us,x,y,vx,vy,amplitude,dac\n";
+    write_metadata(out, {{"golden", c.trace + " --scene " + c.scene + " --target " + c.target + " --strength " +
+                                        std::to_string(c.strength) + " --tracker " + c.tracker + ", every " +
+                                        std::to_string(c.stride) + " tick(s)"},
+                         {"note", "a change detector: regenerate with test/traces/generate.sh after an intended change"}});
+    write_replay_header(out);
     for (const std::string& l : got) out << l << "\n";
     GTEST_SKIP() << "rewrote " << path;
   }
   std::ifstream in(path);
   ASSERT_TRUE(in) << path << " missing: run with FF_UPDATE_GOLDEN=1";
   std::string line;
-  std::getline(in, line);
+  while (std::getline(in, line) && (line.empty() || line[0] == '#')) {
+  }
+  EXPECT_EQ(line, "t_us,x,y,vx,vy,amplitude,dac,present");
   size_t i = 0;
-  const double tol[] = {0, 1e-3, 1e-3, 1e-4, 1e-4, 1e-5, 1};  // DAC: rounding may flip at a half code
+  const double tol[] = {0, 1e-3, 1e-3, 1e-4, 1e-4, 1e-5, 1, 0};  // DAC: rounding may flip at a half code
   while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
     ASSERT_LT(i, got.size()) << "golden has more ticks";
     const std::vector<double> want = fields(line), have = fields(got[i]);
-    ASSERT_EQ(want.size(), 7u);
-    ASSERT_EQ(have.size(), 7u);
-    for (int f = 0; f < 7; ++f) {
+    ASSERT_EQ(want.size(), 8u);
+    ASSERT_EQ(have.size(), 8u);
+    for (int f = 0; f < 8; ++f) {
       ASSERT_NEAR(have[f], want[f], tol[f] + 1e-9) << c.golden_name() << " row " << i + 2 << " column " << f + 1;
     }
     ++i;

@@ -38,5 +38,50 @@ TEST(Replay, ExtraTicksLetLiftOffPlayOut) {
   EXPECT_EQ(last.dac, 0);
 }
 
+TEST(Replay, AnImplausibleJumpEndsTheReplayAtTheLastPlausibleReport) {
+  // 2 s of reports, then one stamp 2^31 us ahead: ticking through the gap
+  // would write 4.3 million idle ticks.
+  std::vector<TraceRow> rows;
+  for (uint64_t t = 0; t <= 2000000; t += 5000) rows.push_back({t, 400, 240, true});
+  rows.push_back({2000000 + (1ull << 31), 400, 240, true});
+  size_t next = 0;
+  const RowSource source = [&](TraceRow& r) { return next < rows.size() ? (r = rows[next++], true) : false; };
+  auto p = std::make_unique<HapticPipeline>();
+  ReplayOptions options;
+  options.max_gap_us = 600'000'000;
+  const ReplaySummary s = replay(source, *p, nullptr, options);
+  EXPECT_EQ(s.ticks, 2000000u / kTickPeriodUs + 1);  // ticks 0 .. 2 s
+  EXPECT_TRUE(s.time_jump);
+  EXPECT_EQ(s.time_jump_from_us, 2000000u);
+  EXPECT_EQ(s.rows_after_time_jump, 1u);
+  EXPECT_EQ(s.samples, rows.size() - 1);
+}
+
+TEST(Replay, StreamingGivesTheSameTicksAsTheWholeTraceAcrossItsWindows) {
+  // More rows than the look-ahead window, with backwards and far-ahead stamps
+  // scattered through: the arrival rule must not depend on where a window ends.
+  std::vector<TraceRow> rows;
+  uint64_t t = 1000;
+  for (int i = 0; i < 10000; ++i) {
+    t += 5000;
+    uint64_t stamp = t;
+    if (i % 977 == 500) stamp = t + 50000;   // far ahead: arrives with the next row
+    if (i % 1313 == 700) stamp = t - 12000;  // behind: the tracker drops it
+    rows.push_back({stamp, 100.0f + static_cast<float>(i % 600), 240.0f, true});
+  }
+  auto a = std::make_unique<HapticPipeline>();
+  auto b = std::make_unique<HapticPipeline>();
+  std::vector<uint32_t> whole, streamed;
+  replay(rows, *a, [&](uint64_t, const TickOutput& o) { whole.push_back(o.dac); }, 10);
+  // Independent expectation for the tick count: t0 .. the last stamp, then 10.
+  EXPECT_EQ(whole.size(), (rows.back().t_us - rows.front().t_us + kTickPeriodUs - 1) / kTickPeriodUs + 1 + 10);
+  size_t next = 0;
+  const RowSource source = [&](TraceRow& r) { return next < rows.size() ? (r = rows[next++], true) : false; };
+  ReplayOptions options;
+  options.extra_ticks = 10;
+  replay(source, *b, [&](uint64_t, const TickOutput& o) { streamed.push_back(o.dac); }, options);
+  EXPECT_EQ(whole, streamed);
+}
+
 }  // namespace
 }  // namespace ff::host

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "frictionfield/core/scene_plan.hpp"
 #include "frictionfield/core/scenes.hpp"
 
@@ -74,6 +76,44 @@ TEST(SceneFile, ErrorsSayWhichLineAndWhy) {
   std::string err;
   EXPECT_FALSE(parse_scene_text(nine, s, err));
   EXPECT_NE(err.find("more than 8"), std::string::npos);
+}
+
+TEST(SceneFile, RefusesValuesItWouldOtherwiseClampOrIgnore) {
+  const char* cases[] = {
+      "rendering constant\nconstant 7\n",
+      "rendering constant\nconstant -0.1\n",
+      "rendering position\nbias 3\nelement point_sink centre 1 1\n",
+      "element point_sink weight 1 centre 1 1 radius -5\n",
+      "element path_sink curve cubic -200 a 0\n",
+      "element tunnel width 0 20\n",
+      "element texture wavelength 0 10\n",
+      "evaluation table 0\nelement vortex centre 1 1\n",
+      "",                          // nothing at all: would render flat
+      "# only a comment\n",
+      "rendering directional\n",  // no element: flat
+  };
+  for (const char* text : cases) {
+    SceneDefinition s;
+    std::string err;
+    EXPECT_FALSE(parse_scene_text(text, s, err)) << text;
+    EXPECT_FALSE(err.empty()) << text;
+  }
+  SceneDefinition s;
+  std::string err;
+  EXPECT_TRUE(parse_scene_text("rendering constant\nconstant 1\n", s, err)) << err;
+  EXPECT_FLOAT_EQ(s.constant, 1.0f);
+}
+
+TEST(SceneFile, RefusesADirectoryAndAnEmptyFile) {
+  SceneDefinition s;
+  std::string err;
+  const std::string dir = ::testing::TempDir();
+  EXPECT_FALSE(read_scene_file(dir, s, err));
+  EXPECT_NE(err.find("directory"), std::string::npos) << err;
+  const std::string empty = dir + "/ff_empty_scene.txt";
+  { std::ofstream(empty).flush(); }
+  EXPECT_FALSE(read_scene_file(empty, s, err));
+  EXPECT_NE(err.find("no directives"), std::string::npos) << err;
 }
 
 }  // namespace

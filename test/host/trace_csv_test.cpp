@@ -67,7 +67,49 @@ TEST(TraceCsv, WritesTheReplayFormat) {
   t.amplitude = 0.25f;
   t.dac = 1024;
   write_replay_row(out, 5000000000ull, t);
-  EXPECT_EQ(out.str(), "t_us,x,y,vx,vy,amplitude,dac\n5000000000,1.500,2.250,0.60000,-0.80000,0.250000,1024\n");
+  t.present = true;
+  write_replay_row(out, 7, TickOutput{});
+  EXPECT_EQ(out.str(),
+            "t_us,x,y,vx,vy,amplitude,dac,present\n5000000000,1.500,2.250,0.60000,-0.80000,0.250000,1024,0\n"
+            "7,0.000,0.000,0.00000,0.00000,0.000000,0,0\n");
+  std::ostringstream present;
+  write_replay_row(present, 1, t);
+  EXPECT_EQ(present.str().back(), '\n');
+  EXPECT_EQ(present.str().substr(present.str().size() - 3), ",1\n");
+}
+
+TEST(TraceCsv, SkipsMetadataLinesAndAByteOrderMark) {
+  std::vector<TraceRow> rows;
+  TraceError err;
+  ASSERT_TRUE(parse("\xEF\xBB\xBF# tool: ff-replay 0.1.0\n#scene: x\nt_us,x,y,touch\n# in between\n5,1,2,1\n"
+                    "# summary: ticks=1\n",
+                    rows, err))
+      << err.message;
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].t_us, 5u);
+  // Errors still name the file's own line numbers.
+  EXPECT_FALSE(parse("# a\nt_us,x,y,touch\n# b\n5,z,2,1\n", rows, err));
+  EXPECT_EQ(err.line, 4u);
+}
+
+TEST(TraceCsv, MetadataIsOneCommentLinePerKey) {
+  std::ostringstream out;
+  write_metadata(out, {{"tool", "ff-replay"}, {"scene", "two\nlines"}});
+  EXPECT_EQ(out.str(), "# tool: ff-replay\n# scene: two lines\n");
+}
+
+TEST(TraceCsv, TheReaderStreamsRowByRow) {
+  std::istringstream in("t_us,x,y,touch\n1,1,1,1\n2,2,2,1\nbad\n");
+  SensorTraceReader reader(in);
+  TraceError err;
+  ASSERT_TRUE(reader.read_header(err));
+  TraceRow row;
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_EQ(row.t_us, 1u);
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_EQ(row.t_us, 2u);
+  EXPECT_FALSE(reader.next(row, err));
+  EXPECT_EQ(err.line, 4u);  // an error, not the end
 }
 
 }  // namespace

@@ -2,23 +2,29 @@
 """Plot a replay: the finger's path over the scene, coloured by the rendered
 amplitude, and the amplitude against time.
 
-Inputs are the files of docs/spec.md#trace-files: the sensor trace given to
-ff-replay (t_us,x,y,touch; optional ground truth x_true,y_true) and its output
-(t_us,x,y,vx,vy,amplitude,dac). With --scene the scene is drawn behind the path
-(heightmap: its height Z with contours, downhill is slippery; frictionmap: the
-amplitude map), all three paths are outlined, and when the trace carries ground
-truth the amplitude an ideal, noise-free and lag-free renderer would output is
-drawn next to the replayed one.
+Inputs are the sensor trace given to ff-replay (t_us,x,y,touch) and its
+output (t_us,x,y,vx,vy,amplitude,dac,present with '#' metadata lines). The
+scene is the one the replay's metadata names, drawn by ff-scene-render (any
+scene, including --scene-file ones): the amplitude map for position-only
+scenes, |G_norm| with downhill arrows for directional ones. Scene words
+given on the command line must select the same condition (the scene hash in
+the metadata), and the trace must be the replay's input (name and size):
+otherwise the plot is refused.
+
+Long replays stream through numpy: the amplitude is drawn as its minimum and
+maximum per pixel column, the path from at most --max-segments segments, so
+a 1 M-tick replay plots in seconds and well under 1 GB.
 
 Example:
-  ff-replay --scene heightmap --target top --strength 0.66 test/traces/gen_across_high_px.csv -o out.csv
-  plot_replay.py test/traces/gen_across_high_px.csv out.csv --scene heightmap --target top \\
-      --strength 0.66 -o replay.png
-Needs only numpy and matplotlib; the scene is computed from the formulas of docs/spec.md#scenes.
+  ff-replay --scene heightmap --target top --strength 0.66 trace.csv -o out.csv
+  plot_replay.py trace.csv out.csv -o replay.png
+  plot_replay.py trace.csv out.csv -o part.png --from 2 --to 4
+Exit codes: 0 ok, 2 bad usage or input (one line on stderr, never a traceback).
 """
 import argparse
 import csv
-import math
+import os
+import shlex
 import sys
 
 import matplotlib
@@ -27,198 +33,188 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scene_render"))
+from scene_sampler import ToolError, describe, find_binary, grid, parse_metadata, sample  # noqa: E402
+
 WIDTH, HEIGHT = 800, 480
-TARGETS = {"top": -200.0, "middle": 0.0, "bottom": 200.0}
-TICK_US = 500
-LIFT_TIMEOUT_US = 250_000  # a tick this long after the last report draws no finger
-
-
-# ---- docs/spec.md#paths and #scenes -------------------------------
-
-def path_y(x, rise):
-    d = np.clip(np.asarray(x, dtype=float) - 100.0, 0.0, 600.0)
-    return -2.0 * rise / 600.0 ** 3 * d ** 3 + 3.0 * rise / 600.0 ** 2 * d ** 2 + 240.0
-
-
-def path_slope(x, rise):
-    x = np.asarray(x, dtype=float)
-    d = x - 100.0
-    s = -6.0 * rise / 600.0 ** 3 * d ** 2 + 6.0 * rise / 600.0 ** 2 * d
-    return np.where((x > 100.0) & (x < 700.0), s, 0.0)
-
-
-def heightmap_z(x, y, rise, a=0.2):
-    u = y - path_y(x, rise)
-    return 0.5 * np.abs(np.arctan(a * u) / a - u) + 0.5 * np.hypot(x - 700.0, y - (240.0 + rise))
-
-
-def heightmap_gradient(x, y, rise, a=0.2):
-    u = y - path_y(x, rise)
-    d = np.sign(u) * a * a * u * u / (1.0 + a * a * u * u)
-    r = np.hypot(x - 700.0, y - (240.0 + rise))
-    r = np.where(r > 0, r, 1.0)
-    gx = 0.5 * d * -path_slope(x, rise) + 0.5 * (x - 700.0) / r
-    gy = 0.5 * d + 0.5 * (y - (240.0 + rise)) / r
-    return gx, gy
-
-
-def max_gradient(rise):
-    X, Y = np.meshgrid(np.arange(0, WIDTH, 1.0), np.arange(0, HEIGHT, 1.0))
-    gx, gy = heightmap_gradient(X, Y, rise)
-    return float(np.max(np.hypot(gx, gy)))
-
-
-def frictionmap_amplitude(x, y, rise):
-    t = np.clip((30.0 - np.abs(y - path_y(x, rise))) / 20.0, 0.0, 1.0)
-    return t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
+REPLAY_COLUMNS = ("t_us", "x", "y", "amplitude", "present")
+COLUMNS_DRAWN = 1000  # pixel columns of the amplitude plot
 
 
 # ---- files ------------------------------------------------------------------
 
-def read_csv(path, required):
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        sys.exit(f"plot_replay: {path}: {e.strerror}")
-    if rows and not all(c in rows[0] for c in required):
-        sys.exit(f"plot_replay: {path}: expected columns {','.join(required)}")
-    cols = {}
-    for name in (rows[0].keys() if rows else required):
-        if name is None:
-            continue
-        values = []
-        for r in rows:
-            v = (r.get(name) or "").strip()
+def read_header(path):
+    """Metadata, column names and the number of lines before the first row."""
+    lines, meta = 0, {}
+    with open(path, encoding="utf-8-sig") as f:
+        for line in f:
+            lines += 1
+            if line.startswith("#") or not line.strip():
+                meta.update(parse_metadata([line.rstrip("\n")]))
+                continue
+            return meta, [c.strip() for c in line.split(",")], lines
+    raise ToolError(f"{path}: no header row")
+
+
+def read_replay(path):
+    meta, names, skip = read_header(path)
+    missing = [c for c in REPLAY_COLUMNS if c not in names]
+    if missing:
+        raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
+    cols = [names.index(c) for c in REPLAY_COLUMNS]
+    with open(path, encoding="utf-8-sig") as f:
+        try:
+            data = np.loadtxt(f, delimiter=",", comments="#", skiprows=skip, usecols=cols, ndmin=2)
+        except ValueError as e:
+            raise ToolError(f"{path}: {e}") from None
+    if len(data) == 0:
+        raise ToolError(f"{path}: no ticks")
+    return meta, {c: data[:, i] for i, c in enumerate(REPLAY_COLUMNS)}
+
+
+def read_trace(path):
+    """t_us, x, y, touch of every report (csv: rows may have empty x, y)."""
+    t, x, y, touch = [], [], [], []
+    with open(path, newline="", encoding="utf-8-sig") as f:
+        rows = csv.reader(line for line in f if not line.startswith("#"))
+        header = [c.strip() for c in next(rows, [])]
+        if not all(c in header for c in ("t_us", "x", "y", "touch")):
+            raise ToolError(f"{path}: header must name t_us, x, y and touch")
+        it, ix, iy, ic = (header.index(c) for c in ("t_us", "x", "y", "touch"))
+        for n, r in enumerate(rows, start=2):
+            if not r:
+                continue
             try:
-                values.append(float(v) if v else math.nan)
-            except ValueError:
-                values.append(math.nan)
-        cols[name] = np.array(values)
-    return cols
+                t.append(float(r[it]))
+                touch.append(int(r[ic]))
+                x.append(float(r[ix]) if r[ix].strip() else np.nan)
+                y.append(float(r[iy]) if r[iy].strip() else np.nan)
+            except (ValueError, IndexError):
+                raise ToolError(f"{path}: row {n} is not t_us,x,y,touch") from None
+    return {"t_us": np.array(t), "x": np.array(x), "y": np.array(y), "touch": np.array(touch)}
 
 
-def touching_at(ticks_us, trace):
-    """Whether a finger is down at each tick: the newest report at or before it
-    says touch = 1 and is not older than the sensor time-out."""
-    order = np.argsort(trace["t_us"], kind="stable")
-    t = trace["t_us"][order]
-    touch = trace["touch"][order]
-    idx = np.searchsorted(t, ticks_us, side="right") - 1
-    valid = idx >= 0
-    idx = np.clip(idx, 0, len(t) - 1)
-    return valid & (touch[idx] == 1) & (ticks_us - t[idx] <= LIFT_TIMEOUT_US)
+# ---- checks -----------------------------------------------------------------
+
+def check_trace(meta, trace_path, replay_path):
+    """The replay's metadata names its input as 'NAME (N bytes)'."""
+    if "input" not in meta:
+        print(f"plot_replay: {replay_path} has no metadata (an old ff-replay?): not checked against the trace",
+              file=sys.stderr)
+        return
+    expected = f"{os.path.basename(trace_path)} ({os.path.getsize(trace_path)} bytes)"
+    if meta["input"] != expected:
+        raise ToolError(f"{replay_path} is the replay of {meta['input']}, not of {expected}")
 
 
-def ideal_amplitude(ticks_us, trace, scene, rise, strength):
-    """The ideal renderer: ground truth position and direction at each tick."""
-    if "x_true" not in trace or scene not in ("heightmap", "frictionmap"):
-        return None
-    ok = np.isfinite(trace["x_true"]) & np.isfinite(trace["y_true"]) & (trace["touch"] == 1)
-    t, xt, yt = trace["t_us"][ok], trace["x_true"][ok], trace["y_true"][ok]
-    if len(t) < 3:
-        return None
-    t, first = np.unique(t, return_index=True)
-    xt, yt = xt[first], yt[first]
-    x = np.interp(ticks_us, t, xt)
-    y = np.interp(ticks_us, t, yt)
-    if scene == "frictionmap":
-        a = frictionmap_amplitude(x, y, rise)
-    else:
-        vx, vy = np.gradient(xt, t), np.gradient(yt, t)
-        vx, vy = np.interp(ticks_us, t, vx), np.interp(ticks_us, t, vy)
-        speed = np.hypot(vx, vy)
-        gx, gy = heightmap_gradient(x, y, rise)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            a = np.where(speed > 1e-6, 0.5 - (vx * gx + vy * gy) / speed / (2.0 * max_gradient(rise)), 0.5)
-    a = 0.5 + strength * (a - 0.5)
-    inside = (ticks_us >= t[0]) & (ticks_us <= t[-1])
-    return np.where(inside, a, np.nan)
+def scene_for(meta, words, binary, replay_path):
+    """The words to draw with: those given (checked against the replay's hash) or the replay's own."""
+    if not words:
+        if "scene" not in meta:
+            return None
+        words = shlex.split(meta["scene"])
+    scene_meta, _ = sample(binary, words, 100.0, 0.0)
+    if "scene_hash" in meta and scene_meta.get("scene_hash") != meta["scene_hash"]:
+        raise ToolError(f"{replay_path} was rendered with '{meta.get('scene')}' (scene hash {meta['scene_hash']}), "
+                        f"not with '{scene_meta.get('scene')}' ({scene_meta.get('scene_hash')})")
+    return words
+
+
+def window_of(seconds, t_from, t_to):
+    end = float(seconds[-1])
+    if t_from is not None and t_from > end:
+        raise ToolError(f"--from {t_from:g} s is beyond the end of the replay ({end:.3f} s)")
+    if t_to is not None and t_to < 0:
+        raise ToolError(f"--to {t_to:g} s is before the start of the replay")
+    if t_from is not None and t_to is not None and t_to <= t_from:
+        raise ToolError(f"--to {t_to:g} s is not after --from {t_from:g} s")
+    lo = np.searchsorted(seconds, t_from, side="left") if t_from is not None else 0
+    hi = np.searchsorted(seconds, t_to, side="right") if t_to is not None else len(seconds)
+    if hi - lo < 1:
+        raise ToolError("no tick between --from and --to")
+    return lo, hi
 
 
 # ---- drawing ----------------------------------------------------------------
 
-def draw_scene(ax, scene, rise):
-    X, Y = np.meshgrid(np.arange(0, WIDTH, 2.0), np.arange(0, HEIGHT, 2.0))
-    extent = (0, WIDTH, HEIGHT, 0)
-    if scene == "heightmap":
-        Z = heightmap_z(X, Y, rise)
-        ax.imshow(Z, extent=extent, cmap="Greys", alpha=0.55, interpolation="bilinear")
-        ax.contour(X, Y, Z, levels=18, colors="0.45", linewidths=0.5, alpha=0.7)
-        ax.text(6, 14, "background: height Z (dark = high); moving downhill renders A > 0.5", fontsize=8,
-                color="0.15", bbox=dict(facecolor="white", alpha=0.7, lw=0))
-    elif scene == "frictionmap":
-        ax.text(6, 14, "background: frictionmap (dark = slippery band around the target's path)", fontsize=8,
-                color="0.15", bbox=dict(facecolor="white", alpha=0.7, lw=0))
-        ax.imshow(frictionmap_amplitude(X, Y, rise), extent=extent, cmap="Greys", vmin=0, vmax=1.6, alpha=0.6,
+def draw_scene(ax, binary, words):
+    meta, data = sample(binary, words, 4.0, 0.0)
+    xs, ys, amp = grid(data, 4)
+    extent = (xs[0], xs[-1], ys[-1], ys[0])
+    needs = meta.get("needs")
+    if needs == "position":
+        ax.imshow(amp, extent=extent, cmap="Greys", vmin=0, vmax=1.6, alpha=0.6, interpolation="bilinear")
+        note = "background: amplitude map (dark = slippery)"
+    elif needs == "position+direction":
+        _, _, gx = grid(data, 2)
+        _, _, gy = grid(data, 3)
+        ax.imshow(np.hypot(gx, gy), extent=extent, cmap="Greys", vmin=0, vmax=0.6, alpha=0.5,
                   interpolation="bilinear")
-    xs = np.linspace(0, WIDTH, 400)
-    for name, r in TARGETS.items():
-        chosen = scene in ("heightmap", "frictionmap") and r == rise
-        ax.plot(xs, path_y(xs, r), "--", color="tab:red" if chosen else "0.6", lw=1.2 if chosen else 0.8)
-        ax.plot([700], [240 + r], "o", ms=9, mfc="none", mec="tab:red" if chosen else "0.6", mew=1.5)
-    ax.axvspan(0, 100, color="tab:green", alpha=0.06)
-    ax.axvspan(700, WIDTH, color="tab:blue", alpha=0.06)
+        k = 10
+        X, Y = np.meshgrid(xs[::k], ys[::k])
+        ax.quiver(X, Y, -gx[::k, ::k], -gy[::k, ::k], color="0.35", angles="xy", scale_units="xy",
+                  scale=0.5 / 30.0, width=0.002)
+        note = "background: |G_norm|, arrows downhill (moving along them renders A > 0.5)"
+    else:
+        note = "constant scene: the amplitude does not depend on the finger"
+    ax.text(6, 14, note, fontsize=8, color="0.15", bbox=dict(facecolor="white", alpha=0.7, lw=0))
+    return describe(meta.get("scene", ""))
 
 
-def coloured_path(ax, x, y, amplitude, present, cmap, norm):
+def min_max_per_column(seconds, values, columns):
+    """Per pixel column: its time and the minimum and maximum of the values
+    (NaN where no finger), so a long replay keeps its extremes."""
+    n = len(values)
+    if n <= 2 * columns:
+        return seconds, values, values
+    edges = np.linspace(0, n, columns + 1).astype(np.int64)
+    starts = edges[:-1]
+    lo = np.fmin.reduceat(values, starts)  # fmin/fmax skip NaN; all-NaN columns stay NaN
+    hi = np.fmax.reduceat(values, starts)
+    return seconds[starts], lo, hi
+
+
+def path_segments(x, y, amplitude, present, max_segments):
+    step = max(1, len(x) // max_segments)
+    x, y, a, p = x[::step], y[::step], amplitude[::step], present[::step] > 0
     points = np.column_stack([x, y])
     segments = np.stack([points[:-1], points[1:]], axis=1)
-    keep = present[:-1] & present[1:] & np.all(np.isfinite(segments), axis=(1, 2))
-    lc = LineCollection(segments[keep], cmap=cmap, norm=norm, linewidths=2.2)
-    lc.set_array(0.5 * (amplitude[:-1] + amplitude[1:])[keep])
-    ax.add_collection(lc)
-    return lc
+    keep = p[:-1] & p[1:] & np.all(np.isfinite(segments), axis=(1, 2))
+    return segments[keep], (0.5 * (a[:-1] + a[1:]))[keep]
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("trace", help="sensor trace given to ff-replay (t_us,x,y,touch[,x_true,y_true])")
-    ap.add_argument("replay", help="ff-replay output (t_us,x,y,vx,vy,amplitude,dac)")
-    ap.add_argument("-o", "--output", required=True, help="PNG file to write")
-    ap.add_argument("--scene", default="none", choices=["heightmap", "frictionmap", "neutral", "none"],
-                    help="scene to draw behind the path (the one replayed)")
-    ap.add_argument("--target", default="middle", choices=list(TARGETS), help="the scene's target")
-    ap.add_argument("--strength", type=float, default=1.0, help="strength s used in the replay (for the ideal curve)")
-    ap.add_argument("--from", dest="t_from", type=float, default=None, help="first second to draw (from the start)")
-    ap.add_argument("--to", dest="t_to", type=float, default=None, help="last second to draw")
-    ap.add_argument("--title", default=None)
-    args = ap.parse_args()
+def plot(args, words):
+    meta, replay = read_replay(args.replay)
+    trace = read_trace(args.trace)
+    check_trace(meta, args.trace, args.replay)
+    binary = find_binary(args.bin)
+    words = scene_for(meta, words, binary, args.replay)
 
-    trace = read_csv(args.trace, ["t_us", "x", "y", "touch"])
-    replay = read_csv(args.replay, ["t_us", "x", "y", "vx", "vy", "amplitude", "dac"])
-    if len(replay.get("t_us", [])) == 0:
-        sys.exit(f"plot_replay: {args.replay}: no ticks")
-    rise = TARGETS[args.target]
     t0 = replay["t_us"][0]
-    ticks = replay["t_us"]
-    seconds = (ticks - t0) * 1e-6
-    window = np.ones_like(seconds, dtype=bool)
-    if args.t_from is not None:
-        window &= seconds >= args.t_from
-    if args.t_to is not None:
-        window &= seconds <= args.t_to
-    present = touching_at(ticks, trace) & window
-    amplitude = replay["amplitude"]
-    ideal = ideal_amplitude(ticks, trace, args.scene, rise, args.strength)
+    seconds = (replay["t_us"] - t0) * 1e-6
+    lo, hi = window_of(seconds, args.t_from, args.t_to)
+    sec = seconds[lo:hi]
+    x, y = replay["x"][lo:hi], replay["y"][lo:hi]
+    amplitude, present = replay["amplitude"][lo:hi], replay["present"][lo:hi]
 
     fig = plt.figure(figsize=(11, 9.2))
-    grid = fig.add_gridspec(2, 2, height_ratios=[2.2, 1], width_ratios=[40, 1], hspace=0.28, wspace=0.03)
-    ax = fig.add_subplot(grid[0, 0])
-    cax = fig.add_subplot(grid[0, 1])
-    draw_scene(ax, args.scene, rise)
-    reports = (trace["touch"] == 1) & np.isfinite(trace["x"]) & np.isfinite(trace["y"])
+    layout = fig.add_gridspec(2, 2, height_ratios=[2.2, 1], width_ratios=[40, 1], hspace=0.28, wspace=0.03)
+    ax = fig.add_subplot(layout[0, 0])
+    cax = fig.add_subplot(layout[0, 1])
+    scene_title = draw_scene(ax, binary, words) if words else "no scene"
     rs = (trace["t_us"] - t0) * 1e-6
-    if args.t_from is not None:
-        reports &= rs >= args.t_from
-    if args.t_to is not None:
-        reports &= rs <= args.t_to
-    ax.plot(trace["x"][reports], trace["y"][reports], ".", color="0.25", ms=1.6, label="sensor reports")
-    norm = plt.Normalize(0.0, 1.0)
-    lc = coloured_path(ax, replay["x"], replay["y"], amplitude, present, "plasma", norm)
-    first = np.argmax(present) if present.any() else None
-    if first is not None:
-        ax.plot(replay["x"][first], replay["y"][first], "o", color="tab:green", ms=8, label="start")
+    reports = (trace["touch"] == 1) & np.isfinite(trace["x"]) & np.isfinite(trace["y"])
+    reports &= (rs >= sec[0]) & (rs <= sec[-1])
+    step = max(1, int(np.count_nonzero(reports)) // args.max_segments)
+    ax.plot(trace["x"][reports][::step], trace["y"][reports][::step], ".", color="0.25", ms=1.6,
+            label="sensor reports")
+    segments, colours = path_segments(x, y, amplitude, present, args.max_segments)
+    lc = LineCollection(segments, cmap="plasma", norm=plt.Normalize(0.0, 1.0), linewidths=2.2)
+    lc.set_array(colours)
+    ax.add_collection(lc)
+    if present.any():
+        first = int(np.argmax(present > 0))
+        ax.plot(x[first], y[first], "o", color="tab:green", ms=8, label="start")
     fig.colorbar(lc, cax=cax, label="rendered amplitude A (1 = slippery)")
     ax.set_xlim(0, WIDTH)
     ax.set_ylim(HEIGHT, 0)
@@ -226,29 +222,47 @@ def main():
     ax.set_xlabel("x [px]  (1 px ≈ 0.2 mm)")
     ax.set_ylabel("y [px]")
     ax.legend(loc="lower right", fontsize=8, framealpha=0.85)
-    ax.set_title(args.title or f"{args.trace.split('/')[-1]}: scene {args.scene}"
-                 + (f", target {args.target}, strength {args.strength:g}" if args.scene != "none" else ""))
+    ax.set_title(args.title or f"{os.path.basename(args.trace)}: {scene_title}")
 
-    bx = fig.add_subplot(grid[1, :])
-    shown = np.where(window, amplitude, np.nan)
-    bx.plot(seconds, shown, color="tab:purple", lw=0.9, label="rendered (replay)")
-    if ideal is not None:
-        bx.plot(seconds, np.where(window & present, ideal, np.nan), color="tab:green", lw=0.8, alpha=0.8,
-                label="ideal: true position and direction")
-        err = np.abs(amplitude - ideal)[present & np.isfinite(ideal)]
-        if len(err):
-            bx.text(0.01, 0.04, f"|rendered - ideal| RMS {np.sqrt(np.mean(err ** 2)):.3f}, p95 {np.percentile(err, 95):.3f}"
-                    " (all ticks with a finger)", transform=bx.transAxes, fontsize=8)
-    lifted = window & ~touching_at(ticks, trace)
-    if lifted.any():
-        bx.fill_between(seconds, 0, 1, where=lifted, color="0.85", step="mid", label="no finger")
+    bx = fig.add_subplot(layout[1, :])
+    with_finger = np.where(present > 0, amplitude, np.nan)
+    ts, lo_a, hi_a = min_max_per_column(sec, with_finger, COLUMNS_DRAWN)
+    bx.fill_between(ts, lo_a, hi_a, color="tab:purple", lw=0.6, step="post", label="rendered (finger down)")
+    bx.plot(ts, hi_a, color="tab:purple", lw=0.6, drawstyle="steps-post")
+    lifted_ts, _, lifted = min_max_per_column(sec, (present == 0).astype(float), COLUMNS_DRAWN)
+    if np.any(lifted > 0):
+        bx.fill_between(lifted_ts, 0, 1, where=lifted > 0, color="0.85", step="post", label="no finger (idle)")
     bx.set_ylim(-0.02, 1.02)
-    bx.set_xlim(seconds[window][0], seconds[window][-1])
+    bx.set_xlim(sec[0], sec[-1] if sec[-1] > sec[0] else sec[0] + 1e-3)
     bx.set_xlabel("time since the first report [s]")
     bx.set_ylabel("amplitude A")
     bx.legend(loc="upper right", fontsize=8, ncol=3, framealpha=0.85)
     bx.grid(alpha=0.3)
     fig.savefig(args.output, dpi=90, bbox_inches="tight")
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 usage="%(prog)s trace replay -o PNG [--from S] [--to S] [scene words...]")
+    ap.add_argument("trace", help="sensor trace given to ff-replay (t_us,x,y,touch)")
+    ap.add_argument("replay", help="ff-replay output")
+    ap.add_argument("-o", "--output", required=True, help="PNG file to write")
+    ap.add_argument("--from", dest="t_from", type=float, default=None, help="first second to draw (from the start)")
+    ap.add_argument("--to", dest="t_to", type=float, default=None, help="last second to draw")
+    ap.add_argument("--title", default=None)
+    ap.add_argument("--max-segments", type=int, default=20000, help="most path segments drawn (longer paths thinned)")
+    ap.add_argument("--bin", default=None, help="path to ff-scene-render (default: build/native, or $FF_SCENE_RENDER)")
+    args, words = ap.parse_known_args()
+    try:
+        plot(args, words)
+    except ToolError as e:
+        print(f"plot_replay: {e}", file=sys.stderr)
+        sys.exit(2)
+    except (OSError, ValueError, UnicodeDecodeError) as e:
+        print(f"plot_replay: {getattr(e, 'filename', None) or ''}{': ' if getattr(e, 'filename', None) else ''}"
+              f"{getattr(e, 'strerror', None) or e}", file=sys.stderr)
+        sys.exit(2)
     print(f"wrote {args.output}")
 
 

@@ -3,23 +3,28 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "frictionfield/core/haptic_pipeline.hpp"
+#include "frictionfield/host/cli_conventions.hpp"
 #include "frictionfield/host/replay.hpp"
+#include "frictionfield/host/scene_hash.hpp"
 #include "frictionfield/host/scene_spec.hpp"
 #include "frictionfield/host/trace_csv.hpp"
 
 namespace {
 
+using ff::host::kExitBadUsage;
+using ff::host::kExitCheckFailed;
+using ff::host::kExitOk;
+
 uint32_t host_micros() {
   using namespace std::chrono;
   return static_cast<uint32_t>(duration_cast<microseconds>(steady_clock::now().time_since_epoch()).count());
 }
-
-constexpr uint64_t kMaxReplayTicks = 2000ull * 3600 * 24;  // one day of ticks
 
 bool make_tracker(const std::string& name, const std::string& derivative, ff::TrackerConfig& out,
                   std::string& error) {
@@ -36,22 +41,73 @@ bool make_tracker(const std::string& name, const std::string& derivative, ff::Tr
   return true;
 }
 
+// "WxH" with positive integers.
+bool parse_screen(const std::string& text, float& width, float& height) {
+  unsigned w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 ||
+      h == 0) {
+    return false;
+  }
+  width = static_cast<float>(w);
+  height = static_cast<float>(h);
+  return true;
+}
+
+// The output goes to NAME.partial first and is renamed when the replay has
+// succeeded, so a failed run never leaves a half file under the real name.
+class OutputFile {
+ public:
+  explicit OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {}
+  ~OutputFile() {
+    if (!committed_ && file_.is_open()) {
+      file_.close();
+      std::remove(partial_.c_str());
+    }
+  }
+  bool open() {
+    file_.open(partial_);
+    return static_cast<bool>(file_);
+  }
+  std::ostream& stream() { return file_; }
+  bool commit() {
+    file_.close();
+    if (!file_ || std::rename(partial_.c_str(), path_.c_str()) != 0) return false;
+    committed_ = true;
+    return true;
+  }
+
+ private:
+  std::string path_, partial_;
+  std::ofstream file_;
+  bool committed_ = false;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
       "ff-replay: replay a finger trace through the frictionfield pipeline (extrapolation, filter,\n"
       "scene, amplitude, DAC code) at 2 kHz, exactly as the Teensy renders it.\n\n"
-      "Input: CSV with header t_us,x,y,touch (extra columns ignored), screen pixels 800x480.\n"
-      "Output: one row per 500 us tick: t_us,x,y,vx,vy,amplitude,dac.\n\n"
+      "Input: CSV with header t_us,x,y,touch (extra columns, '#' lines and a UTF-8 BOM are fine),\n"
+      "screen pixels 800x480 (--screen WxH scales a trace from another screen). Read as a stream:\n"
+      "any length in constant memory.\n"
+      "Output: '#' metadata lines (tool, version, date, scene words and hash, tracker, strength,\n"
+      "calibration, input), then one row per 500 us tick: t_us,x,y,vx,vy,amplitude,dac,present\n"
+      "(present = 1: a finger was tracked at that tick), then a '# summary' line.\n"
+      "A gap between reports longer than --max-gap-s is a clock fault: the replay ends at the last\n"
+      "plausible report and reports the rows it left out.\n\n"
+      "Exit codes: 0 ok; 1 a check failed (--strict: samples rejected or rows left out);\n"
+      "2 bad usage or input (unreadable trace, bad scene words, output = input).\n\n"
       "Example:\n"
       "  ff-replay --scene heightmap --target top --strength 0.66 trace.csv -o rendered.csv\n"};
   ff::host::SceneSpec spec;
-  std::string input, output = "-", tracker = "recommended", derivative = "filtered";
-  double extra_ms = 100.0;
-  bool quiet = false;
+  std::string input, output = "-", tracker = "recommended", derivative = "filtered", screen = "800x480";
+  double extra_ms = 100.0, max_gap_s = 600.0;
+  bool quiet = false, strict = false;
   app.add_option("trace", input, "sensor trace CSV (t_us,x,y,touch)")->required();
-  app.add_option("-o,--output", output, "replay output CSV ('-' for stdout)")->capture_default_str();
+  app.add_option("-o,--output", output, "replay output CSV ('-' for stdout); never the trace itself")
+      ->capture_default_str();
   ff::host::add_scene_options(app, spec);
   app.add_option("--tracker", tracker, "finger tracker: recommended (split Kalman), thesis (ticks + 1-euro, exactly as the thesis),\n"
                  "split-kalman, kalman, timed (extrapolate to the tick's time + 1-euro), thesis-ticks")
@@ -59,35 +115,47 @@ int main(int argc, char** argv) {
   app.add_option("--derivative", derivative, "1-euro derivative from the previous filtered or raw value")
       ->capture_default_str();
   app.add_option("--extra-ms", extra_ms, "keep ticking this long after the last sample (time-outs play out)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 60000.0));
+  app.add_option("--screen", screen,
+                 "the trace's screen size WxH in its own units; x and y are scaled to the 800x480 screen\n"
+                 "(the sensor's calibration already maps to pixels: use this for traces from another display)")
       ->capture_default_str();
-  app.add_flag("-q,--quiet", quiet, "no summary on stderr");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--max-gap-s", max_gap_s, "longest plausible gap between reports (s); a longer one ends the replay")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 86400.0));
+  app.add_flag("--strict", strict, "exit 1 if any sample is rejected or rows are left out after a time jump");
+  app.add_flag("-q,--quiet", quiet, "only problems on stderr (the rejected count when not 0)");
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   std::string error;
   ff::Condition condition;
   ff::TrackerConfig tracker_config;
+  float screen_w = 0.0f, screen_h = 0.0f;
+  if (!parse_screen(screen, screen_w, screen_h)) {
+    std::cerr << "ff-replay: --screen '" << screen << "': expected WxH, e.g. 4096x4096\n";
+    return kExitBadUsage;
+  }
   if (!ff::host::make_condition(spec, condition, error) || !make_tracker(tracker, derivative, tracker_config, error)) {
     std::cerr << "ff-replay: " << error << "\n";
-    return 2;
+    return kExitBadUsage;
   }
-
-  std::vector<ff::host::TraceRow> rows;
+  if (output != "-" && ff::host::same_file(input, output)) {
+    std::cerr << "ff-replay: the output " << output << " is the input trace itself: choose another -o\n";
+    return kExitBadUsage;
+  }
+  std::ifstream in(input);
+  std::error_code ec;
+  if (!in || std::filesystem::is_directory(input, ec)) {
+    std::cerr << "ff-replay: " << input << ": cannot read"
+              << (std::filesystem::is_directory(input, ec) ? " (a directory)" : "") << "\n";
+    return kExitBadUsage;
+  }
+  ff::host::SensorTraceReader reader(in);
   ff::host::TraceError trace_error;
-  if (!ff::host::read_sensor_trace_file(input, rows, trace_error)) {
+  if (!reader.read_header(trace_error)) {
     std::cerr << "ff-replay: " << trace_error.to_string(input) << "\n";
-    return 2;
-  }
-  if (rows.empty()) {
-    std::cerr << "ff-replay: " << input << ": no samples after the header\n";
-    return 2;
-  }
-  uint64_t t_first = rows.front().t_us, t_last = t_first;
-  for (const auto& r : rows) t_last = std::max(t_last, r.t_us);
-  const uint64_t span_ticks = (t_last - t_first) / ff::kTickPeriodUs;
-  if (span_ticks > kMaxReplayTicks) {
-    std::cerr << "ff-replay: " << input << ": the trace spans " << (t_last - t_first) / 1000000
-              << " s; more than a day of ticks is refused (check the t_us column)\n";
-    return 2;
+    return kExitBadUsage;
   }
 
   auto pipeline = std::make_unique<ff::HapticPipeline>(tracker_config);
@@ -95,49 +163,102 @@ int main(int argc, char** argv) {
   const ff::PrepareStatus status = pipeline->set_condition(condition);
   if (status != ff::PrepareStatus::Ok) {
     std::cerr << "ff-replay: cannot prepare the scene: " << ff::to_string(status) << "\n";
-    return 2;
+    return kExitBadUsage;
   }
 
-  std::ofstream file;
+  std::unique_ptr<OutputFile> file;
+  std::ofstream device;  // -o /dev/null, a FIFO: written directly
   std::ostream* out = &std::cout;
-  if (output != "-") {
-    file.open(output);
-    if (!file) {
+  const bool special = output != "-" && std::filesystem::exists(output, ec) &&
+                       !std::filesystem::is_regular_file(output, ec);
+  if (special) {
+    device.open(output);
+    if (!device) {
       std::cerr << "ff-replay: cannot write " << output << "\n";
-      return 2;
+      return kExitBadUsage;
     }
-    out = &file;
+    out = &device;
+  } else if (output != "-") {
+    file = std::make_unique<OutputFile>(output);
+    if (!file->open()) {
+      std::cerr << "ff-replay: cannot write " << output << "\n";
+      return kExitBadUsage;
+    }
+    out = &file->stream();
   }
+  const uint64_t input_bytes = std::filesystem::file_size(input, ec);
+  ff::host::write_metadata(
+      *out, {{"tool", std::string("ff-replay ") + ff::host::project_version()},
+             {"date", ff::host::utc_timestamp()},
+             {"input", std::filesystem::path(input).filename().string() + " (" +
+                           std::to_string(ec ? 0 : input_bytes) + " bytes)"},
+             {"input_path", input},
+             {"scene", ff::host::scene_words(spec)},
+             {"scene_hash", ff::host::hash_hex(ff::host::condition_hash(condition))},
+             {"tracker", tracker + " (derivative " + derivative + ")"},
+             {"strength", std::to_string(spec.strength)},
+             {"calibration", spec.inverted_dac ? "inverted (AD9834 FSADJUST)" : "linear"},
+             {"screen", screen + (screen == "800x480" ? "" : " scaled to 800x480")},
+             {"columns", "t_us,x,y (filtered px),vx,vy (direction used),amplitude,dac,present (finger tracked)"}});
   ff::host::write_replay_header(*out);
-  const uint64_t extra_ticks = static_cast<uint64_t>(std::max(0.0, extra_ms) * 1000.0 / ff::kTickPeriodUs);
-  const uint64_t total = span_ticks + extra_ticks + 1;
-  const bool progress = !quiet && total > 2'000'000;
+
+  const float sx = ff::kScreenWidthPx / screen_w, sy = ff::kScreenHeightPx / screen_h;
+  const bool scaled = screen != "800x480";
+  bool read_failed = false;
+  const ff::host::RowSource source = [&](ff::host::TraceRow& row) {
+    if (read_failed || !reader.next(row, trace_error)) {
+      read_failed = read_failed || !trace_error.message.empty();
+      return false;
+    }
+    if (scaled) {
+      row.x *= sx;
+      row.y *= sy;
+    }
+    return true;
+  };
+  ff::host::ReplayOptions options;
+  options.extra_ticks = static_cast<uint64_t>(extra_ms * 1000.0 / ff::kTickPeriodUs);
+  options.max_gap_us = static_cast<uint64_t>(max_gap_s * 1e6);
   uint64_t done = 0;
   const ff::host::ReplaySummary summary = ff::host::replay(
-      rows, *pipeline,
+      source, *pipeline,
       [&](uint64_t t, const ff::TickOutput& tick) {
         ff::host::write_replay_row(*out, t, tick);
-        if (progress && (++done % 200000) == 0) {
-          std::fprintf(stderr, "\rff-replay: %5.1f %%", 100.0 * static_cast<double>(done) / static_cast<double>(total));
+        if (!quiet && (++done % 2'000'000) == 0) {
+          std::fprintf(stderr, "\rff-replay: %llu s replayed", static_cast<unsigned long long>(done / 2000));
         }
       },
-      extra_ticks);
-  if (progress) std::fprintf(stderr, "\r");
+      options);
+  if (!quiet && done >= 2'000'000) std::fprintf(stderr, "\n");
+  if (read_failed) {
+    std::cerr << "ff-replay: " << trace_error.to_string(input) << "\n";
+    return kExitBadUsage;
+  }
+  if (summary.samples == 0) {
+    std::cerr << "ff-replay: " << input << ": no samples after the header\n";
+    return kExitBadUsage;
+  }
+  const uint64_t rejected = summary.rejected_samples();
+  char line[256];
+  std::snprintf(line, sizeof line, "ticks=%llu samples=%llu rejected=%llu rows_left_out=%llu",
+                static_cast<unsigned long long>(summary.ticks), static_cast<unsigned long long>(summary.samples),
+                static_cast<unsigned long long>(rejected),
+                static_cast<unsigned long long>(summary.rows_after_time_jump));
+  ff::host::write_metadata(*out, {{"summary", line}});
+  out->flush();
+  if (file && !file->commit()) {
+    std::cerr << "ff-replay: cannot write " << output << "\n";
+    return kExitBadUsage;
+  }
 
+  const ff::FaultCounters& f = summary.faults;
   if (!quiet) {
-    const ff::FaultCounters& f = summary.faults;
-    const uint64_t rejected = f[ff::Fault::NonFiniteCoordinate] + f[ff::Fault::OffScreen] +
-                              f[ff::Fault::NonIncreasingTime] + f[ff::Fault::JumpRejected] +
-                              f[ff::Fault::MailboxOverflow];
     const ff::PlanStats& ps = pipeline->plan().stats();
-    std::fprintf(stderr, "ff-replay: %s, scene %s target %s strength %.2f, tracker %s\n", input.c_str(),
-                 spec.scene.c_str(), spec.target.c_str(), static_cast<double>(spec.strength), tracker.c_str());
+    std::fprintf(stderr, "ff-replay: %s, %s, tracker %s\n", input.c_str(), ff::host::scene_words(spec).c_str(),
+                 tracker.c_str());
     std::fprintf(stderr, "  ticks %llu (%.2f s), with finger %llu\n", static_cast<unsigned long long>(summary.ticks),
                  static_cast<double>(summary.ticks) * ff::kTickPeriodUs * 1e-6,
                  static_cast<unsigned long long>(summary.ticks_with_finger));
-    std::fprintf(stderr, "  samples %llu: used %llu, rejected %llu\n", static_cast<unsigned long long>(summary.samples),
-                 static_cast<unsigned long long>(summary.samples - std::min<uint64_t>(rejected, summary.samples)),
-                 static_cast<unsigned long long>(rejected));
     std::fprintf(stderr, "  amplitude min %.4f  mean %.4f  max %.4f\n", static_cast<double>(summary.amplitude_min),
                  static_cast<double>(summary.amplitude_mean), static_cast<double>(summary.amplitude_max));
     std::fprintf(stderr, "  scene plan: max|G| %.4f, table %u bytes, plan %u bytes, prepared in %u us (host)\n",
@@ -151,5 +272,31 @@ int main(int argc, char** argv) {
     }
     std::fprintf(stderr, "%s\n", any ? "" : " none");
   }
-  return 0;
+  // Always said, also with -q when not 0: rejected samples change what was rendered.
+  if (!quiet || rejected > 0) {
+    std::fprintf(stderr, "ff-replay: samples %llu: used %llu, rejected %llu\n",
+                 static_cast<unsigned long long>(summary.samples),
+                 static_cast<unsigned long long>(summary.samples - rejected),
+                 static_cast<unsigned long long>(rejected));
+  }
+  if (!scaled && f[ff::Fault::OffScreen] > summary.samples / 10) {
+    std::fprintf(stderr,
+                 "ff-replay: %u samples off the 800x480 screen: is the trace in another screen's coordinates? "
+                 "(--screen WxH)\n", f[ff::Fault::OffScreen]);
+  }
+  if (summary.time_jump) {
+    std::fprintf(stderr,
+                 "ff-replay: time jump from t_us %llu to %llu (more than --max-gap-s %g): the replay ends at the "
+                 "last plausible report; %llu rows left out\n",
+                 static_cast<unsigned long long>(summary.time_jump_from_us),
+                 static_cast<unsigned long long>(summary.time_jump_to_us), max_gap_s,
+                 static_cast<unsigned long long>(summary.rows_after_time_jump));
+  }
+  if (strict && (rejected > 0 || summary.time_jump)) {
+    std::fprintf(stderr, "ff-replay: --strict: %llu samples rejected, %llu rows left out\n",
+                 static_cast<unsigned long long>(rejected),
+                 static_cast<unsigned long long>(summary.rows_after_time_jump));
+    return kExitCheckFailed;
+  }
+  return kExitOk;
 }

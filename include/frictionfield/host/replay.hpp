@@ -4,6 +4,11 @@
 // a tick delivered before that tick. The firmware's tick, tick for tick.
 // Rows arrive in file order: a row stamped more than 20 ms after the next row
 // is delivered with it, so one bad stamp cannot hold the trace back.
+//
+// The trace streams through: memory stays bounded whatever its length. A gap
+// between reports longer than `max_gap_us` cannot come from a session (a
+// clock fault, a corrupt stamp): the replay ends at the last plausible report
+// instead of ticking through the gap, and says how many rows it left out.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -21,12 +26,28 @@ struct ReplaySummary {
   float amplitude_mean = 0.0f;
   float amplitude_max = 0.0f;
   FaultCounters faults;
+  // Implausible time jump: the stamp that ended the replay and the rows after it.
+  bool time_jump = false;
+  uint64_t time_jump_from_us = 0;
+  uint64_t time_jump_to_us = 0;
+  uint64_t rows_after_time_jump = 0;
+
+  // Samples the tracker dropped (non-finite, off-screen, time, jumps, overflow).
+  uint64_t rejected_samples() const;
 };
 
 using TickSink = std::function<void(uint64_t t_us, const TickOutput& out)>;
+// Fills the next row; false at the end of the trace.
+using RowSource = std::function<bool(TraceRow& row)>;
 
-// Runs to the tick at or after the last sample; `extra_ticks` more let
-// time-outs (lift-off, stale sensor) play out.
+struct ReplayOptions {
+  uint64_t extra_ticks = 0;             // after the last sample: time-outs play out
+  uint64_t max_gap_us = UINT64_MAX;     // a longer gap ends the replay (see above)
+};
+
+// Runs to the tick at or after the last sample, plus `extra_ticks`.
+ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const TickSink& sink,
+                     const ReplayOptions& options);
 ReplaySummary replay(const std::vector<TraceRow>& rows, HapticPipeline& pipeline,
                      const TickSink& sink, uint64_t extra_ticks = 0);
 

@@ -16,7 +16,8 @@ struct SceneSpec {
   std::string scene = "heightmap";  // see scene_names()
   std::string target = "middle";    // top | middle | bottom
   float strength = 1.0f;            // s in (0, 1]
-  std::string scene_file;           // for --scene file
+  std::string scene_file;           // --scene-file: implies --scene file
+  bool scene_given = false;         // --scene was on the command line (set by add_scene_options)
   // Steering tunnel (pilots A and B).
   float tunnel_x_start = 100.0f;
   float tunnel_length = 400.0f;
@@ -35,10 +36,20 @@ struct SceneSpec {
 // "heightmap, frictionmap, neutral, ..." for help texts.
 const char* scene_names();
 
-// Registers the shared options on a CLI11 app.
+// Registers the shared options on a CLI11 app. --scene-file F sets
+// spec.scene to "file" (a different --scene with it is a usage error).
 void add_scene_options(CLI::App& app, SceneSpec& spec);
 
-// Builds the condition; false with a readable message on error.
+// The scene make_condition builds: "file" when a scene file is given.
+std::string resolved_scene(const SceneSpec& spec);
+
+// Builds the condition; false with a readable message on error. Values out
+// of range (strength outside (0, 1], idle amplitude outside [0, 1], tunnel
+// widths or lengths <= 0, ...) are refused, never clamped.
 bool make_condition(const SceneSpec& spec, Condition& out, std::string& error);
+
+// The words that select this condition, only those that apply to the scene
+// (e.g. "--scene heightmap --target top --strength 0.66"), for metadata.
+std::string scene_words(const SceneSpec& spec);
 
 }  // namespace ff::host

@@ -1,9 +1,14 @@
 #pragma once
 // Trace files (docs/spec.md#trace-files): sensor traces in, replay output out.
 // Host only: std::string and streams are fine here.
+//
+// Every reader in the project accepts the same shape: an optional UTF-8 BOM,
+// lines starting with '#' anywhere (metadata, skipped), a header row naming the
+// columns, then one row per line.
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "frictionfield/core/haptic_pipeline.hpp"
@@ -24,13 +29,38 @@ struct TraceError {
   std::string to_string(const std::string& file) const;  // "file:line:column: message"
 };
 
-// Reads `t_us,x,y,touch` (any column order, extra columns ignored). Coordinates
-// may be nan/inf (the tracker must cope); t_us and touch must be integers.
+// Reads `t_us,x,y,touch` row by row (any column order, extra columns ignored),
+// so a trace of any length needs constant memory. Coordinates may be nan/inf
+// (the tracker must cope); t_us and touch must be integers.
+class SensorTraceReader {
+ public:
+  explicit SensorTraceReader(std::istream& in) : in_(in) {}
+  // The header row (after the BOM and '#' lines); false with `error` set.
+  bool read_header(TraceError& error);
+  // true with the next row; false at the end (error.message empty) or on an error.
+  bool next(TraceRow& row, TraceError& error);
+  size_t line() const { return line_no_; }
+
+ private:
+  bool next_data_line(std::string& line);
+  std::istream& in_;
+  size_t line_no_ = 0;
+  int col_t_ = -1, col_x_ = -1, col_y_ = -1, col_touch_ = -1;
+  size_t needed_ = 0;
+};
+
+// The whole trace at once (small traces, tests).
 bool read_sensor_trace(std::istream& in, std::vector<TraceRow>& rows, TraceError& error);
 bool read_sensor_trace_file(const std::string& path, std::vector<TraceRow>& rows, TraceError& error);
 
-// Replay output: `t_us,x,y,vx,vy,amplitude,dac`.
+// Replay output: `t_us,x,y,vx,vy,amplitude,dac,present` (present: a finger was
+// tracked at the tick; amplitude alone cannot tell idle from A = 0 with a finger).
 void write_replay_header(std::ostream& out);
 void write_replay_row(std::ostream& out, uint64_t t_us, const TickOutput& tick);
+
+// Metadata as '#' comment lines, one `# key: value` per pair (newlines in a
+// value become spaces so each stays one line).
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+void write_metadata(std::ostream& out, const Metadata& metadata);
 
 }  // namespace ff::host

@@ -1,0 +1,31 @@
+#pragma once
+// What every frictionfield tool shares on its command line (docs/tools.md):
+// exit codes 0 ok, 1 a check failed, 2 bad usage or input; the version; and
+// the output file checks (never overwrite the input, write atomically).
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace ff::host {
+
+constexpr int kExitOk = 0;
+constexpr int kExitCheckFailed = 1;
+constexpr int kExitBadUsage = 2;
+
+// The project version (CMake's PROJECT_VERSION), e.g. "0.1.0".
+const char* project_version();
+
+// Parses argv; -1 to go on, otherwise the code to exit with (0 after --help,
+// 2 after a usage error, which CLI11 has already printed).
+int parse_command_line(CLI::App& app, int argc, char** argv);
+
+// True if `output` names the same file as `input` (also through a symlink,
+// a hard link or another relative path); false when either does not exist.
+bool same_file(const std::string& input, const std::string& output);
+
+// The current UTC time as 2026-11-23T16:04:05Z, for metadata.
+std::string utc_timestamp();
+
+}  // namespace ff::host

@@ -1,0 +1,241 @@
+#!/usr/bin/env python3
+"""ff-replay and ff-scene-render run as a user runs them: a subprocess, files
+on disk, exit codes (0 ok, 1 failed check, 2 bad usage or input) and what
+they print. Expected values come from the trace files written here (hand
+counts), not from the tools.
+
+usage: host_tools_cli_test.py path/to/ff-replay path/to/ff-scene-render
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+REPLAY = SCENE_RENDER = None
+TICK_US = 500
+
+
+def run(*args, **kwargs):
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True, **kwargs)
+
+
+def write_trace(path, rows, header="t_us,x,y,touch", prefix=""):
+    with open(path, "w", newline="") as f:
+        f.write(prefix + header + "\n")
+        for r in rows:
+            f.write(",".join(str(v) for v in r) + "\n")
+
+
+def stroke(n=200, dt=5000, x0=100.0):
+    """n reports every dt us moving right at 100 px/s along y = 240."""
+    return [(i * dt, round(x0 + (i * dt * 1e-4) % 600, 3), 240, 1) for i in range(n)]
+
+
+def read_replay(path):
+    meta, header, rows = {}, None, []
+    with open(path) as f:
+        for line in f:
+            line = line.rstrip("\n")
+            if line.startswith("#"):
+                key, _, value = line[1:].strip().partition(": ")
+                meta[key] = value
+            elif header is None:
+                header = line.split(",")
+            else:
+                rows.append(dict(zip(header, line.split(","))))
+    return meta, header, rows
+
+
+def read_text(path):
+    with open(path) as f:
+        return f.read()
+
+
+def scene_render_meta(*words):
+    out = run(SCENE_RENDER, "--step", "100", *words)
+    assert out.returncode == 0, out.stderr
+    meta = {}
+    for line in out.stdout.splitlines():
+        if line.startswith("#"):
+            key, _, value = line[1:].strip().partition(": ")
+            meta[key] = value
+    return meta
+
+
+class Case(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.tmp = self.dir.name
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
+
+
+class ReplayOutput(Case):
+    def test_metadata_header_and_present_column(self):
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        # 100 reports (0.495 s), then the finger lifts: idle ticks follow.
+        write_trace(trace, stroke(100) + [(500000, "", "", 0)])
+        words = ["--scene", "heightmap", "--target", "top", "--strength", "0.66"]
+        res = run(REPLAY, trace, "-o", out, "--extra-ms", "400", *words)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        meta, header, rows = read_replay(out)
+        self.assertEqual(header, ["t_us", "x", "y", "vx", "vy", "amplitude", "dac", "present"])
+        for key in ("tool", "date", "input", "scene", "scene_hash", "tracker", "strength", "calibration", "summary"):
+            self.assertIn(key, meta)
+        self.assertTrue(meta["tool"].startswith("ff-replay "))
+        self.assertEqual(meta["scene"], "--scene heightmap --target top --strength 0.66")
+        self.assertEqual(meta["input"], f"t.csv ({os.path.getsize(trace)} bytes)")
+        self.assertEqual(meta["calibration"], "linear")
+        # The same words give the same hash in the other tool (one definition).
+        self.assertEqual(meta["scene_hash"], scene_render_meta(*words)["scene_hash"])
+        self.assertNotEqual(meta["scene_hash"], scene_render_meta("--scene", "heightmap")["scene_hash"])
+        present = [r["present"] for r in rows]
+        self.assertEqual(present[0], "1")
+        self.assertEqual(present[-1], "0")  # lifted at 0.5 s, 0.4 s of idle ticks
+        self.assertEqual(len(rows), (500000 + 400000) // TICK_US + 1)
+        self.assertIn(f"ticks={len(rows)} samples=101 rejected=0", meta["summary"])
+
+    def test_a_byte_order_mark_is_accepted(self):
+        plain, bom = self.path("plain.csv"), self.path("bom.csv")
+        write_trace(plain, stroke(50))
+        write_trace(bom, stroke(50), prefix="\ufeff")
+        a, b = self.path("a.csv"), self.path("b.csv")
+        self.assertEqual(run(REPLAY, "-q", plain, "-o", a).returncode, 0)
+        res = run(REPLAY, "-q", bom, "-o", b)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertEqual(read_replay(a)[2], read_replay(b)[2])
+
+    def test_never_overwrites_its_input(self):
+        trace = self.path("a.csv")
+        write_trace(trace, stroke(20))
+        before = read_text(trace)
+        os.symlink(trace, self.path("link.csv"))
+        for out in (trace, self.path("link.csv"), os.path.join(self.tmp, ".", "a.csv")):
+            res = run(REPLAY, trace, "-o", out)
+            self.assertEqual(res.returncode, 2, out)
+            self.assertIn("input", res.stderr)
+        res = run(REPLAY, "a.csv", "-o", "./a.csv", cwd=self.tmp)  # relative paths
+        self.assertEqual(res.returncode, 2)
+        self.assertEqual(read_text(trace), before)
+
+    def test_a_bad_row_fails_with_its_line_and_leaves_no_output(self):
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        write_trace(trace, stroke(20) + [(200000, "abc", 1, 1)])
+        res = run(REPLAY, trace, "-o", out)
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("t.csv:22:2", res.stderr)
+        self.assertFalse(os.path.exists(out))
+        self.assertFalse(os.path.exists(out + ".partial"))
+
+    def test_usage_errors_exit_2_and_help_exits_0(self):
+        trace = self.path("t.csv")
+        write_trace(trace, stroke(5))
+        self.assertEqual(run(REPLAY, "--help").returncode, 0)
+        self.assertEqual(run(REPLAY, trace, "--no-such-option").returncode, 2)
+        self.assertEqual(run(REPLAY).returncode, 2)
+        self.assertEqual(run(REPLAY, self.path("missing.csv")).returncode, 2)
+        self.assertEqual(run(REPLAY, self.tmp).returncode, 2)
+        self.assertEqual(run(REPLAY, trace, "--screen", "800").returncode, 2)
+
+
+class BoundedReplay(Case):
+    def test_a_stamp_2_pow_31_ahead_ends_the_output_at_the_last_plausible_report(self):
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        rows = stroke(401)  # 0 .. 2 s
+        rows.append((rows[-1][0] + 2 ** 31, 300, 240, 1))
+        write_trace(trace, rows)
+        res = run(REPLAY, trace, "-o", out)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("time jump", res.stderr)
+        meta, _, ticks = read_replay(out)
+        self.assertEqual(len(ticks), 2000000 // TICK_US + 1 + 100000 // TICK_US)  # 2 s + 100 ms extra
+        self.assertIn("rows_left_out=1", meta["summary"])
+        self.assertEqual(run(REPLAY, "--strict", "-q", trace, "-o", out).returncode, 1)
+
+    def test_memory_does_not_grow_with_the_trace(self):
+        def peak_kib(n):
+            trace = self.path(f"t{n}.csv")
+            write_trace(trace, stroke(n, dt=1000, x0=100.0))
+            probe = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True);"
+                     "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+            res = run(sys.executable, "-c", probe, REPLAY, "-q", trace, "-o", os.devnull)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            return int(res.stdout)
+        small, large = peak_kib(2000), peak_kib(400000)
+        # Holding 400 k rows would take about 16 MB more (40 bytes a row).
+        self.assertLess(large - small, 4000, f"peak RSS {small} KiB for 2 k rows, {large} KiB for 400 k rows")
+
+
+class ScreenAndStrict(Case):
+    def test_a_trace_in_other_coordinates_is_scaled_or_reported(self):
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        # The same stroke in 4096 x 4096 sensor units: x 512 .. 1536, y 2048.
+        write_trace(trace, [(t, round(x * 4096 / 800, 3), round(y * 4096 / 480, 3), 1) for t, x, y, _ in stroke(200)])
+        res = run(REPLAY, trace, "-o", out)
+        self.assertEqual(res.returncode, 0)
+        self.assertRegex(res.stderr, r"samples 200: used \d+, rejected [1-9]\d*")
+        self.assertIn("--screen", res.stderr)
+        res = run(REPLAY, "-q", "--strict", trace, "-o", out)
+        self.assertEqual(res.returncode, 1)
+        self.assertRegex(res.stderr, r"rejected [1-9]")  # the count, also with -q
+        res = run(REPLAY, "--strict", "--screen", "4096x4096", trace, "-o", out)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("samples 200: used 200, rejected 0", res.stderr)
+        meta, _, rows = read_replay(out)
+        self.assertEqual(meta["screen"], "4096x4096 scaled to 800x480")
+        last = [r for r in rows if r["present"] == "1"][-1]
+        self.assertAlmostEqual(float(last["y"]), 240.0, delta=0.5)  # back in screen pixels
+
+
+class SceneWords(Case):
+    def scene(self, text):
+        path = self.path("scene.txt")
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def test_a_scene_file_implies_the_file_scene(self):
+        path = self.scene("rendering constant\nconstant 0.25\n")
+        meta = scene_render_meta("--scene-file", path)
+        self.assertEqual(meta["needs"], "nothing")
+        self.assertTrue(meta["scene"].startswith("--scene file --scene-file "))
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        write_trace(trace, stroke(20))
+        self.assertEqual(run(REPLAY, "-q", "--scene-file", path, trace, "-o", out).returncode, 0)
+        _, _, rows = read_replay(out)
+        self.assertTrue(all(abs(float(r["amplitude"]) - 0.25) < 1e-6 for r in rows if r["present"] == "1"))
+
+    def test_refused_scene_words_exit_2_with_a_reason(self):
+        good = self.scene("rendering constant\nconstant 0.25\n")
+        empty = self.path("empty.txt")
+        open(empty, "w").close()
+        seven = self.path("seven.txt")
+        with open(seven, "w") as f:
+            f.write("rendering constant\nconstant 7\n")
+        cases = [
+            (["--scene", "heightmap", "--scene-file", good], "drop one"),
+            (["--scene-file", good, "--scene", "neutral"], "drop one"),
+            (["--scene-file", self.tmp], "directory"),
+            (["--scene-file", empty], "no directives"),
+            (["--scene-file", seven], "constant 7 is outside [0, 1]"),
+            (["--strength", "1.5"], "strength must be in (0, 1], got 1.5"),
+            (["--idle-amplitude", "-1"], "outside [0, 1]"),
+            (["--scene", "tunnel-converging", "--width-end", "0"], "--width-end"),
+        ]
+        trace = self.path("t.csv")
+        write_trace(trace, stroke(5))
+        for words, says in cases:
+            for tool in ([SCENE_RENDER], [REPLAY, trace, "-o", self.path("o.csv")]):
+                res = run(*tool, *words)
+                self.assertEqual(res.returncode, 2, f"{tool[0]} {words}")
+                self.assertIn(says, res.stderr, f"{tool[0]} {words}")
+
+
+if __name__ == "__main__":
+    REPLAY, SCENE_RENDER = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    unittest.main(argv=sys.argv[:1], verbosity=1)

@@ -1,0 +1,128 @@
+// The scene words as a user types them (through CLI11, as every tool parses
+// them) and the condition hash that names a condition in output files.
+#include "frictionfield/host/scene_spec.hpp"
+
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <fstream>
+
+#include "frictionfield/core/scenes.hpp"
+#include "frictionfield/host/scene_file.hpp"
+#include "frictionfield/host/scene_hash.hpp"
+
+namespace ff::host {
+namespace {
+
+struct Parsed {
+  SceneSpec spec;
+  bool ok = false;
+  std::string error;
+};
+
+Parsed parse(std::vector<std::string> words) {
+  Parsed p;
+  CLI::App app;
+  add_scene_options(app, p.spec);
+  std::reverse(words.begin(), words.end());  // CLI11 takes them last first
+  try {
+    app.parse(words);
+    p.ok = true;
+  } catch (const CLI::ParseError& e) {
+    p.error = e.what();
+  }
+  return p;
+}
+
+std::string scene_file(const char* text) {
+  const std::string path = ::testing::TempDir() + "/ff_scene_spec_test.txt";
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(SceneSpec, ASceneFileImpliesTheFileScene) {
+  const std::string path = scene_file("rendering constant\nconstant 0.25\n");
+  const Parsed p = parse({"--scene-file", path});
+  ASSERT_TRUE(p.ok) << p.error;
+  EXPECT_EQ(p.spec.scene, "file");  // what ffctl reads to choose the message kind
+  Condition c;
+  std::string error;
+  ASSERT_TRUE(make_condition(p.spec, c, error)) << error;
+  EXPECT_EQ(c.scene.rendering, Rendering::Constant);
+  EXPECT_FLOAT_EQ(c.scene.constant, 0.25f);
+  EXPECT_TRUE(parse({"--scene", "file", "--scene-file", path}).ok);
+  EXPECT_TRUE(parse({"--scene-file", path, "--scene", "file"}).ok);
+}
+
+TEST(SceneSpec, ASceneFileWithAnotherSceneIsAUsageError) {
+  const std::string path = scene_file("rendering constant\nconstant 0.25\n");
+  for (const auto& words : {std::vector<std::string>{"--scene", "heightmap", "--scene-file", path},
+                            std::vector<std::string>{"--scene-file", path, "--scene", "neutral"}}) {
+    const Parsed p = parse(words);
+    EXPECT_FALSE(p.ok);
+    EXPECT_NE(p.error.find("drop one"), std::string::npos) << p.error;
+  }
+  // Built in code, without the command line: the same rule.
+  SceneSpec spec;
+  spec.scene = "neutral";
+  spec.scene_given = true;
+  spec.scene_file = path;
+  Condition c;
+  std::string error;
+  EXPECT_FALSE(make_condition(spec, c, error));
+}
+
+TEST(SceneSpec, OutOfRangeWordsAreRefusedNotClamped) {
+  const std::vector<std::vector<std::string>> bad = {
+      {"--strength", "1.5"}, {"--strength", "0"}, {"--strength", "-0.3"}, {"--idle-amplitude", "2"},
+      {"--scene", "tunnel-converging", "--width-end", "0"}, {"--scene", "tunnel-neutral", "--tunnel-length", "-4"},
+      {"--evaluation", "table", "--table-spacing", "0.1"}, {"--target", "left"}, {"--scene", "hightmap"}};
+  for (const auto& words : bad) {
+    const Parsed p = parse(words);
+    ASSERT_TRUE(p.ok) << p.error;
+    Condition c;
+    std::string error;
+    EXPECT_FALSE(make_condition(p.spec, c, error)) << words[0] << " " << words[1];
+    EXPECT_FALSE(error.empty());
+  }
+}
+
+TEST(SceneSpec, SceneWordsNameOnlyWhatApplies) {
+  EXPECT_EQ(scene_words(parse({"--scene", "heightmap", "--target", "top", "--strength", "0.66"}).spec),
+            "--scene heightmap --target top --strength 0.66");
+  EXPECT_EQ(scene_words(parse({"--scene", "vortex", "--target", "top"}).spec), "--scene vortex --strength 1");
+}
+
+TEST(SceneSpec, TheHashNamesTheConditionNotTheWords) {
+  // FNV-1a 64 of nothing is its offset basis (the published constant).
+  EXPECT_EQ(hash_hex(0xcbf29ce484222325ull), "cbf29ce484222325");
+  Condition a, b;
+  std::string error;
+  ASSERT_TRUE(make_condition(parse({"--scene", "heightmap", "--target", "top"}).spec, a, error));
+  ASSERT_TRUE(make_condition(parse({"--target", "top", "--scene", "heightmap"}).spec, b, error));
+  EXPECT_EQ(condition_hash(a), condition_hash(b));
+  // The heightmap written out as a general scene file is the same condition.
+  const std::string path = scene_file(format_scene_text(scenes::heightmap(Target::Top)).c_str());
+  Condition f;
+  ASSERT_TRUE(make_condition(parse({"--scene-file", path}).spec, f, error)) << error;
+  EXPECT_EQ(condition_hash(f), condition_hash(a));
+  ASSERT_TRUE(make_condition(parse({"--scene", "heightmap", "--target", "bottom"}).spec, b, error));
+  EXPECT_NE(condition_hash(b), condition_hash(a));
+  // Anything that changes the rendering changes the hash.
+  Condition c = a;
+  c.amplitude.strength = 0.66f;
+  EXPECT_NE(condition_hash(c), condition_hash(a));
+  c = a;
+  c.scene.elements[0].weight += 1e-6f;
+  EXPECT_NE(condition_hash(c), condition_hash(a));
+  c = a;
+  c.amplitude.calibration = DacCalibration::inverted();
+  EXPECT_NE(condition_hash(c), condition_hash(a));
+  // -0 and 0 render the same.
+  c = a;
+  c.amplitude.idle_amplitude = -0.0f;
+  EXPECT_EQ(condition_hash(c), condition_hash(a));
+}
+
+}  // namespace
+}  // namespace ff::host
