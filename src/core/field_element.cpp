@@ -1,10 +1,12 @@
 #include "frictionfield/core/field_element.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
 
 namespace ff {
 
-float smootherstep(float t) {
+FF_FASTRUN float smootherstep(float t) {
   t = clamp(t, 0.0f, 1.0f);
   return t * t * t * (t * (6.0f * t - 15.0f) + 10.0f);
 }
@@ -15,7 +17,7 @@ float sign_of(float v) { return v > 0.0f ? 1.0f : (v < 0.0f ? -1.0f : 0.0f); }
 
 // d|g|/du for g(u) = (1/a) atan(a u) - u: sign(u) a^2 u^2 / (1 + a^2 u^2).
 // Closed form: no atan on the tick path.
-float valley_slope(float u, float a) {
+FF_FASTRUN float valley_slope(float u, float a) {
   const float au2 = (a * u) * (a * u);
   // Far from the path (a u)^2 overflows: the slope has saturated at 1 (inf / inf would be NaN).
   return sign_of(u) * (au2 < 1e30f ? au2 / (1.0f + au2) : 1.0f);
@@ -23,11 +25,11 @@ float valley_slope(float u, float a) {
 
 float valley_height(float u, float a) { return std::fabs(std::atan(a * u) / a - u); }
 
-float band(float distance, float half_width, float feather) {
+FF_FASTRUN float band(float distance, float half_width, float feather) {
   return smootherstep((half_width + feather - distance) / feather);
 }
 
-float tunnel_width(const TunnelParams& t, float x) {
+FF_FASTRUN float tunnel_width(const TunnelParams& t, float x) {
   const float f = clamp((x - t.x_start) / t.length, 0.0f, 1.0f);
   return t.width_start + (t.width_end - t.width_start) * f;
 }
@@ -59,7 +61,7 @@ float element_height(const FieldElement& e, Vec2 p) {
   return 0.0f;
 }
 
-Vec2 element_gradient(const FieldElement& e, Vec2 p) {
+FF_FASTRUN Vec2 element_gradient(const FieldElement& e, Vec2 p) {
   switch (e.kind) {
     case ElementKind::PointSink: {
       const Vec2 d = p - e.point.centre;
@@ -108,7 +110,7 @@ Vec2 element_gradient(const FieldElement& e, Vec2 p) {
   return {};
 }
 
-float element_profile(const FieldElement& e, Vec2 p) {
+FF_FASTRUN float element_profile(const FieldElement& e, Vec2 p) {
   switch (e.kind) {
     case ElementKind::PointSink:
       return band(length(p - e.point.centre), e.point.radius, e.point.feather);

@@ -1,5 +1,7 @@
 #include "frictionfield/core/scene_plan.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
 #include <initializer_list>
 
@@ -178,13 +180,13 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
   return PrepareStatus::Ok;
 }
 
-Vec2 ScenePlan::closed_form_field(Vec2 p) const {
+FF_FASTRUN Vec2 ScenePlan::closed_form_field(Vec2 p) const {
   Vec2 g;
   for (int i = 0; i < count_; ++i) g = g + elements_[i].weight * element_gradient(elements_[i], p);
   return g;
 }
 
-float ScenePlan::closed_form_profile(Vec2 p) const {
+FF_FASTRUN float ScenePlan::closed_form_profile(Vec2 p) const {
   float a = bias_;
   for (int i = 0; i < count_; ++i) a += elements_[i].weight * element_profile(elements_[i], p);
   return a;
@@ -192,7 +194,7 @@ float ScenePlan::closed_form_profile(Vec2 p) const {
 
 Vec2 ScenePlan::field(Vec2 p) const { return field_scale_ * scaled_field(p); }
 
-Vec2 ScenePlan::scaled_field(Vec2 p) const {
+FF_FASTRUN Vec2 ScenePlan::scaled_field(Vec2 p) const {
   if (evaluation_ == Evaluation::ClosedForm) return closed_form_field(p);
   if (table_source_ == TableSource::TabulatedGradient) return table_.sample2(p);
   // Central differences of the bilinear height, one node spacing either side.
@@ -202,17 +204,17 @@ Vec2 ScenePlan::scaled_field(Vec2 p) const {
           (table_.sample({p.x, p.y + h}, 0) - table_.sample({p.x, p.y - h}, 0)) * inv};
 }
 
-float ScenePlan::profile(Vec2 p) const {
+FF_FASTRUN float ScenePlan::profile(Vec2 p) const {
   const float a = evaluation_ == Evaluation::Table ? table_.sample(p, 0) : closed_form_profile(p);
   return clamp_finite(a, 0.0f, 1.0f, 0.0f);
 }
 
-Vec2 ScenePlan::normalized_gradient(Vec2 p) const {
+FF_FASTRUN Vec2 ScenePlan::normalized_gradient(Vec2 p) const {
   if (rendering_ != Rendering::Directional) return {};
   return inv_two_max_ * scaled_field(p);
 }
 
-float ScenePlan::amplitude(Vec2 position, Vec2 direction) const {
+FF_FASTRUN float ScenePlan::amplitude(Vec2 position, Vec2 direction) const {
   switch (rendering_) {
     case Rendering::Constant:
       return constant_;
