@@ -23,6 +23,33 @@ FF_FASTRUN float valley_slope(float u, float a) {
   return sign_of(u) * (au2 < 1e30f ? au2 / (1.0f + au2) : 1.0f);
 }
 
+// sin and cos of 2 pi turns. The phase is reduced here, exactly (whole turns,
+// then quarter turns), to |2 pi r| <= pi/4, where newlib's sinf/cosf go
+// straight to their kernels: without it every call paid for
+// __ieee754_rem_pio2f (a third of the bump map's tick on the M4).
+struct SinCos {
+  float sin;
+  float cos;
+};
+// Nearest integer (ties away from zero) without a libm call (the FPv4 has no
+// VRINT); floats of magnitude 2^23 and more are integers already.
+FF_FASTRUN float nearest_integer(float v) {
+  if (!(std::fabs(v) < 8388608.0f)) return v;
+  return static_cast<float>(static_cast<int32_t>(v + (v >= 0.0f ? 0.5f : -0.5f)));
+}
+FF_FASTRUN SinCos sincos_turns(float turns) {
+  const float whole = nearest_integer(turns);
+  const float quarters = nearest_integer(4.0f * (turns - whole));  // -2 .. 2
+  const float r = 2.0f * kPi * ((turns - whole) - 0.25f * quarters);
+  const float s = std::sin(r), c = std::cos(r);
+  switch ((static_cast<int>(quarters) + 4) & 3) {
+    case 1: return {c, -s};
+    case 2: return {-s, -c};
+    case 3: return {-c, s};
+    default: return {s, c};
+  }
+}
+
 float valley_height(float u, float a) { return std::fabs(std::atan(a * u) / a - u); }
 
 FF_FASTRUN float band(float distance, float half_width, float feather) {
@@ -54,8 +81,7 @@ float element_height(const FieldElement& e, Vec2 p) {
     }
     case ElementKind::Texture: {
       const TextureParams& t = e.texture;
-      return t.height * std::sin(2.0f * kPi * p.x / t.wavelength_x) *
-             std::sin(2.0f * kPi * p.y / t.wavelength_y);
+      return t.height * sincos_turns(p.x / t.wavelength_x).sin * sincos_turns(p.y / t.wavelength_y).sin;
     }
   }
   return 0.0f;
@@ -102,9 +128,9 @@ FF_FASTRUN Vec2 element_gradient(const FieldElement& e, Vec2 p) {
       const TextureParams& t = e.texture;
       const float kx = 2.0f * kPi / t.wavelength_x;
       const float ky = 2.0f * kPi / t.wavelength_y;
-      const float sx = std::sin(kx * p.x), cx = std::cos(kx * p.x);
-      const float sy = std::sin(ky * p.y), cy = std::cos(ky * p.y);
-      return {t.height * kx * cx * sy, t.height * ky * sx * cy};
+      const SinCos x = sincos_turns(p.x / t.wavelength_x);
+      const SinCos y = sincos_turns(p.y / t.wavelength_y);
+      return {t.height * kx * x.cos * y.sin, t.height * ky * x.sin * y.cos};
     }
   }
   return {};
@@ -125,8 +151,7 @@ FF_FASTRUN float element_profile(const FieldElement& e, Vec2 p) {
     }
     case ElementKind::Texture: {
       const TextureParams& t = e.texture;
-      return 0.5f + 0.5f * std::sin(2.0f * kPi * p.x / t.wavelength_x) *
-                        std::sin(2.0f * kPi * p.y / t.wavelength_y);
+      return 0.5f + 0.5f * sincos_turns(p.x / t.wavelength_x).sin * sincos_turns(p.y / t.wavelength_y).sin;
     }
     case ElementKind::Vortex:
     case ElementKind::Saddle:

@@ -183,7 +183,7 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
     }
     return;
   }
-  if (!std::isfinite(in.x) || !std::isfinite(in.y)) {
+  if (!is_finite(in.x) || !is_finite(in.y)) {
     faults_.add(Fault::NonFiniteCoordinate);
     return;
   }
@@ -283,8 +283,9 @@ FF_FASTRUN Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
 FF_FASTRUN Vec2 Tracker::faded_direction(Vec2 v) const {
   // Normalise by the larger component first: squares of tiny (subnormal)
   // speeds lose precision, and v / |v| must stay unit length.
-  const float m = std::fmax(std::fabs(v.x), std::fabs(v.y));
-  if (!(m > kMinSpeedPxS) || !std::isfinite(m)) return {};  // at rest: no direction
+  const float ax = std::fabs(v.x), ay = std::fabs(v.y);
+  const float m = ax > ay ? ax : ay;
+  if (!is_finite(v) || !(m > kMinSpeedPxS)) return {};  // at rest (or not a number): no direction
   const Vec2 u = (1.0f / m) * v;
   const float len = length(u);  // in [1, sqrt 2]
   const float speed = m * len;

@@ -78,6 +78,26 @@ class CodeMap:
         self.ram_end = ram_end
         self.table_functions = tuple(table_functions)
 
+    def memory(self, ins):
+        """(flash lines the instruction touches, loads a flash table, data access from SRAM_L code),
+        computed once per instruction."""
+        key = ("memory", id(self))
+        cached = ins.extra.get(key)
+        if cached is None:
+            in_ram = self.in_ram(ins.address)
+            lines = set()
+            if not in_ram:
+                lines.add(ins.address // FLASH_LINE_BYTES)
+                lines.add((ins.address + ins.size - 1) // FLASH_LINE_BYTES)
+            if ins.literal is not None and not self.in_ram(ins.literal):
+                lines.add(ins.literal // FLASH_LINE_BYTES)
+            table_load = self.reads_flash_table(ins) and ins.base in _LOAD_SINGLE | {"ldrd", "vldm", "vldmia",
+                                                                                     "ldm", "ldmia"}
+            data_access = ins.base in _LOAD_SINGLE | _STORE_SINGLE | _MULTIPLE | {"ldrd", "strd"}
+            cached = (tuple(lines), table_load, in_ram and data_access)
+            ins.extra[key] = cached
+        return cached
+
     def in_ram(self, address):
         return self.ram_start <= address < self.ram_end
 
@@ -152,20 +172,13 @@ class CallCost:
 
     def add(self, ins, next_address):
         a = self.a
-        taken = next_address != ins.address + ins.size
-        self.cycles += instruction_cycles(ins, self.previous, taken, a)
+        self.cycles += instruction_cycles(ins, self.previous, next_address != ins.address + ins.size, a)
         self.instructions += 1
-        in_ram = self.code_map.in_ram(ins.address)
-        if not in_ram:
-            self.flash_lines.add(ins.address // FLASH_LINE_BYTES)
-            if ins.size == 4 and (ins.address + 2) // FLASH_LINE_BYTES != ins.address // FLASH_LINE_BYTES:
-                self.flash_lines.add((ins.address + 2) // FLASH_LINE_BYTES)
-        if ins.literal is not None and not self.code_map.in_ram(ins.literal):
-            self.flash_lines.add(ins.literal // FLASH_LINE_BYTES)
-        if self.code_map.reads_flash_table(ins) and ins.base in _LOAD_SINGLE | {"ldrd", "vldm", "vldmia", "ldm", "ldmia"}:
+        lines, table_load, ram_data_access = self.code_map.memory(ins)
+        self.flash_lines.update(lines)
+        if table_load:
             self.table_loads += 1
-        if in_ram and a.sram_l_contention and (ins.base in _LOAD_SINGLE or ins.base in _STORE_SINGLE
-                                               or ins.base in _MULTIPLE or ins.base in ("ldrd", "strd")):
+        if ram_data_access:
             self.cycles += a.sram_l_contention
         self.previous = ins
 

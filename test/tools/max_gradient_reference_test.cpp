@@ -1,0 +1,33 @@
+// The core's max|G| search against the double reference's dense scan (every
+// pixel, then a compass search to 1e-9 px) for every benchmarked scene at its
+// closed form: the normalisation of every directional scene's amplitude.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "bench_cases.hpp"
+#include "frictionfield/core/scene_plan.hpp"
+#include "reference_scene.hpp"
+
+namespace ff::bench {
+namespace {
+
+TEST(MaxGradientSearch, WithinOneMillionthOfTheDenseScanForEveryScene) {
+  std::vector<unsigned char> table(kTableSlotBytes);
+  for (int i = 0; i < kSceneCount; ++i) {
+    const auto id = static_cast<SceneId>(i);
+    const reference::Scene ref = reference::scene_for(id);
+    if (ref.rendering != reference::Rendering::Directional) continue;
+    SceneDefinition def = scene_definition(id);
+    def.evaluation = Evaluation::ClosedForm;
+    ScenePlan plan;
+    ASSERT_EQ(plan.prepare(def, table.data(), table.size()), PrepareStatus::Ok) << scene_name(id);
+    const double dense = reference::max_gradient(ref);
+    const double core = plan.stats().max_gradient;
+    EXPECT_LE(std::fabs(core - dense), 1e-6 * dense) << scene_name(id) << ": core " << core << ", dense " << dense;
+  }
+}
+
+}  // namespace
+}  // namespace ff::bench
