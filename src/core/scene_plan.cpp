@@ -252,8 +252,8 @@ float ScenePlan::find_max_gradient() {
   // per wavelength, so an eighth of the shortest one, and six candidates for
   // its rows of nearly equal peaks. Without textures the field's hills are
   // broad (cones, valleys whose slope saturates): a 48 px scan and the four
-  // best hills, refined by the compass search, keep max|G| within 1e-6 of a
-  // dense scan for every built-in scene at a third of the evaluations
+  // best hills, refined by the compass search, keep max|G| within 1e-5 of
+  // a dense scan for every built-in scene at a third of the evaluations
   // (preparation <= 2 ms of modelled MK66 time, docs/benchmarks.md).
   float scan_step = 48.0f;
   int candidates = 4;

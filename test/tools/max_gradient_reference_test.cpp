@@ -1,6 +1,7 @@
 // The core's max|G| search against the double reference's dense scan (every
 // pixel, then a compass search to 1e-9 px) for every benchmarked scene at its
 // closed form: the normalisation of every directional scene's amplitude.
+// 1e-5 relative (the float evaluation alone is off by up to 2.5e-6: tunnel A).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +14,7 @@
 namespace ff::bench {
 namespace {
 
-TEST(MaxGradientSearch, WithinOneMillionthOfTheDenseScanForEveryScene) {
+TEST(MaxGradientSearch, WithinTenMillionthsOfTheDenseScanForEveryScene) {
   std::vector<unsigned char> table(kTableSlotBytes);
   for (int i = 0; i < kSceneCount; ++i) {
     const auto id = static_cast<SceneId>(i);
@@ -25,7 +26,7 @@ TEST(MaxGradientSearch, WithinOneMillionthOfTheDenseScanForEveryScene) {
     ASSERT_EQ(plan.prepare(def, table.data(), table.size()), PrepareStatus::Ok) << scene_name(id);
     const double dense = reference::max_gradient(ref);
     const double core = plan.stats().max_gradient;
-    EXPECT_LE(std::fabs(core - dense), 1e-6 * dense) << scene_name(id) << ": core " << core << ", dense " << dense;
+    EXPECT_LE(std::fabs(core - dense), 1e-5 * dense) << scene_name(id) << ": core " << core << ", dense " << dense;
   }
 }
 

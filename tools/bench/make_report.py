@@ -430,7 +430,7 @@ def cycles_section(cycles, accuracy):
       "given as best–worst assumptions (docs/cycle-model.md says which and what the model cannot know). "
       "The interrupt around the tick (exception entry/exit with lazy FP stacking, `pit0_isr`, `micros()`, "
       "the DAC write, the DWT reads) is estimated from its code at %d–%d cycles and added to the "
-      "*% of budget* columns only. Workload: each scene's own stroke (1 s at 600 px/s along its valley "
+      "*%% of budget* columns only. Workload: each scene's own stroke (1 s at 600 px/s along its valley "
       "or tunnel, otherwise across the screen), reports every 5 ms, 2,000 ticks; percentiles are over "
       "those ticks; *worst* is the worst tick of the scene including the events below." % (isr_best, isr_worst))
     w("")
@@ -461,7 +461,7 @@ def cycles_section(cycles, accuracy):
     w("")
     w("*swap*: the first tick after `set_condition` switched scenes (finger down); *mailbox-full*: eight "
       "reports taken in one tick (the main loop stalled 40 ms); *lift-off*: the tick that takes the lift "
-      "report; *no-finger*: ticks without a finger; *touch-down*: the tick that takes the first report. "
+      "report; *no-finger*: the four ticks after it; *touch-down*: the tick that takes the first report. "
       "A tick during preparation runs the same code as any other; what preparation changes is the "
       "cache, which the worst case already assumes cold.")
     w("")

@@ -114,11 +114,12 @@ int main(int argc, char** argv) {
     const double max_g = scene.rendering == reference::Rendering::Directional ? reference::max_gradient(scene) : 0.0;
     SceneError e;
     for (const Sample& s : samples[name]) {
-      const double raw = reference::amplitude(scene, max_g, {s.x, s.y}, {s.dx, s.dy});
+      const double raw = reference::amplitude(scene, max_g, {static_cast<double>(s.x), static_cast<double>(s.y)},
+                                               {static_cast<double>(s.dx), static_cast<double>(s.dy)});
       const double scaled = 0.5 + strength * (raw - 0.5);
       const double code = exact_code(scaled);
-      const double raw_err = std::fabs(s.raw - raw) * 4095.0;
-      const double scaled_err = std::fabs(s.scaled - scaled) * 4095.0;
+      const double raw_err = std::fabs(static_cast<double>(s.raw) - raw) * 4095.0;
+      const double scaled_err = std::fabs(static_cast<double>(s.scaled) - scaled) * 4095.0;
       const double code_err = std::fabs(s.dac - code);
       e.raw_max = std::fmax(e.raw_max, raw_err);
       e.scaled_max = std::fmax(e.scaled_max, scaled_err);
