@@ -3,6 +3,7 @@
 #include "frictionfield/core/fastrun.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 namespace ff {
 
