@@ -173,13 +173,14 @@ TEST(Texture, PhaseReductionMatchesTheDoubleFormulaEverywhere) {
   for (float x : xs) {
     for (float y : {0.0f, 30.0f, 45.5f, 90.0f, 479.0f, -77.7f}) {
       const Vec2 g = element_gradient(e, {x, y});
-      const double gx = 20.0 * kx * std::cos(kx * x) * std::sin(ky * y);
-      const double gy = 20.0 * ky * std::sin(kx * x) * std::cos(ky * y);
+      const double xd = x, yd = y;
+      const double gx = 20.0 * kx * std::cos(kx * xd) * std::sin(ky * yd);
+      const double gy = 20.0 * ky * std::sin(kx * xd) * std::cos(ky * yd);
       // float phase of |x| up to 1e5 px: a few ulp of 2 pi x / lambda.
-      const double tol = 1e-6 + 2e-7 * (std::fabs(static_cast<double>(x)) + std::fabs(static_cast<double>(y)));
+      const double tol = 1e-6 + 2e-7 * (std::fabs(xd) + std::fabs(yd));
       EXPECT_NEAR(static_cast<double>(g.x), gx, tol) << x << ", " << y;
       EXPECT_NEAR(static_cast<double>(g.y), gy, tol) << x << ", " << y;
-      const double h = 20.0 * std::sin(kx * x) * std::sin(ky * y);
+      const double h = 20.0 * std::sin(kx * xd) * std::sin(ky * yd);
       EXPECT_NEAR(static_cast<double>(element_height(e, {x, y})), h, 20.0 * tol / kx) << x << ", " << y;
     }
   }
