@@ -1,5 +1,7 @@
 #include "frictionfield/core/amplitude_map.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
 
 #include "frictionfield/core/field_element.hpp"
@@ -48,7 +50,7 @@ bool DacCalibration::from_points(const float* amplitudes, const float* codes, in
   return false;
 }
 
-uint16_t DacCalibration::code_for(float a) const {
+FF_FASTRUN uint16_t DacCalibration::code_for(float a) const {
   a = clamp_finite(a, 0.0f, 1.0f, 0.0f);
   int i = 1;
   while (i < count - 1 && a > amplitude[i]) ++i;
@@ -81,7 +83,7 @@ bool AmplitudeMap::configure(const AmplitudeSettings& in) {
   return ok;
 }
 
-float AmplitudeMap::scale(float raw) const {
+FF_FASTRUN float AmplitudeMap::scale(float raw) const {
   const float s = settings_.strength;
   float a = clamp_finite(raw, 0.0f, 1.0f, 0.5f);
   if (settings_.s_curve > 0.0f) a += settings_.s_curve * (smootherstep(a) - a);

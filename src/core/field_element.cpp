@@ -1,10 +1,13 @@
 #include "frictionfield/core/field_element.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
+#include <cstdint>
 
 namespace ff {
 
-float smootherstep(float t) {
+FF_FASTRUN float smootherstep(float t) {
   t = clamp(t, 0.0f, 1.0f);
   return t * t * t * (t * (6.0f * t - 15.0f) + 10.0f);
 }
@@ -15,19 +18,46 @@ float sign_of(float v) { return v > 0.0f ? 1.0f : (v < 0.0f ? -1.0f : 0.0f); }
 
 // d|g|/du for g(u) = (1/a) atan(a u) - u: sign(u) a^2 u^2 / (1 + a^2 u^2).
 // Closed form: no atan on the tick path.
-float valley_slope(float u, float a) {
+FF_FASTRUN float valley_slope(float u, float a) {
   const float au2 = (a * u) * (a * u);
   // Far from the path (a u)^2 overflows: the slope has saturated at 1 (inf / inf would be NaN).
   return sign_of(u) * (au2 < 1e30f ? au2 / (1.0f + au2) : 1.0f);
 }
 
+// sin and cos of 2 pi turns. The phase is reduced here, exactly (whole turns,
+// then quarter turns), to |2 pi r| <= pi/4, where newlib's sinf/cosf go
+// straight to their kernels: without it every call paid for
+// __ieee754_rem_pio2f (a third of the bump map's tick on the M4).
+struct SinCos {
+  float sin;
+  float cos;
+};
+// Nearest integer (ties away from zero) without a libm call (the FPv4 has no
+// VRINT); floats of magnitude 2^23 and more are integers already.
+FF_FASTRUN float nearest_integer(float v) {
+  if (!(std::fabs(v) < 8388608.0f)) return v;
+  return static_cast<float>(static_cast<int32_t>(v + (v >= 0.0f ? 0.5f : -0.5f)));
+}
+FF_FASTRUN SinCos sincos_turns(float turns) {
+  const float whole = nearest_integer(turns);
+  const float quarters = nearest_integer(4.0f * (turns - whole));  // -2 .. 2
+  const float r = 2.0f * kPi * ((turns - whole) - 0.25f * quarters);
+  const float s = std::sin(r), c = std::cos(r);
+  switch ((static_cast<int>(quarters) + 4) & 3) {
+    case 1: return {c, -s};
+    case 2: return {-s, -c};
+    case 3: return {-c, s};
+    default: return {s, c};
+  }
+}
+
 float valley_height(float u, float a) { return std::fabs(std::atan(a * u) / a - u); }
 
-float band(float distance, float half_width, float feather) {
+FF_FASTRUN float band(float distance, float half_width, float feather) {
   return smootherstep((half_width + feather - distance) / feather);
 }
 
-float tunnel_width(const TunnelParams& t, float x) {
+FF_FASTRUN float tunnel_width(const TunnelParams& t, float x) {
   const float f = clamp((x - t.x_start) / t.length, 0.0f, 1.0f);
   return t.width_start + (t.width_end - t.width_start) * f;
 }
@@ -52,14 +82,13 @@ float element_height(const FieldElement& e, Vec2 p) {
     }
     case ElementKind::Texture: {
       const TextureParams& t = e.texture;
-      return t.height * std::sin(2.0f * kPi * p.x / t.wavelength_x) *
-             std::sin(2.0f * kPi * p.y / t.wavelength_y);
+      return t.height * sincos_turns(p.x / t.wavelength_x).sin * sincos_turns(p.y / t.wavelength_y).sin;
     }
   }
   return 0.0f;
 }
 
-Vec2 element_gradient(const FieldElement& e, Vec2 p) {
+FF_FASTRUN Vec2 element_gradient(const FieldElement& e, Vec2 p) {
   switch (e.kind) {
     case ElementKind::PointSink: {
       const Vec2 d = p - e.point.centre;
@@ -100,15 +129,15 @@ Vec2 element_gradient(const FieldElement& e, Vec2 p) {
       const TextureParams& t = e.texture;
       const float kx = 2.0f * kPi / t.wavelength_x;
       const float ky = 2.0f * kPi / t.wavelength_y;
-      const float sx = std::sin(kx * p.x), cx = std::cos(kx * p.x);
-      const float sy = std::sin(ky * p.y), cy = std::cos(ky * p.y);
-      return {t.height * kx * cx * sy, t.height * ky * sx * cy};
+      const SinCos x = sincos_turns(p.x / t.wavelength_x);
+      const SinCos y = sincos_turns(p.y / t.wavelength_y);
+      return {t.height * kx * x.cos * y.sin, t.height * ky * x.sin * y.cos};
     }
   }
   return {};
 }
 
-float element_profile(const FieldElement& e, Vec2 p) {
+FF_FASTRUN float element_profile(const FieldElement& e, Vec2 p) {
   switch (e.kind) {
     case ElementKind::PointSink:
       return band(length(p - e.point.centre), e.point.radius, e.point.feather);
@@ -123,8 +152,7 @@ float element_profile(const FieldElement& e, Vec2 p) {
     }
     case ElementKind::Texture: {
       const TextureParams& t = e.texture;
-      return 0.5f + 0.5f * std::sin(2.0f * kPi * p.x / t.wavelength_x) *
-                        std::sin(2.0f * kPi * p.y / t.wavelength_y);
+      return 0.5f + 0.5f * sincos_turns(p.x / t.wavelength_x).sin * sincos_turns(p.y / t.wavelength_y).sin;
     }
     case ElementKind::Vortex:
     case ElementKind::Saddle:

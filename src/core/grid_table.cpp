@@ -1,5 +1,7 @@
 #include "frictionfield/core/grid_table.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
 #include <cstring>
 
@@ -59,16 +61,16 @@ void GridTable::set(int col, int row, int channel, float value) {
   }
 }
 
-float GridTable::fetch(int index) const {
+FF_FASTRUN float GridTable::fetch(int index) const {
   if (storage_ == TableStorage::Float32) return static_cast<const float*>(data_)[index];
   return static_cast<float>(static_cast<const int16_t*>(data_)[index]);
 }
 
-float GridTable::node(int col, int row, int channel) const {
+FF_FASTRUN float GridTable::node(int col, int row, int channel) const {
   return fetch((row * cols_ + col) * channels_ + channel) * scale_[channel];
 }
 
-GridTable::Cell GridTable::locate(Vec2 p) const {
+FF_FASTRUN GridTable::Cell GridTable::locate(Vec2 p) const {
   // NaN lands on node 0; the clamp keeps every index inside the grid.
   const float gx = clamp_finite(p.x * inv_spacing_, 0.0f, static_cast<float>(cols_ - 1), 0.0f);
   const float gy = clamp_finite(p.y * inv_spacing_, 0.0f, static_cast<float>(rows_ - 1), 0.0f);
@@ -79,7 +81,7 @@ GridTable::Cell GridTable::locate(Vec2 p) const {
   return {(r * cols_ + c) * channels_, gx - static_cast<float>(c), gy - static_cast<float>(r)};
 }
 
-float GridTable::sample(Vec2 p, int channel) const {
+FF_FASTRUN float GridTable::sample(Vec2 p, int channel) const {
   const Cell k = locate(p);
   const int i = k.index + channel;
   const int down = cols_ * channels_;
@@ -89,7 +91,7 @@ float GridTable::sample(Vec2 p, int channel) const {
   return (top + k.fy * (bottom - top)) * scale_[channel];
 }
 
-Vec2 GridTable::sample2(Vec2 p) const {
+FF_FASTRUN Vec2 GridTable::sample2(Vec2 p) const {
   const Cell k = locate(p);
   const int down = cols_ * 2;
   const int i = k.index;

@@ -1,5 +1,7 @@
 #include "frictionfield/core/haptic_pipeline.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 namespace ff {
 
 HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : tracker_(tracker) {
@@ -35,7 +37,7 @@ bool HapticPipeline::post_sample(const SensorSample& s) {
   return false;
 }
 
-TickOutput HapticPipeline::tick(uint32_t now_us) {
+FF_FASTRUN TickOutput HapticPipeline::tick(uint32_t now_us) {
   ++ticks_;
   const Slot& slot = slots_[active_.load(std::memory_order_acquire)];
   const Needs needs = slot.plan.needs();

@@ -1,5 +1,7 @@
 #include "frictionfield/core/one_euro_filter.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
 
 #include "frictionfield/core/geometry.hpp"
@@ -16,7 +18,7 @@ void OneEuroFilter::configure(const OneEuroConfig& config) {
   initialised_ = false;
 }
 
-float OneEuroFilter::filter(float x) {
+FF_FASTRUN float OneEuroFilter::filter(float x) {
   if (!initialised_) {
     initialised_ = true;
     x_hat_ = x;

@@ -1,10 +1,12 @@
 #include "frictionfield/core/path_curve.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
 
 namespace ff {
 
-CurvePoint PathCurve::at(float x) const {
+FF_FASTRUN CurvePoint PathCurve::at(float x) const {
   switch (kind) {
     case CurveKind::Cubic: {
       // y = -2T/L^3 s^3 + 3T/L^2 s^2 + y0 on s in [0, L]; flat outside.

@@ -1,5 +1,7 @@
 #include "frictionfield/core/tracker.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -12,7 +14,7 @@ namespace {
 // Stamps are the wrapping 32-bit micros(): differences by the clock's rule.
 constexpr int32_t elapsed_us(uint32_t later, uint32_t earlier) { return signed_elapsed(later, earlier); }
 
-float smoothstep(float t) {
+FF_FASTRUN float smoothstep(float t) {
   t = clamp(t, 0.0f, 1.0f);
   return t * t * (3.0f - 2.0f * t);
 }
@@ -53,7 +55,7 @@ void Tracker::KalmanAxis::start(float z, float r) {
   P11 = kInitialSpeedSigmaPxS * kInitialSpeedSigmaPxS;
 }
 
-void Tracker::KalmanAxis::predict(float dt, float q) {
+FF_FASTRUN void Tracker::KalmanAxis::predict(float dt, float q) {
   // Constant velocity driven by white acceleration of spectral density q.
   p += v * dt;
   const float dt2 = dt * dt;
@@ -62,7 +64,7 @@ void Tracker::KalmanAxis::predict(float dt, float q) {
   P11 += q * dt;
 }
 
-void Tracker::KalmanAxis::update(float z, float r) {
+FF_FASTRUN void Tracker::KalmanAxis::update(float z, float r) {
   const float s = P00 + r;
   const float k0 = P00 / s;
   const float k1 = P01 / s;
@@ -106,7 +108,7 @@ void Tracker::reset() {
   filters_fresh_ = false;
 }
 
-void Tracker::lose_finger() {
+FF_FASTRUN void Tracker::lose_finger() {
   have_last_ = false;
   have_velocity_ = false;
   have_pending_jump_ = false;
@@ -116,7 +118,7 @@ void Tracker::lose_finger() {
   state_.direction = {};
 }
 
-void Tracker::restart_at(const SensorSample& s) {
+FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   // No history survives a touch-down or a confirmed jump: no velocity spike.
   last_ = s;
   have_last_ = true;
@@ -137,13 +139,13 @@ void Tracker::restart_at(const SensorSample& s) {
   filters_fresh_ = false;
 }
 
-bool Tracker::is_jump(const SensorSample& s) const {
+FF_FASTRUN bool Tracker::is_jump(const SensorSample& s) const {
   const float dt_s = static_cast<float>(elapsed_us(s.t_us, last_.t_us)) * 1e-6f;
   const float allowed = config_.max_speed_px_s * dt_s + config_.jump_slack_px;
   return length(Vec2{s.x, s.y} - Vec2{last_.x, last_.y}) > allowed;
 }
 
-void Tracker::accept(const SensorSample& s, bool need_filter) {
+FF_FASTRUN void Tracker::accept(const SensorSample& s, bool need_filter) {
   const int32_t dt_us = elapsed_us(s.t_us, last_.t_us);
   const float inv_dt = 1.0f / static_cast<float>(dt_us);
   raw_velocity_ = {(s.x - last_.x) * inv_dt, (s.y - last_.y) * inv_dt};
@@ -173,7 +175,7 @@ void Tracker::accept(const SensorSample& s, bool need_filter) {
   }
 }
 
-void Tracker::on_sample(const SensorSample& in, bool need_filter) {
+FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   if (!in.touch) {
     if (have_last_ && !lifting_) {
       lifting_ = true;
@@ -181,7 +183,7 @@ void Tracker::on_sample(const SensorSample& in, bool need_filter) {
     }
     return;
   }
-  if (!std::isfinite(in.x) || !std::isfinite(in.y)) {
+  if (!is_finite(in.x) || !is_finite(in.y)) {
     faults_.add(Fault::NonFiniteCoordinate);
     return;
   }
@@ -235,7 +237,7 @@ void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   accept(s, need_filter);
 }
 
-uint32_t Tracker::extrapolation_us(uint32_t now_us) {
+FF_FASTRUN uint32_t Tracker::extrapolation_us(uint32_t now_us) {
   const int32_t since = elapsed_us(now_us, last_.t_us);
   const uint32_t dt = since > 0 ? static_cast<uint32_t>(since) : 0u;
   if (dt > config_.max_extrapolation_us) {
@@ -246,7 +248,7 @@ uint32_t Tracker::extrapolation_us(uint32_t now_us) {
   return dt;
 }
 
-Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
+FF_FASTRUN Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
   switch (config_.estimator) {
     case Estimator::ThesisTicks:
     case Estimator::TimedExtrapolation: {
@@ -278,11 +280,12 @@ Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
   return {last_.x, last_.y};
 }
 
-Vec2 Tracker::faded_direction(Vec2 v) const {
+FF_FASTRUN Vec2 Tracker::faded_direction(Vec2 v) const {
   // Normalise by the larger component first: squares of tiny (subnormal)
   // speeds lose precision, and v / |v| must stay unit length.
-  const float m = std::fmax(std::fabs(v.x), std::fabs(v.y));
-  if (!(m > kMinSpeedPxS) || !std::isfinite(m)) return {};  // at rest: no direction
+  const float ax = std::fabs(v.x), ay = std::fabs(v.y);
+  const float m = ax > ay ? ax : ay;
+  if (!is_finite(v) || !(m > kMinSpeedPxS)) return {};  // at rest (or not a number): no direction
   const Vec2 u = (1.0f / m) * v;
   const float len = length(u);  // in [1, sqrt 2]
   const float speed = m * len;
@@ -293,7 +296,7 @@ Vec2 Tracker::faded_direction(Vec2 v) const {
   return (gain / len) * u;
 }
 
-TrackState Tracker::on_tick(uint32_t now_us, bool need_filter) {
+FF_FASTRUN TrackState Tracker::on_tick(uint32_t now_us, bool need_filter) {
   if (have_tick_) {
     const int32_t step = elapsed_us(now_us, last_tick_us_);
     if (step <= 0 || step > static_cast<int32_t>(config_.max_tick_step_us)) {

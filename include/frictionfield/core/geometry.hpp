@@ -22,7 +22,10 @@ constexpr Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 constexpr Vec2 operator*(float s, Vec2 a) { return {s * a.x, s * a.y}; }
 constexpr float dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline float length(Vec2 a) { return std::sqrt(dot(a, a)); }
-inline bool is_finite(Vec2 a) { return std::isfinite(a.x) && std::isfinite(a.y); }
+// Not NaN, not infinite. std::isfinite is a call to newlib's __fpclassifyf on
+// the M4 (in flash, off the tick's RAM path); this is one VABS and a compare.
+inline bool is_finite(float v) { return std::fabs(v) <= 3.40282347e38f; }
+inline bool is_finite(Vec2 a) { return is_finite(a.x) && is_finite(a.y); }
 
 constexpr float clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 

@@ -1,0 +1,113 @@
+"""Tests of the cycle model: straight-line blocks assembled with
+arm-none-eabi-as whose cycles are counted by hand from the Cortex-M4 TRM's
+timing tables (the expected numbers below are those hand counts, not the
+model's output), the objdump parser, and the exec-log call finder."""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from disassembly import classify, parse_objdump  # noqa: E402
+from exec_log import executed_addresses, measure_calls  # noqa: E402
+from model import BEST, WORST, CodeMap, cycles_of  # noqa: E402
+
+RAM_EVERYWHERE = CodeMap(0, 1 << 32)  # zero-wait code: only the core's own timing
+FLASH_EVERYWHERE = CodeMap(0, 0)
+
+
+def assemble(source):
+    """Address -> Instruction of a Thumb-2 snippet (Cortex-M4F), linked at 0."""
+    with tempfile.TemporaryDirectory() as tmp:
+        s = os.path.join(tmp, "block.s")
+        o = os.path.join(tmp, "block.o")
+        Path(s).write_text(".syntax unified\n.thumb\n.text\n.global block\n.thumb_func\nblock:\n" + source + "\n")
+        subprocess.run(["arm-none-eabi-as", "-mcpu=cortex-m4", "-mfpu=fpv4-sp-d16", "-mthumb", s, "-o", o],
+                       check=True, capture_output=True)
+        dump = subprocess.run(["arm-none-eabi-objdump", "-d", o], check=True, capture_output=True, text=True).stdout
+    return parse_objdump(dump)
+
+
+def straight(instructions):
+    return sorted(instructions)
+
+
+class HandCountedBlocks(unittest.TestCase):
+    def cycles(self, source, assumptions=BEST, code_map=RAM_EVERYWHERE, sequence=None, end=None):
+        ins = assemble(source)
+        return cycles_of(sequence or straight(ins), ins, code_map, assumptions, end).total()
+
+    def test_loads_pipeline_unless_the_address_depends_on_the_previous_load(self):
+        # adds 1; ldr 2; ldr 1 (pipelined); str imm 1; mul 1 = 6
+        self.assertEqual(self.cycles("adds r0, r1, r2\nldr r3, [r0]\nldr r4, [r0, #4]\nstr r4, [r0, #8]\n"
+                                     "mul r5, r3, r4"), 6)
+        # ldr r1,[r0] 2; ldr r2,[r1] 2: the second address is the first load's result
+        self.assertEqual(self.cycles("ldr r1, [r0]\nldr r2, [r1]"), 4)
+
+    def test_fpu_latencies(self):
+        # vldr 2; vldr 1 (pipelined); vmla 3; vdiv 14; vsqrt 14; vstr 2; vadd 1; vmov core<-s 1 = 38
+        self.assertEqual(self.cycles("vldr s0, [r0]\nvldr s1, [r0, #4]\nvmla.f32 s2, s0, s1\n"
+                                     "vdiv.f32 s3, s2, s1\nvsqrt.f32 s4, s3\nvstr s4, [r0]\n"
+                                     "vadd.f32 s5, s4, s4\nvmov r1, s5"), 38)
+
+    def test_multiple_transfers_and_return(self):
+        # push 1+4; vpush 1+2; vpop 1+2; pop with pc 1+4+P (best P = 1, worst 3)
+        block = "push {r4, r5, r6, lr}\nvpush {s16, s17}\nvpop {s16, s17}\npop {r4, r5, r6, pc}"
+        self.assertEqual(self.cycles(block, BEST, end=0x1000), 5 + 3 + 3 + 6)
+        self.assertEqual(self.cycles(block, WORST, end=0x1000), 5 + 3 + 3 + 8 + 1 * 4)  # +1 per access (SRAM_L)
+
+    def test_branches_cost_a_refill_only_when_taken(self):
+        source = "cmp r0, #0\nbeq 1f\nadds r0, #1\n1: adds r0, #2"
+        ins = assemble(source)
+        a = straight(ins)
+        not_taken = cycles_of(a, ins, RAM_EVERYWHERE, BEST).total()
+        taken = cycles_of([a[0], a[1], a[3]], ins, RAM_EVERYWHERE, BEST).total()
+        self.assertEqual(not_taken, 4)   # cmp 1, beq 1, adds 1, adds 1
+        self.assertEqual(taken, 1 + 2 + 1)  # cmp 1, beq 1 + P(1), adds 1
+        self.assertEqual(cycles_of([a[0], a[1], a[3]], ins, RAM_EVERYWHERE, WORST).total(), 1 + 4 + 1)
+
+    def test_cold_flash_costs_one_miss_per_line_touched(self):
+        # Eight 16-bit instructions at 0..15: one 16-byte line; worst: 8 cycles + one 13-cycle miss.
+        block = "\n".join(["adds r0, #1"] * 8)
+        self.assertEqual(self.cycles(block, WORST, FLASH_EVERYWHERE), 8 + 13)
+        self.assertEqual(self.cycles(block, BEST, FLASH_EVERYWHERE), 8)
+        # Nine: a second line.
+        self.assertEqual(self.cycles(block + "\nadds r0, #1", WORST, FLASH_EVERYWHERE), 9 + 2 * 13)
+
+
+class Disassembly(unittest.TestCase):
+    def test_conditions_are_not_mistaken_for_other_mnemonics(self):
+        self.assertEqual(classify(0, 2, "bls.n", "4", "f").base, "b")
+        self.assertTrue(classify(0, 2, "bls.n", "4", "f").conditional)
+        self.assertEqual(classify(0, 4, "bl", "100 <x>", "f").base, "bl")
+        self.assertEqual(classify(0, 4, "vmlage.f32", "s0, s1, s2", "f").base, "vmla")
+        self.assertEqual(classify(0, 2, "itte", "eq", "f").base, "it")
+        self.assertEqual(classify(0, 2, "bics", "r0, r1", "f").base, "alu")
+
+    def test_literal_address_and_register_lists(self):
+        ldr = classify(0x102, 2, "ldr", "r3, [pc, #8]\t@ (10c <f+0xc>)", "f")
+        self.assertEqual(ldr.literal, 0x104 + 8)
+        pop = classify(0, 2, "pop", "{r4, r5, r6, pc}", "f")
+        self.assertEqual((pop.registers, pop.writes_pc), (4, True))
+        vpush = classify(0, 4, "vpush", "{d8-d9}", "f")
+        self.assertEqual(vpush.registers, 4)
+
+
+class ExecLog(unittest.TestCase):
+    def test_a_call_runs_from_entry_to_the_return_address_even_through_a_tail_call(self):
+        # main: bl wrapper; wrapper: b.w target; target: adds; bx lr -> back to main.
+        ins = assemble("bl wrapper\nnop\nwrapper: b.w target\ntarget: adds r0, #1\nbx lr")
+        a = straight(ins)  # bl(0), nop(4), b.w(6), adds(10), bx(12)
+        log = [f"Trace 0: 0x7f0000000000 [00000000/{x:08x}/00000110/ff020201] f\n" for x in
+               (a[0], a[2], a[3], a[4], a[1])]
+        calls = list(measure_calls(executed_addresses(log), ins, {a[3]: "target"}, RAM_EVERYWHERE))
+        self.assertEqual(len(calls), 1)
+        self.assertEqual(calls[0].instructions, 2)      # adds, bx lr
+        self.assertEqual(calls[0].best, 1 + 1 + 1)      # adds 1, bx 1 + P
+
+
+if __name__ == "__main__":
+    unittest.main()
