@@ -1,10 +1,10 @@
 #include "frictionfield/core/scene_plan.hpp"
 
 #include <cfloat>
-#include "frictionfield/core/fastrun.hpp"
-
 #include <cmath>
 #include <initializer_list>
+
+#include "frictionfield/core/fastrun.hpp"
 
 namespace ff {
 
