@@ -53,7 +53,13 @@ void FirmwareApp::tick(uint32_t now_us) {
   // Always run the pipeline, so that its clock stays continuous through a
   // stall (no leap to confirm when the loop comes back); only the output
   // is overridden.
+  const uint32_t taken_before = pipeline_.samples_taken();
   const TickOutput out = pipeline_.tick(now_us);
+  if (streaming_.load(std::memory_order_relaxed)) {  // which tick took each report: ffctl verify replays it there
+    for (uint32_t k = taken_before; k != pipeline_.samples_taken(); ++k) {
+      taken_us_by_slot_[k % SampleMailbox::kCapacity].store(now_us, std::memory_order_relaxed);
+    }
+  }
   const uint32_t limit = preparing_.load(std::memory_order_acquire) ? kPreparationWatchdogUs : kWatchdogUs;
   // Signed: a heartbeat stamped a moment after `now_us` is fresh, not 71 minutes old.
   const int32_t silent = static_cast<int32_t>(now_us - heartbeat_us_.load(std::memory_order_acquire));
@@ -148,14 +154,14 @@ void FirmwareApp::read_sensor(uint32_t now_us) {
   // The DR interrupt only timestamped; the I2C read happens here.
   SensorSample s;
   while (zforce_.poll(now_us, s)) {
-    pipeline_.post_sample(s);
-    if (!streaming_.load(std::memory_order_relaxed)) continue;
+    const uint32_t index = pipeline_.samples_posted();
+    if (!pipeline_.post_sample(s) || !streaming_.load(std::memory_order_relaxed)) continue;
     if (pending_samples_.count < protocol::kMaxSamplesPerMessage) {
+      pending_index_[pending_samples_.count] = index;
       pending_samples_.samples[pending_samples_.count++] = s;
     } else {
       ++counters_.stream_overruns;
     }
-    if (pending_samples_.count == protocol::kMaxSamplesPerMessage) stream(now_us, false);
   }
   if (zforce_.state() != ZforceState::Failed) {
     sensor_failed_ = false;
@@ -198,18 +204,40 @@ void FirmwareApp::move_mouse(uint32_t now_us) {
 // Raw sensor reports and rendered ticks for `ffctl record`, over USB only.
 // A record waits until its message is full or kStreamFlushUs passed; a
 // message waits (in the ring) while the host channel has no room.
+// The tick that took each pending report, as soon as one has (within a tick of posting it).
+void FirmwareApp::note_taken_times() {
+  const uint32_t taken = pipeline_.samples_taken();
+  while (pending_taken_ < pending_samples_.count) {
+    const uint32_t index = pending_index_[pending_taken_];
+    if (static_cast<int32_t>(taken - index) <= 0) break;  // not taken yet
+    // Older than the mailbox: its slot may hold a later report's time. Unknown then (a loop stalled 8 reports long).
+    pending_samples_.taken_us[pending_taken_] =
+        taken - index <= SampleMailbox::kCapacity
+            ? taken_us_by_slot_[index % SampleMailbox::kCapacity].load(std::memory_order_relaxed)
+            : 0;
+    ++pending_taken_;
+  }
+}
+
 void FirmwareApp::stream(uint32_t now_us, bool final) {
   const bool due = final || now_us - stream_due_since_us_ >= kStreamFlushUs;
   bool sent_all = true;
-  if (pending_samples_.count > 0 && (due || pending_samples_.count == protocol::kMaxSamplesPerMessage)) {
+  note_taken_times();
+  const bool all_taken = pending_taken_ == pending_samples_.count;
+  if (pending_samples_.count > 0 && (due || pending_samples_.count == protocol::kMaxSamplesPerMessage) &&
+      (all_taken || final)) {
     out_.type = MessageType::Samples;
     out_.sequence = 0;
     out_.samples = pending_samples_;
+    out_.samples.has_taken_times = all_taken;
     if (send(stream_channel_)) {
       pending_samples_.count = 0;
+      pending_taken_ = 0;
     } else {
       sent_all = false;
     }
+  } else if (pending_samples_.count > 0) {
+    sent_all = false;
   }
   for (;;) {
     protocol::TickRecord r;
@@ -234,6 +262,7 @@ void FirmwareApp::stream(uint32_t now_us, bool final) {
   if (final && !sent_all) {  // the host stopped the stream but has no room: drop the rest
     counters_.stream_overruns += pending_samples_.count + pending_ticks_.count + ring_.size();
     pending_samples_.count = 0;
+    pending_taken_ = 0;
     pending_ticks_.count = 0;
     protocol::TickRecord r;
     while (ring_.pop(r)) {
@@ -344,6 +373,7 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
     }
     case MessageType::StartStream: {
       pending_samples_.count = 0;
+      pending_taken_ = 0;
       pending_ticks_.count = 0;
       protocol::TickRecord r;
       while (ring_.pop(r)) {

@@ -105,6 +105,7 @@ class FirmwareApp {
   void read_host(uint32_t now_us);
   void move_mouse(uint32_t now_us);
   void stream(uint32_t now_us, bool final);
+  void note_taken_times();
   void handle_frame(const uint8_t* frame, size_t size, Channel channel, uint32_t now_us);
   void handle_command(Channel channel, uint32_t now_us);
   bool send(Channel channel);   // out_; false: the HID channel had no room
@@ -136,6 +137,8 @@ class FirmwareApp {
   std::atomic<uint32_t> ring_overruns_{0};
   std::atomic<uint32_t> cycles_max_{0};
   std::atomic<uint32_t> cycles_count_{0};  // also the sequence that makes cycles_sum_ readable
+  // While streaming: the time of the tick that took mailbox sample k, at [k % 8] (the mailbox holds 8).
+  std::atomic<uint32_t> taken_us_by_slot_[SampleMailbox::kCapacity] = {};
   uint64_t cycles_sum_ = 0;
   CycleHistogram interrupt_cycles_;
   bool watchdog_tripped_ = false;  // tick only
@@ -156,7 +159,9 @@ class FirmwareApp {
   bool sensor_failed_ = false;
   uint32_t sensor_failed_us_ = 0;
   uint32_t stream_due_since_us_ = 0;
-  protocol::SamplesMessage pending_samples_;
+  protocol::SamplesMessage pending_samples_;  // with the tick that took each (taken_us), once known
+  uint32_t pending_index_[protocol::kMaxSamplesPerMessage] = {};  // mailbox index of each pending sample
+  uint8_t pending_taken_ = 0;  // how many of the pending samples have their tick's time
   protocol::TicksMessage pending_ticks_;
   protocol::Message in_;   // large: members, not on the loop's stack
   protocol::Message out_;

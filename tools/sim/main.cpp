@@ -60,7 +60,9 @@ int main(int argc, char** argv) {
   app.add_option("--speed", speed, "simulated time runs this many times faster than the wall clock")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  auto* trace_opt = app.add_option("--trace", trace_path, "finger trace CSV (t_us,x,y,touch), played from start-up");
+  auto* trace_opt = app.add_option("--trace", trace_path,
+                                   "finger trace CSV (t_us,x,y,touch) on its own clock: a report stamped t_us\n"
+                                   "arrives t_us after the ready line");
   app.add_flag("--stroke", stroke, "a scripted finger sliding along the middle path")->excludes(trace_opt);
   app.add_option("--trace-force", trace_force_N, "force on the plate while the trace touches, N")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no live status line");
@@ -106,9 +108,10 @@ int main(int argc, char** argv) {
   teensy_model::run_until(teensy_model::now_us() + 200000);
   const uint64_t t0 = teensy_model::now_us();
   if (!rows.empty()) {
+    // The trace keeps its own clock: a report stamped t_us arrives t_us after ff-sim is ready
+    // (a recorder started at once sees the plate at rest before the finger lands).
     std::vector<ff::SensorSample> trace;
-    const uint64_t first = rows.front().t_us;
-    for (const auto& r : rows) trace.push_back({static_cast<uint32_t>(t0 + (r.t_us - first)), r.x, r.y, r.touch});
+    for (const auto& r : rows) trace.push_back({static_cast<uint32_t>(t0 + r.t_us), r.x, r.y, r.touch});
     devices.zforce.load_trace(trace);
   }
 

@@ -44,6 +44,10 @@ class HapticPipeline {
   // Time the last set_condition() took (0 without a clock).
   uint32_t last_prepare_us() const { return last_prepare_us_; }
   bool post_sample(const SensorSample& s);  // false: mailbox full (counted)
+  // The index the next posted sample gets, and how many samples ticks have taken (both wrap):
+  // sample k was taken by the first tick after which samples_taken() passed k.
+  uint32_t samples_posted() const { return mailbox_.posted(); }
+  uint32_t samples_taken() const { return mailbox_.taken(); }
 
   // Interrupt side ---------------------------------------------------------
   TickOutput tick(uint32_t now_us);

@@ -21,6 +21,10 @@ class SampleMailbox {
     return true;
   }
 
+  // Monotonic counts (they wrap at 2^32): the index the next post gets, and how many the tick took.
+  uint32_t posted() const { return head_.load(std::memory_order_acquire); }
+  uint32_t taken() const { return tail_.load(std::memory_order_acquire); }
+
   bool take(SensorSample& out) {
     const uint32_t tail = tail_.load(std::memory_order_relaxed);
     const uint32_t head = head_.load(std::memory_order_acquire);
