@@ -37,6 +37,7 @@ void FirmwareApp::begin(uint32_t now_us, const DacCalibration& wiring) {
   resting.scene = scenes::neutral();
   resting.amplitude.calibration = wiring;
   pipeline_.set_condition(resting);
+  condition_.calibration = wiring;
   rest_plate();
   dds_.start(kDefaultCarrierHz);
   zforce_.begin(now_us);
@@ -371,6 +372,10 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       st.zforce_layout_inside = zforce_.count(ZforceCount::TimestampInside);
       break;
     }
+    case MessageType::QueryCondition:  // what renders now, as the SetCondition payload that set it
+      out_.type = MessageType::Condition;
+      out_.condition = condition_;
+      break;
     case MessageType::StartStream: {
       pending_samples_.count = 0;
       pending_taken_ = 0;

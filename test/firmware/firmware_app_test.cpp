@@ -334,6 +334,28 @@ TEST(FirmwareApp, MouseEvery3msAtTheFilteredPositionWhileTheFingerIsDown) {
   }
 }
 
+TEST(FirmwareApp, QueryConditionAnswersWhatRendersNow) {
+  Device d;
+  Message q = command(MessageType::QueryCondition, 1);
+  d.board.send_udp(q);
+  d.run_until(10000);
+  ASSERT_EQ(d.board.udp_of(MessageType::Condition).size(), 1u);
+  EXPECT_EQ(d.board.udp_of(MessageType::Condition)[0].condition.kind, protocol::ConditionKind::Neutral);
+  Message set = command(MessageType::SetCondition, 2);
+  set.condition.kind = protocol::ConditionKind::Frictionmap;
+  set.condition.target = Target::Top;
+  set.condition.strength = 0.66f;
+  d.board.send_udp(set);
+  d.board.send_udp(command(MessageType::QueryCondition, 3));
+  d.run_until(20000);
+  const auto echoes = d.board.udp_of(MessageType::Condition);
+  ASSERT_EQ(echoes.size(), 2u);
+  EXPECT_EQ(echoes[1].sequence, 3);
+  EXPECT_EQ(echoes[1].condition.kind, protocol::ConditionKind::Frictionmap);
+  EXPECT_EQ(echoes[1].condition.target, Target::Top);
+  EXPECT_FLOAT_EQ(echoes[1].condition.strength, 0.66f);
+}
+
 TEST(FirmwareApp, NoForceBeforeAHostHasSpoken) {
   Device d;
   d.run_until(500000);

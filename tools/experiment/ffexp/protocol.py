@@ -174,6 +174,8 @@ class Status:
     finger: bool
     carrier_hz: float
     faults: list
+    # isr cycles mean/max/p99, last preparation us, slowest loop pass us, zForce stamp layouts beside/inside
+    silicon: tuple = ()
 
     @property
     def firmware(self):
@@ -214,7 +216,7 @@ def query_condition(seq):
     return frame(QUERY_CONDITION, seq)
 
 
-STATUS_FIXED = struct.Struct("<HBBfIIIIIIfBfB")
+STATUS_FIXED = struct.Struct("<HBBfIIIIIIfBf7IB")  # docs/protocol.md Status
 
 
 def decode(data):
@@ -236,7 +238,7 @@ def decode(data):
                 raise ProtocolError("malformed Status")
             faults = list(struct.unpack_from(f"<{n}I", p, STATUS_FIXED.size))
             return seq, Status(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10],
-                               bool(v[11] & 1), bool(v[11] & 2), v[12], faults)
+                               bool(v[11] & 1), bool(v[11] & 2), v[12], faults, tuple(v[13:20]))
         if t == TICKS and p and len(p) == 1 + 10 * p[0]:
             ticks = []
             for i in range(p[0]):
@@ -266,7 +268,7 @@ def force(seq, t_us, force_mn, over_force=False):
 def status(seq, firmware_version=0x0200, force_mn=0.0, faults=(), **kw):
     fixed = STATUS_FIXED.pack(firmware_version, kw.get("kind", 2), kw.get("target", 1), kw.get("strength", 1.0),
                               kw.get("ticks", 0), 0, 0, kw.get("protocol_errors", 0), 0, 0, force_mn, 0,
-                              34900.0, len(faults))
+                              34900.0, 0, 0, 0, 0, 0, 0, 0, len(faults))
     return frame(STATUS, seq, fixed + struct.pack(f"<{len(faults)}I", *faults))
 
 
