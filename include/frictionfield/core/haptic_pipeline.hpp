@@ -6,7 +6,11 @@
 // Threading: set_condition() and post_sample() belong to the main loop (one
 // producer); tick() to the interrupt (one consumer). A new condition is
 // prepared in the slot the tick is not reading and published with one atomic
-// store, so no tick sees half a scene.
+// store, so no tick sees half a scene. That assumes the tick runs to
+// completion while the main loop is suspended, as an interrupt on the one-core
+// MK66 does: with the two on separate threads, a tick still reading the old
+// slot could see the next set_condition() rewrite it. ff-sim keeps the
+// interrupt's semantics (one thread, simulated time) for that reason.
 #include <atomic>
 #include <cstdint>
 
