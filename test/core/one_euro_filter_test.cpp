@@ -5,14 +5,16 @@
 #include <cmath>
 #include <random>
 
-#include "reference_model.hpp"
+#include "support/reference/reference_amplitude.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/reference_tracker.hpp"
 
 namespace ff {
 namespace {
 
 // The double reference of appendix G (docs/spec.md#thesis-tracker), written
-// independently of the core: test/stress/reference_model.hpp.
-using stress::ReferenceOneEuro;
+// independently of the core: test/support/reference/reference_tracker.hpp.
+using reference::ReferenceOneEuro;
 
 TEST(OneEuroFilter, HandDerivedFirstSteps) {
   OneEuroFilter f;

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "reference_fields.hpp"
+#include "support/reference/reference_scene.hpp"
 
 namespace ff {
 namespace {
@@ -28,8 +28,8 @@ TEST(PathCurve, CubicAgreesWithDoubleReferenceEverywhere) {
     const PathCurve c = PathCurve::cubic(T);
     for (int x = 0; x < 800; x += 3) {
       const CurvePoint p = c.at(static_cast<float>(x));
-      EXPECT_NEAR(static_cast<double>(p.y), reference::path_y(x, T), 1e-4) << x;
-      EXPECT_NEAR(static_cast<double>(p.slope), reference::path_slope(x, T), 1e-6) << x;
+      EXPECT_NEAR(static_cast<double>(p.y), reference::experiment_path_at(x, T).y, 1e-4) << x;
+      EXPECT_NEAR(static_cast<double>(p.slope), reference::experiment_path_at(x, T).slope, 1e-6) << x;
     }
   }
 }

@@ -6,10 +6,19 @@
 #include <cmath>
 
 #include "frictionfield/core/scene_plan.hpp"
-#include "reference_fields.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/spec_scenes.hpp"
 
 namespace ff {
 namespace {
+
+// The spec's scenes in double (test/support/reference), max|G| from every pixel refined.
+reference::ReferenceScene reference_heightmap(Target t) {
+  return reference::ReferenceScene(reference::spec::heightmap(target_rise(t)), reference::kEveryPixel);
+}
+double reference_frictionmap(double x, double y, Target t) {
+  return reference::ReferenceScene(reference::spec::frictionmap(target_rise(t))).profile(x, y);
+}
 
 ScenePlan prepared(const SceneDefinition& s) {
   ScenePlan plan;
@@ -43,7 +52,7 @@ TEST(Frictionmap, MatchesDoubleReferenceOnTheWholeScreen) {
     double worst = 0;
     for (int y = 0; y < 480; y += 2)
       for (int x = 0; x < 800; x += 2)
-        worst = std::fmax(worst, std::fabs(amp(p, x, y) - reference::frictionmap_amplitude(x, y, target_rise(t))));
+        worst = std::fmax(worst, std::fabs(amp(p, x, y) - reference_frictionmap(x, y, t)));
     EXPECT_LT(worst, 0.5 / 4095) << "more than half an LSB";
   }
 }
@@ -57,16 +66,14 @@ TEST(Neutral, HalfEverywhereAndNeedsNothing) {
 
 class HeightmapTest : public ::testing::Test {
  protected:
-  static double max_g(Target t) { return reference::heightmap_max_gradient_scan(target_rise(t)); }
+  static double max_g(Target t) { return reference_heightmap(t).max_gradient(); }
 };
 
-TEST_F(HeightmapTest, MaxGradientMatchesDenseScan) {
+TEST_F(HeightmapTest, MaxGradientMatchesTheReferenceSearch) {
   for (Target t : {Target::Top, Target::Middle, Target::Bottom}) {
     const ScenePlan p = prepared(scenes::heightmap(t));
-    const double scan = max_g(t);
-    // The plan's search covers the continuous screen, so it may only exceed the pixel scan slightly.
-    EXPECT_GE(static_cast<double>(p.stats().max_gradient), scan * (1 - 1e-5));
-    EXPECT_LE(static_cast<double>(p.stats().max_gradient), scan * (1 + 1e-4));
+    const double reference = max_g(t);  // every pixel, refined to 1e-9 px
+    EXPECT_NEAR(static_cast<double>(p.stats().max_gradient), reference, 1e-5 * reference);
   }
 }
 
@@ -98,10 +105,11 @@ TEST_F(HeightmapTest, AgreesWithDoubleReferenceEverywhere) {
   for (Target t : {Target::Top, Target::Bottom}) {
     const ScenePlan p = prepared(scenes::heightmap(t));
     const double m = max_g(t);
+    const reference::ReferenceScene ref = reference_heightmap(t);
     double worst = 0;
     for (int y = 1; y < 480; y += 7) {
       for (int x = 1; x < 800; x += 7) {
-        const reference::Grad g = reference::heightmap_gradient(x, y, target_rise(t));
+        const reference::DVec g = ref.field(x, y);
         for (int k = 0; k < 16; ++k) {
           const double a = 2 * M_PI * k / 16;
           const double ref = 0.5 - (std::cos(a) * g.x + std::sin(a) * g.y) / (2 * m);

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "reference_model.hpp"
+#include "support/reference/reference_amplitude.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/reference_tracker.hpp"
 
 namespace ff {
 namespace {
@@ -54,13 +56,13 @@ TEST(Tracker, ThesisPipelineMatchesIndependentReference) {
   TrackerRun run(TrackerConfig::thesis());
   const std::vector<TrackState> got = run.replay(s, 1000, 2990);
   // Thesis alg. 3/4 with y extrapolated from y, in double, independent of the core.
-  stress::ReferenceThesisTracker ref;
+  reference::ReferenceThesisTracker ref;
   size_t next = 0;
   double worst = 0;
   for (int k = 0; k < 2990; ++k) {
     const uint32_t now = 1000u + static_cast<uint32_t>(k) * 500u;
     while (next < s.size() && s[next].t_us <= now) ref.on_sample(s[next++]);
-    stress::DVec p, direction;
+    reference::DVec p, direction;
     ref.on_tick(p, direction);
     worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - p.x, static_cast<double>(got[k].position.y) - p.y));
   }

@@ -16,7 +16,8 @@
 #include <memory>
 #include <sstream>
 
-#include "../core/reference_fields.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/spec_scenes.hpp"
 #include "frictionfield/host/replay.hpp"
 #include "frictionfield/host/scene_spec.hpp"
 
@@ -121,7 +122,7 @@ TEST_P(GoldenReplay, MatchesStoredOutput) {
 
 // The independent check: each stored row's amplitude follows from its own
 // position and direction by docs/spec.md#rendering and #amplitude, computed in
-// double from the spec (test/core/reference_fields.hpp), not by the core:
+// double from the spec (test/support/reference), not by the core:
 //   heightmap:   A_s = 0.5 - s (vx, vy) . G / (2 max|G|)
 //   frictionmap: A_s = 0.5 + s (S5((30 - |u|) / 20) - 0.5)
 // and dac = round(4095 A_s) (the default calibration), or the idle output
@@ -130,7 +131,9 @@ TEST_P(GoldenReplay, GoldenOutputsObeyTheSpec) {
   const GoldenCase& c = GetParam();
   const double T = c.target == "top" ? -200.0 : (c.target == "bottom" ? 200.0 : 0.0);
   const double s = c.strength;
-  const double max_gradient = c.scene == "heightmap" ? reference::heightmap_max_gradient_scan(T) : 0.0;
+  const reference::ReferenceScene heightmap(reference::spec::heightmap(T), reference::kEveryPixel);
+  const reference::ReferenceScene frictionmap(reference::spec::frictionmap(T));
+  const double max_gradient = heightmap.max_gradient();
   std::ifstream in(std::string(FF_TRACE_DIR) + "/" + c.golden_name());
   ASSERT_TRUE(in);
   std::string line;
@@ -154,10 +157,10 @@ TEST_P(GoldenReplay, GoldenOutputsObeyTheSpec) {
     if (amplitude == 0.0 && dac == 0.0 && vx == 0.0 && vy == 0.0) continue;  // sticky output
     double expected = 0.5;
     if (c.scene == "heightmap") {
-      const reference::Grad g = reference::heightmap_gradient(x, y, T);
+      const reference::DVec g = heightmap.field(x, y);
       expected = 0.5 - s * (vx * g.x + vy * g.y) / (2.0 * max_gradient);
     } else {
-      expected = 0.5 + s * (reference::frictionmap_amplitude(x, y, T) - 0.5);
+      expected = 0.5 + s * (frictionmap.profile(x, y) - 0.5);
     }
     // 1e-3: the stored position is rounded to 1e-3 px and direction to 1e-5,
     // and the core's max|G| is searched between pixel centres.

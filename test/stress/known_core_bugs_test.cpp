@@ -10,7 +10,9 @@
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scenes.hpp"
 #include "frictionfield/host/scene_file.hpp"
-#include "reference_model.hpp"
+#include "support/reference/reference_amplitude.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/reference_tracker.hpp"
 
 namespace ff {
 namespace {
@@ -180,7 +182,7 @@ TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
   ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
   auto plan = std::make_unique<ScenePlan>();
   ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
-  const double truth = stress::ReferenceScene(s).max_gradient();  // 122.76
+  const double truth = reference::ReferenceScene(s).max_gradient();  // 122.76
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 113.30
 }
 
@@ -203,7 +205,7 @@ TEST(CoreRegressions, MaxGradientMissesATexturePeakNearTheEdge) {
   auto plan = std::make_unique<ScenePlan>();
   ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
   EXPECT_GE(static_cast<double>(length(plan->field({571.5f, 467.0f}))), 77.3);  // the core's own field there
-  const double truth = stress::ReferenceScene(s).max_gradient();                  // 77.375
+  const double truth = reference::ReferenceScene(s).max_gradient();                  // 77.375
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 71.73
 }
 

@@ -359,12 +359,12 @@ Case make_long_rest(Rng& rng) {
   // Resting for 1..3 minutes without noise, then a 300 px/s stroke.
   RunConfig config = random_config(rng, [](Rng& g) { return scenes::heightmap(g.chance(0.5) ? Target::Top : Target::Bottom); });
   const uint64_t start = rng.next() & 0xffffffffu;
-  const DVec p{rng.uniform(200.0, 600.0), rng.uniform(150.0, 330.0)};
+  const reference::DVec p{rng.uniform(200.0, 600.0), rng.uniform(150.0, 330.0)};
   Motion m(start, p);
   const double rest_s = rng.uniform(60.0, 180.0);
   m.rest(rest_s);
   const double angle = rng.uniform(0.0, 6.283185307179586);
-  const DVec dir{std::cos(angle), std::sin(angle)};
+  const reference::DVec dir{std::cos(angle), std::sin(angle)};
   m.stroke({p.x + 150.0 * dir.x, p.y + 150.0 * dir.y}, 0.75);
   SensorStyle style;
   style.noise_px = 0.0;
@@ -378,7 +378,7 @@ Case make_long_rest(Rng& rng) {
   // When the true speed first reaches 100 px/s (minimum-jerk start is slow).
   uint64_t fast_at = move_at;
   while (fast_at < m.end()) {
-    const DVec a = m.position(fast_at), b = m.position(fast_at + 1000);
+    const reference::DVec a = m.position(fast_at), b = m.position(fast_at + 1000);
     if (std::hypot(b.x - a.x, b.y - a.y) * 1000.0 >= 100.0) break;
     fast_at += 1000;
   }
@@ -483,11 +483,11 @@ Case make_singular(Rng& rng) {
   config.tracker = random_tracker(rng);
   config.condition.scene = s;
   const uint64_t start = rng.next() & 0xffffffffu;
-  const DVec P{p.x, p.y};
+  const reference::DVec P{p.x, p.y};
   Motion m(start, {P.x - 100.0, P.y + rng.uniform(-40.0, 40.0)});
   m.stroke(P, rng.uniform(0.2, 0.6));
   m.rest(rng.uniform(0.2, 1.5));
-  const DVec away{P.x + 100.0, P.y + rng.uniform(-40.0, 40.0)};
+  const reference::DVec away{P.x + 100.0, P.y + rng.uniform(-40.0, 40.0)};
   m.stroke(away, rng.uniform(0.2, 0.6));
   SensorStyle style;
   style.noise_px = 0.0;
@@ -647,7 +647,7 @@ Case make_direction_length(Rng& rng) {
   const uint64_t start = rng.next() & 0xffffffffu;
   Motion m(start, {rng.uniform(200.0, 600.0), rng.uniform(150.0, 330.0)});
   for (int i = 0; i < 4; ++i) {
-    const DVec to{rng.uniform(100.0, 700.0), rng.uniform(50.0, 430.0)};
+    const reference::DVec to{rng.uniform(100.0, 700.0), rng.uniform(50.0, 430.0)};
     m.stroke(to, rng.uniform(0.2, 0.8));
     m.rest(rng.uniform(0.5, 2.0));
   }
@@ -680,7 +680,7 @@ Case make_max_search(Rng& rng) {
   c.extra = [scene](const RunResult&, const RunResult&, double& measure) {
     auto plan = std::make_unique<ScenePlan>();
     plan->prepare(scene, nullptr, 0);
-    const ReferenceScene ref(scene);
+    const reference::ReferenceScene ref(scene);
     if (!(ref.max_gradient() > 0.0)) return std::string();
     measure = std::fabs(static_cast<double>(plan->stats().max_gradient) - ref.max_gradient()) / ref.max_gradient();
     if (measure > kMaxGradientBound) {

@@ -35,14 +35,14 @@ struct Cycle {
 // One minute: strokes from P0 for ~52 s, a 5 s noise-free rest, back to P0.
 Cycle make_cycle(uint64_t seed) {
   Rng rng(seed);
-  const DVec p0{400.0, 240.0};
+  const reference::DVec p0{400.0, 240.0};
   Motion m(0, p0);
   while (m.end() < 52000000) {
-    const DVec to{rng.uniform(30.0, 770.0), rng.uniform(30.0, 450.0)};
+    const reference::DVec to{rng.uniform(30.0, 770.0), rng.uniform(30.0, 450.0)};
     m.stroke(to, rng.uniform(0.3, 1.5));
     if (rng.chance(0.3)) m.rest(rng.uniform(0.05, 0.3));
   }
-  const DVec rest{rng.uniform(100.0, 700.0), rng.uniform(100.0, 380.0)};
+  const reference::DVec rest{rng.uniform(100.0, 700.0), rng.uniform(100.0, 380.0)};
   m.stroke(rest, 0.5);
   const uint64_t rest_start = m.end();
   m.rest(static_cast<double>(kRestUs) * 1e-6);
@@ -57,8 +57,8 @@ Cycle make_cycle(uint64_t seed) {
     const uint64_t t = k * 5000 + static_cast<uint64_t>(rng.integer(0, 300));
     if (t >= kCycleUs) break;
     const bool lifted = t >= lift_start && t < lift_start + 300000;
-    const DVec p = m.position(t);
-    const DVec q = m.position(t + 1000);
+    const reference::DVec p = m.position(t);
+    const reference::DVec q = m.position(t + 1000);
     const bool moving = p.x != q.x || p.y != q.y;
     const double noise = moving ? 0.7 : 0.0;  // the rest is noise-free: drift shows
     const CycleReport r{t, static_cast<float>(p.x + noise * rng.gaussian()), static_cast<float>(p.y + noise * rng.gaussian()), true};
@@ -68,8 +68,8 @@ Cycle make_cycle(uint64_t seed) {
   }
   for (uint64_t k = 0; k < kTicksPerCycle; ++k) {
     const uint64_t t = k * kTickPeriodUs;
-    const DVec p = m.position(t);
-    const DVec q = m.position(t + 1000);
+    const reference::DVec p = m.position(t);
+    const reference::DVec q = m.position(t + 1000);
     c.truth_x.push_back(static_cast<float>(p.x));
     c.truth_y.push_back(static_cast<float>(p.y));
     const bool moving = p.x != q.x || p.y != q.y;

@@ -7,7 +7,9 @@
 #include "frictionfield/core/scene_plan.hpp"
 #include "frictionfield/core/scenes.hpp"
 #include "frictionfield/host/scene_file.hpp"
-#include "reference_model.hpp"
+#include "support/reference/reference_amplitude.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/reference_tracker.hpp"
 #include "stress_random.hpp"
 #include "stress_run.hpp"
 #include "stress_scenes.hpp"
@@ -24,7 +26,7 @@ RenderingPrecision rendering_precision(uint64_t seed, int scenes_n, int points) 
     const SceneDefinition s = builtin ? random_builtin_scene(rng) : random_general_scene(rng, false);
     if (plan->prepare(s, nullptr, 0) != PrepareStatus::Ok) continue;
     ++r.scenes;
-    ReferenceScene ref(s);
+    reference::ReferenceScene ref(s);
     if (s.rendering == Rendering::Directional && ref.max_gradient() > 0.0) {
       const double core_max = plan->stats().max_gradient;
       const double rel = std::fabs(core_max - ref.max_gradient()) / ref.max_gradient();
@@ -58,7 +60,7 @@ ChainPrecision thesis_chain_precision(uint64_t seed, int traces) {
     const uint64_t start = rng.next() & 0xffffffffu;
     Motion m(start, {rng.uniform(100.0, 700.0), rng.uniform(100.0, 380.0)});
     while (m.end() < start + 3000000) {
-      const DVec to{rng.uniform(60.0, 740.0), rng.uniform(60.0, 420.0)};
+      const reference::DVec to{rng.uniform(60.0, 740.0), rng.uniform(60.0, 420.0)};
       m.stroke(to, rng.uniform(0.3, 1.0));
       if (rng.chance(0.2)) m.rest(rng.uniform(0.02, 0.2));
     }
@@ -69,14 +71,14 @@ ChainPrecision thesis_chain_precision(uint64_t seed, int traces) {
     config.tracker = TrackerConfig::thesis();
     config.condition.scene = scene;
     const RunResult run = run_pipeline(config, reports, regular_ticks(start, m.end()));
-    const ReferenceScene ref(scene);
-    ReferenceThesisTracker tracker;
+    const reference::ReferenceScene ref(scene);
+    reference::ReferenceThesisTracker tracker;
     size_t next = 0;
     ++r.traces;
     for (const Tick& t : run.ticks) {
       while (next < reports.size() && reports[next].at <= t.at) tracker.on_sample(reports[next++].s);
       if (!tracker.present()) continue;  // the filter starts with the first report
-      DVec p, d;
+      reference::DVec p, d;
       tracker.on_tick(p, d);
       ++r.ticks;
       r.worst_position = std::fmax(r.worst_position, std::hypot(p.x - static_cast<double>(t.out.position.x),
@@ -85,7 +87,7 @@ ChainPrecision thesis_chain_precision(uint64_t seed, int traces) {
       // while the filtered speed is at least 50 px/s.
       if (tracker.filtered_speed() < 50.0) continue;
       ++r.moving_ticks;
-      const DVec g = ref.field(p.x, p.y);
+      const reference::DVec g = ref.field(p.x, p.y);
       const double a = std::fmin(1.0, std::fmax(0.0, 0.5 - 0.5 * (d.x * g.x + d.y * g.y) / ref.max_gradient()));
       r.worst_amplitude = std::fmax(r.worst_amplitude, std::fabs(a - static_cast<double>(t.out.amplitude)));
     }

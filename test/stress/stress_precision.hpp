@@ -1,5 +1,5 @@
 #pragma once
-// float32 against the double reference (reference_model.hpp): the closed-form
+// float32 against the double reference (test/support/reference): the closed-form
 // rendering of random scenes at random points and directions, the core's
 // max|G|, and the whole thesis chain (docs/spec.md#thesis-tracker + heightmap) on random
 // clean traces.

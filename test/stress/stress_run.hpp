@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "frictionfield/core/haptic_pipeline.hpp"
-#include "reference_model.hpp"
+#include "support/reference/reference_amplitude.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/reference_tracker.hpp"
 #include "stress_traces.hpp"
 
 namespace ff::stress {
@@ -63,8 +65,8 @@ class InvariantChecker : public TickObserver {
 
  private:
   void fail(const Tick& t, const std::string& what);
-  ReferenceScene scene_;
-  ReferenceAmplitude amplitude_;
+  reference::ReferenceScene scene_;
+  reference::ReferenceAmplitude amplitude_;
   double rendering_bound_;
   bool closed_form_;
   bool first_tick_ = true;

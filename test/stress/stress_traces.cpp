@@ -7,48 +7,7 @@ namespace ff::stress {
 
 namespace {
 uint64_t micros(double seconds) { return static_cast<uint64_t>(std::llround(seconds * 1e6)); }
-double min_jerk(double tau) { return tau * tau * tau * (10.0 + tau * (-15.0 + 6.0 * tau)); }
 }  // namespace
-
-void Motion::stroke(DVec to, double seconds) {
-  const uint64_t t1 = end_ + std::max<uint64_t>(1, micros(seconds));
-  segments_.push_back({end_, t1, Kind::Stroke, current_, to});
-  end_ = t1;
-  current_ = to;
-}
-
-void Motion::rest(double seconds) {
-  const uint64_t t1 = end_ + micros(seconds);
-  segments_.push_back({end_, t1, Kind::Rest, current_, current_});
-  end_ = t1;
-}
-
-void Motion::lift(double seconds) {
-  const uint64_t t1 = end_ + micros(seconds);
-  segments_.push_back({end_, t1, Kind::Lifted, current_, current_});
-  end_ = t1;
-}
-
-const Motion::Segment* Motion::at(uint64_t t) const {
-  // Segments are few; a binary search keeps hour-long motions cheap too.
-  auto it = std::upper_bound(segments_.begin(), segments_.end(), t,
-                             [](uint64_t v, const Segment& s) { return v < s.t1; });
-  return it == segments_.end() ? nullptr : &*it;
-}
-
-bool Motion::touching(uint64_t t) const {
-  const Segment* s = at(t);
-  return s == nullptr ? !segments_.empty() && segments_.back().kind != Kind::Lifted : s->kind != Kind::Lifted;
-}
-
-DVec Motion::position(uint64_t t) const {
-  const Segment* s = at(t);
-  if (s == nullptr) return current_;
-  if (s->kind != Kind::Stroke) return s->from;
-  const double tau = static_cast<double>(t - s->t0) / static_cast<double>(s->t1 - s->t0);
-  const double k = min_jerk(tau);
-  return {s->from.x + (s->to.x - s->from.x) * k, s->from.y + (s->to.y - s->from.y) * k};
-}
 
 Motion random_motion(Rng& rng, uint64_t start_us, double seconds, bool lifts) {
   Motion m(start_us, {rng.uniform(20.0, 780.0), rng.uniform(20.0, 460.0)});
@@ -56,7 +15,7 @@ Motion random_motion(Rng& rng, uint64_t start_us, double seconds, bool lifts) {
   while (m.end() < until) {
     const double r = rng.uniform();
     if (r < 0.65) {
-      const DVec to{rng.uniform(5.0, 794.0), rng.uniform(5.0, 474.0)};
+      const reference::DVec to{rng.uniform(5.0, 794.0), rng.uniform(5.0, 474.0)};
       const double dist = std::hypot(to.x - m.current().x, to.y - m.current().y);
       const double speed = rng.log_uniform(50.0, 1500.0);  // mean speed of the stroke
       m.stroke(to, std::max(0.05, dist / speed));
@@ -95,7 +54,7 @@ std::vector<Report> sense(const Motion& m, const SensorStyle& style, Rng& rng) {
     r.s.t_us = static_cast<uint32_t>(at);
     r.s.touch = m.touching(at);
     if (r.s.touch) {
-      DVec p = m.position(at);
+      reference::DVec p = m.position(at);
       p.x += style.noise_px * rng.gaussian();
       p.y += style.noise_px * rng.gaussian();
       if (style.quantum_px > 0.0) {

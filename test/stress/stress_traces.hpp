@@ -2,12 +2,17 @@
 // Finger motion, sensor reports and tick times for the stress suite. Time is
 // kept in 64-bit microseconds ("real time"); what the device sees is the
 // 32-bit stamp, so a trace that starts near 2^32 wraps mid-stroke.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "frictionfield/core/sensor_sample.hpp"
-#include "reference_model.hpp"
+#include "support/reference/reference_amplitude.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/reference_tracker.hpp"
 #include "stress_random.hpp"
+#include "support/models/motion.hpp"
 
 namespace ff::stress {
 
@@ -23,30 +28,27 @@ struct TickTime {
   uint32_t now = 0;
 };
 
-// The finger: strokes (minimum jerk), rests and lifts, back to back.
+// The finger: strokes (minimum jerk), rests and lifts, back to back, on a
+// 64-bit microsecond timeline starting at `start_us` (test/support/models/motion).
 class Motion {
  public:
-  Motion(uint64_t start_us, DVec p) : start_(start_us), end_(start_us), current_(p) {}
-  void stroke(DVec to, double seconds);
-  void rest(double seconds);
-  void lift(double seconds);
+  Motion(uint64_t start_us, reference::DVec p) : start_(start_us), motion_({p.x, p.y}) {}
+  void stroke(reference::DVec to, double seconds) { motion_.stroke_for({to.x, to.y}, std::max(1e-6, seconds)); }
+  void rest(double seconds) { motion_.hold(seconds, true); }
+  void lift(double seconds) { motion_.lift(seconds, motion_.position()); }
   uint64_t start() const { return start_; }
-  uint64_t end() const { return end_; }
-  DVec current() const { return current_; }
-  bool touching(uint64_t t) const;
-  DVec position(uint64_t t) const;
+  uint64_t end() const { return start_ + static_cast<uint64_t>(std::llround(motion_.duration_s() * 1e6)); }
+  reference::DVec current() const { return {motion_.position().x, motion_.position().y}; }
+  bool touching(uint64_t t) const { return state(t).touching; }
+  reference::DVec position(uint64_t t) const {
+    const tracegen::Point p = state(t).position;
+    return {p.x, p.y};
+  }
 
  private:
-  enum class Kind : uint8_t { Stroke, Rest, Lifted };
-  struct Segment {
-    uint64_t t0, t1;
-    Kind kind;
-    DVec from, to;
-  };
-  const Segment* at(uint64_t t) const;
-  std::vector<Segment> segments_;
-  uint64_t start_, end_;
-  DVec current_;
+  tracegen::TrueState state(uint64_t t) const { return motion_.at(static_cast<double>(t - start_) * 1e-6); }
+  uint64_t start_;
+  tracegen::Motion motion_;
 };
 
 // Random strokes between random on-screen points at 50..1500 px/s, rests and

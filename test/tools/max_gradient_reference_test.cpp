@@ -9,7 +9,7 @@
 
 #include "bench_cases.hpp"
 #include "frictionfield/core/scene_plan.hpp"
-#include "reference_scene.hpp"
+#include "accuracy.hpp"
 
 namespace ff::bench {
 namespace {
@@ -18,13 +18,13 @@ TEST(MaxGradientSearch, WithinTenMillionthsOfTheDenseScanForEveryScene) {
   std::vector<unsigned char> table(kTableSlotBytes);
   for (int i = 0; i < kSceneCount; ++i) {
     const auto id = static_cast<SceneId>(i);
-    const reference::Scene ref = reference::scene_for(id);
-    if (ref.rendering != reference::Rendering::Directional) continue;
+    const reference::ReferenceScene ref = reference_scene_for(id);
+    if (ref.rendering() != Rendering::Directional) continue;
     SceneDefinition def = scene_definition(id);
     def.evaluation = Evaluation::ClosedForm;
     ScenePlan plan;
     ASSERT_EQ(plan.prepare(def, table.data(), table.size()), PrepareStatus::Ok) << scene_name(id);
-    const double dense = reference::max_gradient(ref);
+    const double dense = ref.max_gradient();
     const double core = plan.stats().max_gradient;
     EXPECT_LE(std::fabs(core - dense), 1e-5 * dense) << scene_name(id) << ": core " << core << ", dense " << dense;
   }

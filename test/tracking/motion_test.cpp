@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "motion.hpp"
+#include "support/models/motion.hpp"
 
 namespace ff::tracegen {
 namespace {

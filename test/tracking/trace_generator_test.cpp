@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sensor_model.hpp"
+#include "support/models/sensor_model.hpp"
 
 namespace ff::tracegen {
 namespace {

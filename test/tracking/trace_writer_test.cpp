@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "frictionfield/host/trace_csv.hpp"
-#include "sensor_model.hpp"
+#include "support/models/sensor_model.hpp"
 #include "trace_writer.hpp"
 
 namespace ff::tracegen {

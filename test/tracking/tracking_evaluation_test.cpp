@@ -7,20 +7,20 @@
 #include <cmath>
 #include <sstream>
 
-#include "../core/reference_fields.hpp"
 #include "bench_report.hpp"
-#include "motion.hpp"
+#include "support/models/motion.hpp"
+#include "support/reference/reference_scene.hpp"
+#include "support/reference/spec_scenes.hpp"
 #include "proposed_config.hpp"
 #include "tracking_evaluation.hpp"
 
 namespace ff::bench {
 namespace {
 
-// The spec's heightmap and frictionmap in double: test/core/reference_fields.hpp.
-void heightmap_gradient(double x, double y, double rise, double& gx, double& gy) {
-  const ff::reference::Grad g = ff::reference::heightmap_gradient(x, y, rise);
-  gx = g.x;
-  gy = g.y;
+// The spec's heightmap and frictionmap (target top) in double: test/support/reference.
+const reference::ReferenceScene& reference_heightmap_top() {
+  static const reference::ReferenceScene scene(reference::spec::heightmap(-200.0), reference::kEveryPixel);
+  return scene;
 }
 
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
@@ -31,15 +31,8 @@ TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollows
   EXPECT_EQ(c.ticks.front().t_us, c.trace.samples.front().t_us);
   EXPECT_GE(c.ticks.back().t_us, c.trace.end_us());
   EXPECT_LT(c.ticks.back().t_us, c.trace.end_us() + 500);
-  // max|G| over the screen's pixel centres, in double.
-  double max_gradient = 0.0;
-  for (int y = 0; y < 480; ++y) {
-    for (int x = 0; x < 800; ++x) {
-      double gx, gy;
-      heightmap_gradient(x, y, -200.0, gx, gy);
-      max_gradient = std::max(max_gradient, std::hypot(gx, gy));
-    }
-  }
+  const double max_gradient = reference_heightmap_top().max_gradient();
+  const reference::ReferenceScene frictionmap(reference::spec::frictionmap(-200.0));
   int checked = 0;
   for (size_t k = 0; k < c.ticks.size(); k += 97) {
     const TickTruth& t = c.ticks[k];
@@ -48,12 +41,11 @@ TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollows
     const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
     double expected_hm = 0.5;
     if (speed > 0.0) {
-      double gx, gy;
-      heightmap_gradient(t.state.position.x, t.state.position.y, -200.0, gx, gy);
-      expected_hm = 0.5 - (t.state.velocity.x * gx + t.state.velocity.y * gy) / speed / (2.0 * max_gradient);
+      const reference::DVec g = reference_heightmap_top().field(t.state.position.x, t.state.position.y);
+      expected_hm = 0.5 - (t.state.velocity.x * g.x + t.state.velocity.y * g.y) / speed / (2.0 * max_gradient);
     }
     EXPECT_NEAR(static_cast<double>(t.heightmap_ideal), expected_hm, 1e-3) << k;
-    EXPECT_NEAR(static_cast<double>(t.frictionmap_ideal), ff::reference::frictionmap_amplitude(t.state.position.x, t.state.position.y, -200.0),
+    EXPECT_NEAR(static_cast<double>(t.frictionmap_ideal), frictionmap.profile(t.state.position.x, t.state.position.y),
                 2e-4)
         << k;
     ++checked;

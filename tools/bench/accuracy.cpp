@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "support/reference/spec_scenes.hpp"
+
 namespace ff::bench {
 
 namespace {
@@ -10,7 +12,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 struct Direction {
-  reference::Vec2d d;
+  reference::DVec d;
   Vec2 f;
   double degrees;
 };
@@ -19,7 +21,7 @@ std::vector<Direction> directions() {
   std::vector<Direction> out;
   for (int k = 0; k < kDirections; ++k) {
     const double angle = 2.0 * kPi * k / kDirections;
-    const reference::Vec2d d{std::cos(angle), std::sin(angle)};
+    const reference::DVec d{std::cos(angle), std::sin(angle)};
     out.push_back({d, Vec2{static_cast<float>(d.x), static_cast<float>(d.y)}, 360.0 * k / kDirections});
   }
   return out;
@@ -27,16 +29,39 @@ std::vector<Direction> directions() {
 
 }  // namespace
 
-ReferenceGrid::ReferenceGrid(const reference::Scene& scene, double step_px) : scene_(scene) {
-  max_g_ = reference::max_gradient(scene_);
+reference::ReferenceScene reference_scene_for(SceneId id) {
+  namespace spec = reference::spec;
+  switch (id) {
+    case SceneId::Neutral: return reference::ReferenceScene(spec::neutral(), reference::kEveryPixel);
+    case SceneId::FrictionmapTop: return reference::ReferenceScene(spec::frictionmap(-200.0), reference::kEveryPixel);
+    case SceneId::HeightmapTop: return reference::ReferenceScene(spec::heightmap(-200.0), reference::kEveryPixel);
+    case SceneId::HeightmapMiddle: return reference::ReferenceScene(spec::heightmap(0.0), reference::kEveryPixel);
+    case SceneId::HeightmapBottom: return reference::ReferenceScene(spec::heightmap(200.0), reference::kEveryPixel);
+    case SceneId::TunnelPilotA: return reference::ReferenceScene(spec::steering_tunnel(1.0), reference::kEveryPixel);
+    case SceneId::TunnelPilotB: return reference::ReferenceScene(spec::steering_tunnel(10.0), reference::kEveryPixel);
+    case SceneId::PilotCTop: return reference::ReferenceScene(spec::pilot_c(-200.0), reference::kEveryPixel);
+    case SceneId::BumpMap: return reference::ReferenceScene(spec::bump_map(), reference::kEveryPixel);
+    case SceneId::Vortex: return reference::ReferenceScene(spec::vortex(), reference::kEveryPixel);
+    case SceneId::FamiliarisationPath:
+      return reference::ReferenceScene(spec::familiarisation_path(), reference::kEveryPixel);
+    case SceneId::General1:
+    case SceneId::General3:
+    case SceneId::General6:
+    case SceneId::kCount: break;
+  }
+  return reference::ReferenceScene(scene_definition(id), reference::kEveryPixel);
+}
+
+ReferenceGrid::ReferenceGrid(const reference::ReferenceScene& scene, double step_px) : scene_(scene) {
+  max_g_ = scene_.max_gradient();
   for (double y = 0.5; y <= 479.0; y += step_px) {
     for (double x = 0.5; x <= 799.0; x += step_px) points_.push_back({x, y});
   }
-  for (const reference::Vec2d& p : points_) {
-    if (scene_.rendering == reference::Rendering::Directional) {
-      field_.push_back(reference::field(scene_, p));
+  for (const reference::DVec& p : points_) {
+    if (scene_.rendering() == Rendering::Directional) {
+      field_.push_back(scene_.field(p.x, p.y));
     } else {
-      value_.push_back(reference::amplitude(scene_, max_g_, p, {}));
+      value_.push_back(scene_.raw_amplitude(p.x, p.y, 0.0, 0.0));
     }
   }
 }
@@ -47,7 +72,7 @@ Accuracy ReferenceGrid::measure(const ScenePlan& plan) const {
   double sum_sq = 0.0;
   constexpr double kBinLsb = 0.01;
   std::vector<uint32_t> histogram(static_cast<size_t>(4096.0 / kBinLsb) + 2, 0u);
-  auto record = [&](double error_lsb, const reference::Vec2d& p, double degrees) {
+  auto record = [&](double error_lsb, const reference::DVec& p, double degrees) {
     sum_sq += error_lsb * error_lsb;
     ++acc.samples;
     const double bin = std::fmin(std::ceil(error_lsb / kBinLsb), static_cast<double>(histogram.size() - 1));
@@ -61,16 +86,16 @@ Accuracy ReferenceGrid::measure(const ScenePlan& plan) const {
       acc.worst_direction_deg = degrees;
     }
   };
-  const bool directional = scene_.rendering == reference::Rendering::Directional;
+  const bool directional = scene_.rendering() == Rendering::Directional;
   for (size_t i = 0; i < points_.size(); ++i) {
-    const reference::Vec2d& p = points_[i];
+    const reference::DVec& p = points_[i];
     const Vec2 pf{static_cast<float>(p.x), static_cast<float>(p.y)};
     if (!directional) {
       const double a = static_cast<double>(plan.amplitude(pf, {}));
       record(std::fabs(a - value_[i]) / kLsb, p, 0.0);
       continue;
     }
-    const reference::Vec2d g = field_[i];
+    const reference::DVec g = field_[i];
     for (const Direction& dir : kDirs) {
       const double ref = max_g_ > 0.0
           ? std::fmin(1.0, std::fmax(0.0, 0.5 - (dir.d.x * g.x + dir.d.y * g.y) / (2.0 * max_g_)))

@@ -5,9 +5,15 @@
 #include <vector>
 
 #include "frictionfield/core/scene_plan.hpp"
-#include "reference_scene.hpp"
+#include "bench_cases.hpp"
+#include "support/reference/reference_scene.hpp"
 
 namespace ff::bench {
+
+// The double reference of a benchmarked scene: the spec's own scene
+// (test/support/reference/spec_scenes) for the built-in ones, the bench's
+// definition for the general ones; max|G| from every pixel, refined to 1e-9 px.
+reference::ReferenceScene reference_scene_for(SceneId id);
 
 constexpr int kDirections = 16;
 constexpr double kLsb = 1.0 / 4095.0;
@@ -18,7 +24,7 @@ struct Accuracy {
   double rms_lsb = 0.0;
   double p99_lsb = 0.0;           // 99th percentile (to 0.01 LSB): the worst outside isolated spots
   double max_interior_lsb = 0.0;  // at least kInteriorMarginPx inside the screen's edges
-  reference::Vec2d worst_position;  // where the largest error is
+  reference::DVec worst_position;  // where the largest error is
   double worst_direction_deg = 0.0; // direction of motion there (0 = +x, 90 = +y, screen down)
   long samples = 0;
 };
@@ -28,17 +34,17 @@ struct Accuracy {
 // cone apex); every strategy of the scene is then compared with it.
 class ReferenceGrid {
  public:
-  ReferenceGrid(const reference::Scene& scene, double step_px);
+  ReferenceGrid(const reference::ReferenceScene& scene, double step_px);
 
   double max_gradient() const { return max_g_; }
   size_t points() const { return points_.size(); }
   Accuracy measure(const ScenePlan& plan) const;
 
  private:
-  reference::Scene scene_;
+  reference::ReferenceScene scene_;
   double max_g_ = 0.0;
-  std::vector<reference::Vec2d> points_;
-  std::vector<reference::Vec2d> field_;  // directional scenes
+  std::vector<reference::DVec> points_;
+  std::vector<reference::DVec> field_;  // directional scenes
   std::vector<double> value_;            // position-only and constant scenes
 };
 

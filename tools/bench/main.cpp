@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
       if (static_cast<int>(r.bench_case.scene) == s) of_scene.push_back(&r);
     }
     if (of_scene.empty()) continue;
-    const ReferenceGrid grid(reference::scene_for(static_cast<SceneId>(s)), grid_step);
+    const ReferenceGrid grid(reference_scene_for(static_cast<SceneId>(s)), grid_step);
     std::fprintf(stderr, "errors: %-22s %zu strategies, %zu points x %d directions, max|G| %.9g\n",
                  scene_name(static_cast<SceneId>(s)), of_scene.size(), grid.points(), kDirections,
                  grid.max_gradient());

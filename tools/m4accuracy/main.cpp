@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "bench_cases.hpp"
-#include "reference_scene.hpp"
+#include "accuracy.hpp"
 #include "scene_workload.hpp"
 
 namespace {
@@ -110,12 +110,11 @@ int main(int argc, char** argv) {
   int total = 0;
   double worst_code = 0;
   for (const std::string& name : order) {
-    const reference::Scene scene = reference::scene_for(ids[name]);
-    const double max_g = scene.rendering == reference::Rendering::Directional ? reference::max_gradient(scene) : 0.0;
+    const ff::reference::ReferenceScene scene = reference_scene_for(ids[name]);
     SceneError e;
     for (const Sample& s : samples[name]) {
-      const double raw = reference::amplitude(scene, max_g, {static_cast<double>(s.x), static_cast<double>(s.y)},
-                                               {static_cast<double>(s.dx), static_cast<double>(s.dy)});
+      const double raw = scene.raw_amplitude(static_cast<double>(s.x), static_cast<double>(s.y),
+                                             static_cast<double>(s.dx), static_cast<double>(s.dy));
       const double scaled = 0.5 + strength * (raw - 0.5);
       const double code = exact_code(scaled);
       const double raw_err = std::fabs(static_cast<double>(s.raw) - raw) * 4095.0;

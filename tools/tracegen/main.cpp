@@ -8,7 +8,7 @@
 #include <iostream>
 #include <string>
 
-#include "sensor_model.hpp"
+#include "support/models/sensor_model.hpp"
 #include "trace_writer.hpp"
 
 namespace {

@@ -6,11 +6,19 @@
 #include <cstdio>
 #include <ostream>
 
-#include "accuracy_metrics.hpp"
+#include "support/statistics.hpp"
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scenes.hpp"
 
 namespace ff::bench {
+
+using support::angle_deg;
+using support::best_lag_ms;
+using support::mean;
+using support::percentile;
+using support::Position2;
+using support::rms;
+using support::TimedPosition;
 
 namespace {
 
@@ -29,22 +37,30 @@ SensorSample to_sample(const tracegen::TraceSample& s) {
 
 Vec2 to_vec(tracegen::Point p) { return {static_cast<float>(p.x), static_cast<float>(p.y)}; }
 
-// Host cost of the firmware's tick on the heightmap: best of three passes.
-double time_pipeline(const TrackerConfig& config, const PreparedCase& c) {
-  Condition condition;
-  condition.scene = scenes::heightmap(c.spec.target);
+// The tick schedule of docs/spec.md#tick-timing (the rule host::replay applies
+// to trace files): every report stamped at or before a tick is delivered
+// before that tick. The one tick loop of this file.
+template <typename OnSample, typename OnTick>
+void run_ticks(const PreparedCase& c, OnSample&& on_sample, OnTick&& on_tick) {
   const auto& samples = c.trace.samples;
+  size_t next = 0;
+  for (const TickTruth& tick : c.ticks) {
+    while (next < samples.size() && samples[next].t_us <= tick.t_us) on_sample(to_sample(samples[next++]));
+    on_tick(tick);
+  }
+}
+
+// Host ns per tick of `Runner` (fresh for each pass): best of three passes.
+template <typename Runner>
+double best_ns_per_tick(const PreparedCase& c, const Runner& make) {
   double best = 1e300;
   for (int pass = 0; pass < 3; ++pass) {
-    auto pipeline = std::make_unique<HapticPipeline>(config);
-    pipeline->set_condition(condition);
-    size_t next = 0;
+    auto runner = make();
     float sink = 0.0f;
     const auto start = std::chrono::steady_clock::now();
-    for (const TickTruth& tick : c.ticks) {
-      while (next < samples.size() && samples[next].t_us <= tick.t_us) pipeline->post_sample(to_sample(samples[next++]));
-      sink += pipeline->tick(static_cast<uint32_t>(tick.t_us)).amplitude;
-    }
+    run_ticks(
+        c, [&](const SensorSample& s) { runner->on_sample(s); },
+        [&](const TickTruth& tick) { sink += runner->on_tick(static_cast<uint32_t>(tick.t_us)); });
     const auto stop = std::chrono::steady_clock::now();
     volatile float keep = sink;
     (void)keep;
@@ -54,27 +70,23 @@ double time_pipeline(const TrackerConfig& config, const PreparedCase& c) {
   return best;
 }
 
-// Host cost of the tracker alone (for a second, direction-only tracker).
-double time_tracker(const TrackerConfig& config, const PreparedCase& c) {
-  const auto& samples = c.trace.samples;
-  double best = 1e300;
-  for (int pass = 0; pass < 3; ++pass) {
-    Tracker tracker(config);
-    size_t next = 0;
-    float sink = 0.0f;
-    const auto start = std::chrono::steady_clock::now();
-    for (const TickTruth& tick : c.ticks) {
-      while (next < samples.size() && samples[next].t_us <= tick.t_us) tracker.on_sample(to_sample(samples[next++]));
-      sink += tracker.on_tick(static_cast<uint32_t>(tick.t_us)).direction.x;
-    }
-    const auto stop = std::chrono::steady_clock::now();
-    volatile float keep = sink;
-    (void)keep;
-    const double ns = std::chrono::duration<double, std::nano>(stop - start).count();
-    best = std::min(best, ns / static_cast<double>(c.ticks.size()));
+// The firmware's tick on the heightmap, and a tracker alone (a second, direction-only tracker).
+struct PipelineRunner {
+  HapticPipeline pipeline;
+  explicit PipelineRunner(const TrackerConfig& config, Target target) : pipeline(config) {
+    Condition condition;
+    condition.scene = scenes::heightmap(target);
+    pipeline.set_condition(condition);
   }
-  return best;
-}
+  void on_sample(const SensorSample& s) { pipeline.post_sample(s); }
+  float on_tick(uint32_t t) { return pipeline.tick(t).amplitude; }
+};
+struct TrackerRunner {
+  Tracker tracker;
+  explicit TrackerRunner(const TrackerConfig& config) : tracker(config) {}
+  void on_sample(const SensorSample& s) { tracker.on_sample(s); }
+  float on_tick(uint32_t t) { return tracker.on_tick(t).direction.x; }
+};
 
 }  // namespace
 
@@ -141,10 +153,7 @@ PreparedCase prepare_case(const TrackCase& spec) {
 void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCase& c) {
   out << "t_us,x_true,y_true,vx_true,vy_true,touching,resting,present,x,y,vx,vy,dx,dy,hm,hm_ideal,fm,fm_ideal\n";
   Tracker tracker(config);
-  const auto& samples = c.trace.samples;
-  size_t next = 0;
-  for (const TickTruth& tick : c.ticks) {
-    while (next < samples.size() && samples[next].t_us <= tick.t_us) tracker.on_sample(to_sample(samples[next++]));
+  run_ticks(c, [&](const SensorSample& sample) { tracker.on_sample(sample); }, [&](const TickTruth& tick) {
     const TrackState s = tracker.on_tick(static_cast<uint32_t>(tick.t_us));
     const float hm = c.heightmap->amplitude(s.position, s.direction);
     const float fm = c.frictionmap->amplitude(s.position, {});
@@ -157,7 +166,7 @@ void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCa
                   static_cast<double>(s.direction.y), static_cast<double>(hm), static_cast<double>(tick.heightmap_ideal),
                   static_cast<double>(fm), static_cast<double>(tick.frictionmap_ideal));
     out << line;
-  }
+  });
 }
 
 Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& cases, const EvalOptions& options,
@@ -174,33 +183,30 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
   for (const PreparedCase& c : cases) {
     Tracker tracker(config);
     Tracker direction_tracker(direction_from != nullptr ? *direction_from : config);
-    const auto& samples = c.trace.samples;
-    size_t next = 0;
-    for (const TickTruth& tick : c.ticks) {
-      while (next < samples.size() && samples[next].t_us <= tick.t_us) {
-        const SensorSample sample = to_sample(samples[next++]);
-        tracker.on_sample(sample);
-        if (direction_from != nullptr) direction_tracker.on_sample(sample);
-      }
+    auto deliver = [&](const SensorSample& sample) {
+      tracker.on_sample(sample);
+      if (direction_from != nullptr) direction_tracker.on_sample(sample);
+    };
+    run_ticks(c, deliver, [&](const TickTruth& tick) {
       TrackState s = tracker.on_tick(static_cast<uint32_t>(tick.t_us));
       if (direction_from != nullptr) {
         const TrackState d = direction_tracker.on_tick(static_cast<uint32_t>(tick.t_us));
         s.velocity = d.velocity;
         s.direction = d.direction;
       }
-      if (!tick.state.touching) continue;
+      if (!tick.state.touching) return;
       if (!s.present) {
         ++m.untracked_ticks;
-        continue;
+        return;
       }
       const float hm = c.heightmap->amplitude(s.position, s.direction);
       if (tick.state.resting) {
         ++m.rest_ticks;
         rest_deviation.push_back(static_cast<double>(hm) - 0.5);
-        continue;
+        return;
       }
       const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
-      if (speed < options.moving_speed_px_s) continue;
+      if (speed < options.moving_speed_px_s) return;
       ++m.moving_ticks;
       const double ex = static_cast<double>(s.position.x) - tick.state.position.x;
       const double ey = static_cast<double>(s.position.y) - tick.state.position.y;
@@ -211,7 +217,7 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
       const float fm = c.frictionmap->amplitude(s.position, {});
       frictionmap_error.push_back(std::fabs(static_cast<double>(fm - tick.frictionmap_ideal)));
       estimates.push_back({&c, tick.t_us, static_cast<double>(s.position.x), static_cast<double>(s.position.y)});
-    }
+    });
   }
 
   m.position_rmse_px = rms(position_error);
@@ -242,8 +248,11 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
     m.lag_ms = best_lag_ms(timed, truth);
   }
   if (options.cost && !cases.empty()) {
-    m.ns_per_tick = time_pipeline(config, cases.front());
-    if (direction_from != nullptr) m.ns_per_tick += time_tracker(*direction_from, cases.front());
+    const PreparedCase& c = cases.front();
+    m.ns_per_tick = best_ns_per_tick(c, [&] { return std::make_unique<PipelineRunner>(config, c.spec.target); });
+    if (direction_from != nullptr) {
+      m.ns_per_tick += best_ns_per_tick(c, [&] { return std::make_unique<TrackerRunner>(*direction_from); });
+    }
   }
   return m;
 }

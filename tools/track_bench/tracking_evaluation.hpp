@@ -11,7 +11,7 @@
 #include "frictionfield/core/path_curve.hpp"
 #include "frictionfield/core/scene_plan.hpp"
 #include "frictionfield/core/tracker.hpp"
-#include "sensor_model.hpp"
+#include "support/models/sensor_model.hpp"
 
 namespace ff::bench {
 

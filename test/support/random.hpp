@@ -1,16 +1,18 @@
 #pragma once
-// Seeded random numbers that give the same trace for the same seed on every
-// platform: std::mt19937_64 is fully specified by the standard, the
-// <random> distributions are not, so the few we need are written out here.
+// The project's one source of test randomness (trace generation, the stress
+// suite, the benches): the same numbers for the same seed on every platform.
+// std::mt19937_64 is fully specified by the standard, the <random>
+// distributions are not, so the few we need are written out here.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <random>
 
-namespace ff::tracegen {
+namespace ff::support {
 
 // Independent streams from one user seed (motion, timing, noise, faults), so
 // that changing the noise level leaves the finger's motion untouched.
-enum class Stream : uint64_t { Motion = 1, Timing = 2, Noise = 3, Faults = 4 };
+enum class Stream : uint64_t { Single = 0, Motion = 1, Timing = 2, Noise = 3, Faults = 4 };
 
 inline uint64_t splitmix64(uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
@@ -21,8 +23,10 @@ inline uint64_t splitmix64(uint64_t x) {
 
 class Random {
  public:
-  Random(uint64_t seed, Stream stream) : engine_(splitmix64(seed ^ splitmix64(static_cast<uint64_t>(stream)))) {}
+  explicit Random(uint64_t seed, Stream stream = Stream::Single)
+      : engine_(splitmix64(seed ^ splitmix64(static_cast<uint64_t>(stream)))) {}
 
+  uint64_t next() { return engine_(); }
   // Uniform in [0, 1) with 53 random bits.
   double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
@@ -48,6 +52,10 @@ class Random {
     have_spare_ = true;
     return r * std::cos(a);
   }
+  template <typename T, size_t N>
+  const T& pick(const T (&items)[N]) {
+    return items[engine_() % N];
+  }
 
  private:
   std::mt19937_64 engine_;
@@ -55,4 +63,4 @@ class Random {
   bool have_spare_ = false;
 };
 
-}  // namespace ff::tracegen
+}  // namespace ff::support

@@ -1,10 +1,9 @@
-#include "sensor_model.hpp"
+#include "support/models/sensor_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "deterministic_random.hpp"
 
 namespace ff::tracegen {
 

@@ -1,4 +1,4 @@
-#include "search_strategy.hpp"
+#include "support/models/search_strategy.hpp"
 
 #include <algorithm>
 #include <cmath>

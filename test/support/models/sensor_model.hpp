@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "motion.hpp"
-#include "search_strategy.hpp"
+#include "support/models/motion.hpp"
+#include "support/models/search_strategy.hpp"
 
 namespace ff::tracegen {
 

@@ -58,6 +58,8 @@ class Motion {
 
   // A stroke from the current position, timed for the given peak speed.
   void stroke_to(Point p1, double peak_speed_px_s, double bow_px = 0.0);
+  // A stroke from the current position that takes `duration_s` (> 0).
+  void stroke_for(Point p1, double duration_s, double bow_px = 0.0);
   // Along the path with the given rise from the current x to x1, ending u1 px off it.
   void stroke_along_path(double x1, double rise_px, double u1, double peak_speed_px_s);
   void hold(double duration_s, bool rest);

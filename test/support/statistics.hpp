@@ -1,9 +1,9 @@
 #pragma once
-// Summary statistics for the tracking benchmark. Host only (double).
+// Summary statistics for the benches, the stress report and the tests. Host only (double).
 #include <functional>
 #include <vector>
 
-namespace ff::bench {
+namespace ff::support {
 
 // Root mean square; 0 for no values.
 double rms(const std::vector<double>& values);
@@ -38,4 +38,4 @@ struct Position2 {
 double best_lag_ms(const std::vector<TimedPosition>& estimates, const std::function<Position2(double t_s)>& truth,
                    double lo_ms = -10.0, double hi_ms = 30.0);
 
-}  // namespace ff::bench
+}  // namespace ff::support

@@ -1,9 +1,9 @@
-#include "accuracy_metrics.hpp"
+#include "support/statistics.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace ff::bench {
+namespace ff::support {
 
 double rms(const std::vector<double>& values) {
   if (values.empty()) return 0.0;
@@ -78,4 +78,4 @@ double best_lag_ms(const std::vector<TimedPosition>& estimates, const std::funct
   return minimise(rmse_at, lo_ms, hi_ms, steps, 0.02);
 }
 
-}  // namespace ff::bench
+}  // namespace ff::support

@@ -1,28 +1,14 @@
-#include "motion.hpp"
+#include "support/models/motion.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "support/reference/reference_scene.hpp"
+
 namespace ff::tracegen {
 
-namespace {
-constexpr double kPathX0 = 100.0;
-constexpr double kPathLength = 600.0;
-constexpr double kPathY0 = 240.0;
-}  // namespace
-
-double path_y(double x, double rise) {
-  if (x <= kPathX0) return kPathY0;
-  if (x >= kPathX0 + kPathLength) return kPathY0 + rise;
-  const double d = x - kPathX0, L = kPathLength;
-  return -2.0 * rise / (L * L * L) * d * d * d + 3.0 * rise / (L * L) * d * d + kPathY0;
-}
-
-double path_slope(double x, double rise) {
-  if (x <= kPathX0 || x >= kPathX0 + kPathLength) return 0.0;
-  const double d = x - kPathX0, L = kPathLength;
-  return -6.0 * rise / (L * L * L) * d * d + 6.0 * rise / (L * L) * d;
-}
+double path_y(double x, double rise) { return reference::experiment_path_at(x, rise).y; }
+double path_slope(double x, double rise) { return reference::experiment_path_at(x, rise).slope; }
 
 double min_jerk(double tau) {
   tau = std::clamp(tau, 0.0, 1.0);
@@ -74,14 +60,24 @@ void Motion::push(Segment s) {
 
 void Motion::stroke_to(Point p1, double peak_speed_px_s, double bow_px) {
   Segment s;
+  s.shape = StrokeShape::Bowed;
+  s.p0 = cursor_;
+  s.p1 = p1;
+  s.bow_px = bow_px;
+  // Peak speed of a minimum-jerk stroke is 1.875 L / T.
+  stroke_for(p1, std::max(0.05, kMinJerkPeakRate * stroke_length(s) / peak_speed_px_s), bow_px);
+  segments_.back().peak_speed_px_s = peak_speed_px_s;
+}
+
+void Motion::stroke_for(Point p1, double duration_s, double bow_px) {
+  Segment s;
   s.kind = SegmentKind::Stroke;
   s.shape = StrokeShape::Bowed;
   s.p0 = cursor_;
   s.p1 = p1;
   s.bow_px = bow_px;
-  s.peak_speed_px_s = peak_speed_px_s;
-  // Peak speed of a minimum-jerk stroke is 1.875 L / T.
-  s.duration_s = std::max(0.05, kMinJerkPeakRate * stroke_length(s) / peak_speed_px_s);
+  s.duration_s = duration_s;
+  s.peak_speed_px_s = kMinJerkPeakRate * stroke_length(s) / duration_s;
   push(s);
   cursor_ = p1;
 }

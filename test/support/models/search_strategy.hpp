@@ -4,10 +4,13 @@
 // them (typical of the heightmap), or a mix. Produces the true motion.
 #include <string>
 
-#include "deterministic_random.hpp"
-#include "motion.hpp"
+#include "support/models/motion.hpp"
+#include "support/random.hpp"
 
 namespace ff::tracegen {
+
+using support::Random;
+using support::Stream;
 
 enum class Strategy : uint8_t { Along, Across, Mixed };
 const char* to_string(Strategy s);

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include "accuracy_metrics.hpp"
+#include "support/statistics.hpp"
 
-namespace ff::bench {
+namespace ff::support {
 namespace {
 
 TEST(Rms, HandValues) {
@@ -63,4 +63,4 @@ TEST(BestLag, RecoversAKnownDelayOfACircularMotion) {
 }
 
 }  // namespace
-}  // namespace ff::bench
+}  // namespace ff::support
