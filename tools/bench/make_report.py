@@ -471,7 +471,7 @@ def cycles_section(cycles, accuracy):
         w("`ff-m4trace accuracy` prints the M4 build's raw amplitude, the amplitude after strength 0.8 and "
           "the DAC code after a three-point decreasing calibration (4000 at 0, 2500 at 0.4, 300 at 1) at 256 "
           "points per built-in scene; `ff-m4accuracy` recomputes each in double with the independent "
-          "reference (`tools/bench/reference_scene.cpp`, max|G| by a dense scan) and the exact calibration. "
+          "reference (`test/support/reference/`, max|G| by a dense scan) and the exact calibration. "
           "LSB = 1/4095 of the amplitude range; the code column includes the DAC's rounding (0.5 alone).")
         w("")
         w("| scene | points | raw amplitude max (LSB) | after strength max / RMS (LSB) | DAC code vs exact, max | codes ≠ round(exact) |")
@@ -519,7 +519,7 @@ def report(rows, m4, host_trackers, args):
       "`docs/benchmarks.csv` too." % datetime.date.today().isoformat())
     w("")
     w("- **Error**: amplitude of the float core against an independent double-precision implementation "
-      "written from the [spec](spec.md#scenes) (`tools/bench/reference_scene.cpp`), on the grid x = 0.5, 1.5, … 798.5, "
+      "written from the [spec](spec.md#scenes) (`test/support/reference/`), on the grid x = 0.5, 1.5, … 798.5, "
       "y = 0.5 … 478.5 (382,721 points, between pixel centres so never on a table node) and 16 directions "
       "of motion; max|G| of the reference by a scan of every pixel plus a compass search to 1e-9 px. "
       "In DAC LSB = 1/4095 of the amplitude range (strength 1). *max*: the worst sample; *p99*: 99 % of "
