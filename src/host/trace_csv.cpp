@@ -86,6 +86,8 @@ bool SensorTraceReader::read_header(TraceError& error) {
     else if (name == "x") col_x_ = c;
     else if (name == "y") col_y_ = c;
     else if (name == "touch") col_touch_ = c;
+    else if (name == "x_true") col_x_true_ = c;
+    else if (name == "y_true") col_y_true_ = c;
   }
   if (col_t_ < 0 || col_x_ < 0 || col_y_ < 0 || col_touch_ < 0) {
     error = {line_no_, 0, "header must name the columns t_us, x, y and touch (got '" + trim(line) + "')"};
@@ -95,7 +97,7 @@ bool SensorTraceReader::read_header(TraceError& error) {
   return true;
 }
 
-bool SensorTraceReader::next(TraceRow& row, TraceError& error) {
+bool SensorTraceReader::next(TraceRow& row, TraceError& error, TruthPoint* truth) {
   error = {};
   std::string line;
   if (!next_data_line(line)) return false;
@@ -126,6 +128,15 @@ bool SensorTraceReader::next(TraceRow& row, TraceError& error) {
   if (!parse_float(ys, row.y) && (row.touch || !ys.empty())) {
     error = {line_no_, static_cast<size_t>(col_y_) + 1, "y is not a number (got '" + ys + "')"};
     return false;
+  }
+  if (truth != nullptr) {
+    *truth = TruthPoint{};
+    float tx = 0.0f, ty = 0.0f;
+    if (has_truth() && f.size() > static_cast<size_t>(std::max(col_x_true_, col_y_true_)) &&
+        parse_float(trim(f[col_x_true_]), tx) && parse_float(trim(f[col_y_true_]), ty)) {
+      truth->x = static_cast<double>(tx);
+      truth->y = static_cast<double>(ty);
+    }
   }
   return true;
 }

@@ -134,7 +134,7 @@ TEST(Report, GoalCheckAndTable) {
   EXPECT_DOUBLE_EQ(goal[0].frictionmap_ratio, 0.75);
   EXPECT_TRUE(goal[0].met());
   std::ostringstream out;
-  write_report(out, rows, 30.0, 50.0);
+  write_report(out, rows, generated_set_description(30.0), 50.0);
   EXPECT_NE(out.str().find("| recommended() | low | 0.00 | 0.00 | 1.50 |"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("recommended(): heightmap error 40 %"), std::string::npos);
   EXPECT_NE(out.str().find(": met."), std::string::npos);

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "frictionfield/host/cli_conventions.hpp"
 #include "accuracy.hpp"
 #include "bench_cases.hpp"
 #include "bench_workload.hpp"
@@ -112,7 +113,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_dir, "folder for host_cases.csv and host_trackers.csv");
   app.add_option("--filter", filter, "only cases whose id contains this text");
   app.add_flag("!--no-timing", timing, "errors and memory only (no Google Benchmark)");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
   if (smoke && app.count("--grid-step") == 0) grid_step = 40.0;
 
   std::vector<CaseResult> results;

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "frictionfield/host/cli_conventions.hpp"
 #include "bench_cases.hpp"
 #include "accuracy.hpp"
 #include "scene_workload.hpp"
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
   std::string input, csv_path;
   app.add_option("input", input, "what ff-m4trace printed in accuracy mode")->required()->check(CLI::ExistingFile);
   app.add_option("--csv", csv_path, "per-scene results as CSV");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   std::map<std::string, SceneId> ids;
   for (int i = 0; i < kSceneCount; ++i) ids[scene_name(static_cast<SceneId>(i))] = static_cast<SceneId>(i);

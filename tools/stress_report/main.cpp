@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "frictionfield/host/cli_conventions.hpp"
 #include "stress_classes.hpp"
 #include "stress_long_run.hpp"
 #include "stress_precision.hpp"
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "base seed (case i of a class runs with seed + i)");
   app.add_option("--long-run-seconds", long_seconds, "simulated length of each long run");
   app.add_option("--class", only, "run only this class");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   using clock = std::chrono::steady_clock;
   const auto started = clock::now();

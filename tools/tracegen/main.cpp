@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include "frictionfield/host/cli_conventions.hpp"
 #include "support/models/sensor_model.hpp"
 #include "trace_writer.hpp"
 
@@ -168,7 +169,7 @@ int main(int argc, char** argv) {
   app.add_flag("--progress", cli.progress, "Show progress (on by default for traces over 5 minutes)")->group(output);
   app.add_flag("-q,--quiet", cli.quiet, "No summary or progress on standard error")->group(output);
 
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   parse_strategy(cli.strategy, o.motion.strategy);
   parse_path_choice(cli.paths, o.motion.paths);

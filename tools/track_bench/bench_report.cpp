@@ -38,7 +38,12 @@ std::vector<GoalCheck> check_goal(const std::vector<ReportRow>& rows, const std:
   return checks;
 }
 
-void write_report(std::ostream& out, const std::vector<ReportRow>& rows, double duration_s, double moving_speed_px_s) {
+std::string generated_set_description(double duration_s) {
+  return "6 generated traces of " + fixed(duration_s, 0) + " s";
+}
+
+void write_report(std::ostream& out, const std::vector<ReportRow>& rows, const std::string& set_description,
+                  double moving_speed_px_s) {
   out << "| tracker | noise | pos RMSE px | pos p95 px | lag ms | dir err mean ° | dir err p95 ° "
          "| HM amp RMS | HM amp p95 | FM amp RMS | FM amp p95 | HM at rest RMS | ns/tick |\n";
   out << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
@@ -53,10 +58,11 @@ void write_report(std::ostream& out, const std::vector<ReportRow>& rows, double 
   out << "\n";
   if (!rows.empty()) {
     const Metrics& m = rows.front().metrics;
-    out << "Each row: 6 generated traces of " << fixed(duration_s, 0) << " s (" << m.moving_ticks
-        << " ticks while moving above " << fixed(moving_speed_px_s * 0.2, 0) << " mm/s, " << m.rest_ticks
-        << " at rest); noise low = 1 px, high = 2.5 px (1 sigma per axis); amplitudes on the raw 0..1 scale "
-           "(strength 1).\n\n";
+    out << "Each row: " << set_description << " (" << m.moving_ticks << " ticks while moving above "
+        << fixed(moving_speed_px_s * 0.2, 0) << " mm/s, " << m.rest_ticks << " at rest); "
+        << (rows.front().noise == "recorded" ? "noise: what the files hold"
+                                             : "noise low = 1 px, high = 2.5 px (1 sigma per axis)")
+        << "; amplitudes on the raw 0..1 scale (strength 1).\n\n";
   }
   // The goal for the default and for the proposals.
   std::vector<std::string> candidates;

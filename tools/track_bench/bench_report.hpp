@@ -25,7 +25,10 @@ struct GoalCheck {
 };
 std::vector<GoalCheck> check_goal(const std::vector<ReportRow>& rows, const std::string& default_config);
 
-void write_report(std::ostream& out, const std::vector<ReportRow>& rows, double duration_s, double moving_speed_px_s);
+// "6 generated traces of 30 s": what a row of the standard set averages over.
+std::string generated_set_description(double duration_s);
+void write_report(std::ostream& out, const std::vector<ReportRow>& rows, const std::string& set_description,
+                  double moving_speed_px_s);
 
 // Replaces the text between "<!-- track-bench:begin -->" and
 // "<!-- track-bench:end -->" in the file (appends both if absent).

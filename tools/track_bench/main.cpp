@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "frictionfield/host/cli_conventions.hpp"
 #include "bench_report.hpp"
 #include "proposed_config.hpp"
 #include "tracking_evaluation.hpp"
@@ -101,6 +102,21 @@ struct LevelSet {
   std::vector<PreparedCase> cases;
 };
 
+// Trace files as one set: each judged against its truth columns or the offline smoother.
+bool load_trace_level(const std::vector<std::string>& paths, const TraceFileOptions& options, LevelSet& level,
+                      std::string& error) {
+  level = LevelSet{"recorded", 0.0, {}};
+  for (const std::string& path : paths) {
+    PreparedCase c;
+    if (!load_trace_case(path, options, c, error)) return false;
+    std::fprintf(stderr, "ff-track-bench: %s: %zu reports, %zu ticks, judged against %s\n", path.c_str(),
+                 c.trace.samples.size(), c.ticks.size(),
+                 c.truth_from_columns ? "its x_true, y_true columns" : "the offline smoother (no truth columns)");
+    level.cases.push_back(std::move(c));
+  }
+  return true;
+}
+
 std::vector<LevelSet> prepare_levels(double duration_s) {
   std::vector<LevelSet> levels;
   for (auto [label, noise] : {std::pair<const char*, double>{"low", 1.0}, {"high", 2.5}}) {
@@ -148,13 +164,22 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     return s;
   };
   auto print = [&log](const char* stage, const Scored& s) {
+    auto per_level = [](const std::vector<double>& v) {
+      std::string out;
+      for (double x : v) {
+        char b[16];
+        std::snprintf(b, sizeof b, "%s%.4f", out.empty() ? "" : "/", x);
+        out += b;
+      }
+      return out;
+    };
     char line[320];
     std::snprintf(line, sizeof line,
-                  "%s q=%-6.0f r=%-5.2f rest=%-4.0f moving=%-4.0f  HM RMS %.4f (%.4f/%.4f)  lag %.2f ms  "
-                  "FM/thesis %.3f  rest %.4f (%.4f/%.4f)%s\n",
+                  "%s q=%-6.0f r=%-5.2f rest=%-4.0f moving=%-4.0f  HM RMS %.4f (%s)  lag %.2f ms  "
+                  "FM/thesis %.3f  rest %.4f (%s)%s\n",
                   stage, static_cast<double>(s.t.accel_noise_px_s2), static_cast<double>(s.t.measurement_noise_px),
                   static_cast<double>(s.t.rest_speed_px_s), static_cast<double>(s.t.moving_speed_px_s), s.hm,
-                  s.hm_level[0], s.hm_level[1], s.lag, s.fm_ratio, s.rest, s.rest_level[0], s.rest_level[1],
+                  per_level(s.hm_level).c_str(), s.lag, s.fm_ratio, s.rest, per_level(s.rest_level).c_str(),
                   s.fits ? "" : "  (lag or frictionmap constraint violated)");
     log << line;
     log.flush();
@@ -248,13 +273,46 @@ int main(int argc, char** argv) {
                                                        "(0: no candidate row)")->capture_default_str()->group(row);
   app.add_option("--split-r", split.measurement_noise_px, "Candidate row: the position filter's measurement_noise_px")
       ->capture_default_str()->group(row);
+  std::vector<std::string> trace_paths;
+  TraceFileOptions trace_options;
+  std::string target_word = "middle";
+  auto* traces = "Trace files instead of the generated set";
+  app.add_option("--trace", trace_paths,
+                 "Evaluate (and with --tune, tune) on these trace files (t_us,x,y,touch[,x_true,y_true]) instead of "
+                 "the generated set. With x_true, y_true columns (ff-tracegen, or a motion-capture reference) the "
+                 "trackers are judged against them; without, against an offline Rauch-Tung-Striebel smoother of the "
+                 "reports themselves: no lag and little noise, but not ground truth (docs/tracking.md)")
+      ->check(CLI::ExistingFile)->group(traces);
+  app.add_option("--target", target_word, "The heightmap and frictionmap the amplitude errors are judged on")
+      ->check(CLI::IsMember({"top", "middle", "bottom"}))->capture_default_str()->group(traces);
+  app.add_flag("--smoothed", [&](std::int64_t) { trace_options.use_truth_columns = false; },
+               "Judge against the offline smoother even where the file has truth columns (to see how far the "
+               "smoother itself is from the truth)")->group(traces);
+  app.add_option("--smoother-q", trace_options.smoother.accel_noise_px2_s3,
+                 "Offline smoother: white-acceleration spectral density (px^2/s^3)")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(traces);
+  app.add_option("--smoother-r", trace_options.smoother.measurement_noise_px,
+                 "Offline smoother: report noise, 1 sigma per axis (px)")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(traces);
   std::string dump_path;
   app.add_option("--dump-ticks", dump_path, "Write every tick of the first low-noise trace for the tuned configuration "
                                             "(truth, estimate, amplitudes) to this CSV, for plots");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
-  std::fprintf(stderr, "ff-track-bench: generating 2 x 6 traces of %.0f s...\n", duration_s);
-  const std::vector<LevelSet> levels = prepare_levels(duration_s);
+  std::vector<LevelSet> levels;
+  if (trace_paths.empty()) {
+    std::fprintf(stderr, "ff-track-bench: generating 2 x 6 traces of %.0f s...\n", duration_s);
+    levels = prepare_levels(duration_s);
+  } else {
+    trace_options.target = target_word == "top" ? Target::Top : (target_word == "bottom" ? Target::Bottom : Target::Middle);
+    LevelSet level;
+    std::string error;
+    if (!load_trace_level(trace_paths, trace_options, level, error)) {
+      std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
+      return 2;
+    }
+    levels.push_back(std::move(level));
+  }
   if (run_tune) tuned = tune(levels, rest_bound, max_lag_ms, std::cerr);
 
   std::vector<ReportRow> rows;
@@ -271,7 +329,15 @@ int main(int argc, char** argv) {
     dump_ticks(dump, tuned_config(tuned), levels.front().cases.front());
   }
   std::ostringstream table;
-  write_report(table, rows, duration_s, options.moving_speed_px_s);
+  std::string description = generated_set_description(duration_s);
+  if (!trace_paths.empty()) {
+    size_t with_truth = 0;
+    for (const PreparedCase& c : levels.front().cases) with_truth += c.truth_from_columns ? 1 : 0;
+    description = std::to_string(trace_paths.size()) + " trace file(s), " + std::to_string(with_truth) +
+                  " judged against their x_true, y_true columns, " + std::to_string(trace_paths.size() - with_truth) +
+                  " against the offline smoother (not ground truth)";
+  }
+  write_report(table, rows, description, options.moving_speed_px_s);
   std::cout << table.str();
   if (!doc_path.empty()) {
     std::string error;

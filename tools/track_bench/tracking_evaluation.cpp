@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <ostream>
 
 #include "support/statistics.hpp"
@@ -124,20 +125,22 @@ std::vector<TrackCase> standard_cases(double noise_px, double duration_s) {
   return cases;
 }
 
-PreparedCase prepare_case(const TrackCase& spec) {
-  PreparedCase c;
-  c.spec = spec;
-  c.trace = tracegen::generate_trace(spec.options);
-  c.heightmap = prepared(scenes::heightmap(spec.target));
-  c.frictionmap = prepared(scenes::frictionmap(spec.target));
-  if (c.trace.samples.empty()) return c;
+namespace {
+
+// Ticks from the first report to the tick at or after the last, with the
+// truth there and what the ideal renderer outputs for it.
+template <typename Truth>
+void fill_ticks(PreparedCase& c, const Truth& truth_at) {
+  c.heightmap = prepared(scenes::heightmap(c.spec.target));
+  c.frictionmap = prepared(scenes::frictionmap(c.spec.target));
+  if (c.trace.samples.empty()) return;
   const uint64_t t0 = c.trace.samples.front().t_us;
   const uint64_t last = (c.trace.end_us() - t0 + kTickUs - 1) / kTickUs;
   c.ticks.reserve(last + 1);
   for (uint64_t k = 0; k <= last; ++k) {
     TickTruth t;
     t.t_us = t0 + k * kTickUs;
-    t.state = c.trace.truth_at(t.t_us);
+    t.state = truth_at(t.t_us);
     const Vec2 p = to_vec(t.state.position);
     const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
     // The ideal renderer: true position, true unit direction (0.5 where undefined).
@@ -147,7 +150,76 @@ PreparedCase prepare_case(const TrackCase& spec) {
     t.frictionmap_ideal = c.frictionmap->amplitude(p, {});
     c.ticks.push_back(t);
   }
+}
+
+}  // namespace
+
+PreparedCase prepare_case(const TrackCase& spec) {
+  PreparedCase c;
+  c.spec = spec;
+  c.trace = tracegen::generate_trace(spec.options);
+  fill_ticks(c, [&c](uint64_t t_us) { return c.trace.truth_at(t_us); });
+  // Its own copy: a PreparedCase moves (into vectors), its members with it.
+  auto motion = std::make_shared<const tracegen::Motion>(c.trace.motion);
+  c.truth_position = [motion](double t_s) { return motion->at(t_s).position; };
   return c;
+}
+
+bool load_trace_case(const std::string& path, const TraceFileOptions& options, PreparedCase& out, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot open";
+    return false;
+  }
+  host::SensorTraceReader reader(in);
+  host::TraceError e;
+  std::vector<host::TraceRow> rows;
+  std::vector<host::TruthPoint> truth;
+  if (!reader.read_header(e)) {
+    error = e.to_string(path);
+    return false;
+  }
+  host::TraceRow row;
+  host::TruthPoint point;
+  while (reader.next(row, e, &point)) {
+    rows.push_back(row);
+    truth.push_back(point);
+  }
+  if (!e.message.empty()) {
+    error = e.to_string(path);
+    return false;
+  }
+  if (rows.empty()) {
+    error = path + ": no reports";
+    return false;
+  }
+  PreparedCase c;
+  c.spec.name = path;
+  c.spec.target = options.target;
+  const uint64_t t0 = rows.front().t_us;
+  c.trace.start_us = t0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    tracegen::TraceSample s;
+    s.t_us = rows[i].t_us;
+    s.x = static_cast<double>(rows[i].x);
+    s.y = static_cast<double>(rows[i].y);
+    s.touch = rows[i].touch;
+    s.x_true = truth[i].x;
+    s.y_true = truth[i].y;
+    c.trace.samples.push_back(s);
+  }
+  c.truth_from_columns = options.use_truth_columns && reader.has_truth();
+  auto reference = std::make_shared<ReferencePath>(c.truth_from_columns ? ReferencePath::from_truth(rows, truth, t0)
+                                                                         : ReferencePath::smoothed(rows, t0, options.smoother));
+  if (reference->segments().empty()) {
+    error = path + ": no stroke to judge (fewer than two usable touch reports in a row)";
+    return false;
+  }
+  const double rest = options.rest_speed_px_s;
+  fill_ticks(c, [&](uint64_t t_us) { return reference->at(static_cast<double>(t_us - t0) * 1e-6, rest); });
+  c.truth_position = [reference, rest](double t_s) { return reference->at(t_s, rest).position; };
+  out = std::move(c);
+  return true;
 }
 
 void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCase& c) {
@@ -242,8 +314,8 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
     auto truth = [&cases](double t_s) {
       const size_t i = static_cast<size_t>(std::max(0.0, std::floor((t_s + 0.5 * kCaseTimeOffsetS) / kCaseTimeOffsetS)));
       const PreparedCase& c = cases[std::min(i, cases.size() - 1)];
-      const tracegen::TrueState s = c.trace.motion.at(t_s - static_cast<double>(i) * kCaseTimeOffsetS);
-      return Position2{s.position.x, s.position.y};
+      const tracegen::Point p = c.truth_position(t_s - static_cast<double>(i) * kCaseTimeOffsetS);
+      return Position2{p.x, p.y};
     };
     m.lag_ms = best_lag_ms(timed, truth);
   }

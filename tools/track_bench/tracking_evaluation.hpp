@@ -3,6 +3,7 @@
 // replay does (docs/spec.md#tick-timing), and measures what is felt:
 // position, lag, direction and the rendered amplitude against an ideal
 // renderer fed the true position and the true direction.
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -11,6 +12,7 @@
 #include "frictionfield/core/path_curve.hpp"
 #include "frictionfield/core/scene_plan.hpp"
 #include "frictionfield/core/tracker.hpp"
+#include "reference_path.hpp"
 #include "support/models/sensor_model.hpp"
 
 namespace ff::bench {
@@ -36,15 +38,30 @@ struct TickTruth {
 
 struct PreparedCase {
   TrackCase spec;
-  tracegen::GeneratedTrace trace;
+  tracegen::GeneratedTrace trace;  // a loaded file: its reports, no motion
   std::vector<TickTruth> ticks;  // t0 + k * 500 us, t0 = the first report
   std::unique_ptr<ScenePlan> heightmap;
   std::unique_ptr<ScenePlan> frictionmap;
+  // Where the finger was, s after the first report (for the lag).
+  std::function<tracegen::Point(double t_s)> truth_position;
+  bool truth_from_columns = true;  // false: judged against the offline smoother
 };
 
 // Generates the trace, prepares both scenes (closed form) and the ideal
 // amplitudes at every tick.
 PreparedCase prepare_case(const TrackCase& spec);
+
+struct TraceFileOptions {
+  Target target = Target::Middle;  // the heightmap and frictionmap the amplitudes are judged on
+  bool use_truth_columns = true;   // x_true, y_true when the file has them
+  double rest_speed_px_s = 10.0;   // a slower reference finger counts as resting
+  SmootherOptions smoother;
+};
+
+// A trace file (t_us,x,y,touch[,x_true,y_true]) as a case, judged against its
+// truth columns or, without them, the offline smoother (reference_path.hpp).
+// false with a one-line `error` for an unreadable file or one without a stroke.
+bool load_trace_case(const std::string& path, const TraceFileOptions& options, PreparedCase& out, std::string& error);
 
 struct EvalOptions {
   double moving_speed_px_s = 50.0;  // the finger "moves" above 10 mm/s

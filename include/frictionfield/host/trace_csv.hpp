@@ -7,6 +7,7 @@
 // columns, then one row per line.
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +30,13 @@ struct TraceError {
   std::string to_string(const std::string& file) const;  // "file:line:column: message"
 };
 
+// The true finger of a row, when the file carries it (ff-tracegen's x_true,
+// y_true, or a motion-capture reference): NaN while lifted or unknown.
+struct TruthPoint {
+  double x = std::numeric_limits<double>::quiet_NaN();
+  double y = std::numeric_limits<double>::quiet_NaN();
+};
+
 // Reads `t_us,x,y,touch` row by row (any column order, extra columns ignored),
 // so a trace of any length needs constant memory. Coordinates may be nan/inf
 // (the tracker must cope); t_us and touch must be integers.
@@ -38,14 +46,16 @@ class SensorTraceReader {
   // The header row (after the BOM and '#' lines); false with `error` set.
   bool read_header(TraceError& error);
   // true with the next row; false at the end (error.message empty) or on an error.
-  bool next(TraceRow& row, TraceError& error);
+  // With `truth`, also the row's x_true, y_true (NaN where absent or not a number).
+  bool next(TraceRow& row, TraceError& error, TruthPoint* truth = nullptr);
+  bool has_truth() const { return col_x_true_ >= 0 && col_y_true_ >= 0; }
   size_t line() const { return line_no_; }
 
  private:
   bool next_data_line(std::string& line);
   std::istream& in_;
   size_t line_no_ = 0;
-  int col_t_ = -1, col_x_ = -1, col_y_ = -1, col_touch_ = -1;
+  int col_t_ = -1, col_x_ = -1, col_y_ = -1, col_touch_ = -1, col_x_true_ = -1, col_y_true_ = -1;
   size_t needed_ = 0;
 };
 

@@ -1,0 +1,56 @@
+#pragma once
+// Where the finger was, for judging trackers on a trace file: the file's own
+// truth columns (x_true, y_true: ff-tracegen, or a motion-capture reference),
+// or, for a recording without them, an offline estimate from the reports
+// themselves. The estimate is a Rauch-Tung-Striebel smoother (constant-
+// velocity model per axis): it sees every report before and after each
+// instant, so it has no lag and far less noise than any causal tracker, but
+// it is not ground truth: errors measured against it are relative to the
+// best non-causal estimate.
+#include <cstdint>
+#include <vector>
+
+#include "frictionfield/host/trace_csv.hpp"
+#include "support/models/motion.hpp"
+
+namespace ff::bench {
+
+struct PathNode {
+  double t_s = 0.0;  // since the trace's first report
+  double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
+};
+
+struct SmootherOptions {
+  double accel_noise_px2_s3 = 1.0e5;  // white-acceleration spectral density q
+  double measurement_noise_px = 1.5;  // 1 sigma per axis (zForce: ~0.3 mm)
+  double max_gap_s = 0.05;            // a longer gap between reports splits the stroke
+};
+
+class ReferencePath {
+ public:
+  // From truth columns: consecutive finite truth points (time strictly
+  // increasing) form a segment; velocity by central differences.
+  static ReferencePath from_truth(const std::vector<host::TraceRow>& rows, const std::vector<host::TruthPoint>& truth,
+                                  uint64_t t0_us);
+  // From the reports alone: touch reports on the screen, time strictly
+  // increasing, split at lifts and gaps, each segment smoothed.
+  static ReferencePath smoothed(const std::vector<host::TraceRow>& rows, uint64_t t0_us, const SmootherOptions& options);
+
+  // The finger at t (s since the first report): touching inside a segment,
+  // position and velocity by cubic Hermite interpolation of the nodes;
+  // resting when slower than `rest_speed_px_s`. Between segments: not
+  // touching, at the nearest segment end (so a time shift near a lift or a
+  // gap compares with where the finger was, not with the origin).
+  tracegen::TrueState at(double t_s, double rest_speed_px_s) const;
+  const std::vector<std::vector<PathNode>>& segments() const { return segments_; }
+
+ private:
+  std::vector<std::vector<PathNode>> segments_;  // each sorted by time, >= 2 nodes
+};
+
+// One axis of a constant-velocity RTS smoother (exposed for its test):
+// positions z at times t (s, increasing) -> smoothed position and velocity.
+void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
+                 std::vector<double>& position, std::vector<double>& velocity);
+
+}  // namespace ff::bench
