@@ -1,53 +1,53 @@
 #pragma once
-// Interrupt cost statistics written by the tick, read by the main loop:
-// mean, max and a 99th percentile from 128-cycle bins (the tick's budget is
-// 90,000 cycles; a healthy tick costs a few thousand). Only the tick writes;
-// the loop reads each word once (a percentile read mid-update is off by one
-// tick, never torn: the counters are 32-bit atomics, and no 64-bit sum exists).
+// Cycle statistics written by the tick interrupt, read by the main loop:
+// count, mean and max since boot, and a 99th percentile from 128-cycle bins
+// (the tick's budget is 90,000 cycles; a healthy tick costs a few thousand).
+//
+// Handover without tearing: add() (the tick, the only writer) makes the
+// sequence odd, writes, and makes it even again; read() (the loop) takes the
+// sequence, reads every word it needs, and starts again if the sequence moved.
+// On the one-core Cortex-M4 the tick preempts the loop but never the other
+// way round, so read() never sees an odd sequence and retries only when a
+// tick landed inside it: at most once in practice (a read takes a few hundred
+// cycles, ticks come every 90,000). Every word is a 32-bit atomic (a plain
+// LDR/STR on the M4); the 64-bit sum is two of them, whole only under the
+// sequence. Written for a preempting interrupt, it is also a correct seqlock
+// for two threads.
 #include <atomic>
 #include <cstdint>
 
 namespace ff::firmware {
 
+struct CycleStats {
+  uint32_t count = 0;  // measurements (wraps after 24 days of ticks)
+  uint32_t mean = 0;   // since boot
+  uint32_t max = 0;
+  uint32_t p99 = 0;    // upper edge of the bin holding the 99th percentile; the max if that is the last bin
+};
+
 class CycleHistogram {
  public:
   static constexpr uint32_t kBinCycles = 128;
   static constexpr uint32_t kBins = 128;  // up to 16,384 cycles; above: the last bin
+  static constexpr uint32_t kPercentilePermille = 990;
 
-  void add(uint32_t cycles) {  // tick only
-    const uint32_t bin = cycles / kBinCycles < kBins - 1 ? cycles / kBinCycles : kBins - 1;
-    bins_[bin].store(bins_[bin].load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
-    if (cycles > max_.load(std::memory_order_relaxed)) max_.store(cycles, std::memory_order_relaxed);
-    // The mean over windows of 2^16 ticks (33 s): a 32-bit sum that cannot wrap, published whole.
-    window_sum_ += cycles < 0xFFFFu ? cycles : 0xFFFFu;
-    if (++window_count_ == kWindow) {
-      mean_.store(window_sum_ / kWindow, std::memory_order_relaxed);
-      window_sum_ = 0;
-      window_count_ = 0;
-    }
-    count_.store(count_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
-  }
-
-  uint32_t count() const { return count_.load(std::memory_order_acquire); }
-  uint32_t max() const { return max_.load(std::memory_order_relaxed); }
-  // Mean of the last whole window; before the first one, the mean so far (read between two ticks).
-  uint32_t mean() const {
-    const uint32_t m = mean_.load(std::memory_order_relaxed);
-    if (m != 0 || count() >= kWindow) return m;
-    const uint32_t n = window_count_;
-    return n == 0 ? 0u : window_sum_ / n;
-  }
-  // Upper edge of the bin that holds the p-th permille (990 = 99th percentile); the max if that is the last bin.
-  uint32_t percentile_permille(uint32_t permille) const;
+  void add(uint32_t cycles);  // the tick only
+  CycleStats read() const { return read(nullptr, nullptr); }
+  // The same, calling `between(context)` before each word it reads: a test
+  // runs add() there, as a tick that interrupts the loop at that instruction.
+  CycleStats read(void (*between)(void*), void* context) const;
 
  private:
-  std::atomic<uint32_t> bins_[kBins] = {};
-  std::atomic<uint32_t> max_{0};
-  static constexpr uint32_t kWindow = 65536;
-  std::atomic<uint32_t> mean_{0};
+  static void bump(std::atomic<uint32_t>& word, uint32_t by) {  // the writer's own read-modify-write
+    word.store(word.load(std::memory_order_relaxed) + by, std::memory_order_relaxed);
+  }
+
+  std::atomic<uint32_t> sequence_{0};  // odd while add() writes
   std::atomic<uint32_t> count_{0};
-  uint32_t window_sum_ = 0;    // tick only (the early mean() reads it between ticks)
-  uint32_t window_count_ = 0;
+  std::atomic<uint32_t> sum_low_{0};
+  std::atomic<uint32_t> sum_high_{0};
+  std::atomic<uint32_t> max_{0};
+  std::atomic<uint32_t> bins_[kBins] = {};
 };
 
 }  // namespace ff::firmware

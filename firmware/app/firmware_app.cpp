@@ -25,6 +25,7 @@ FirmwareApp::FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pi
       pipeline_(pipeline),
       dds_(io.spi, io.dds_chip_select),
       sweep_(dds_),
+      dac_(io.dac),
       amplitude_(io.dac, DacCalibration::linear()),  // codes come mapped from the pipeline
       zforce_(io.i2c, io.data_ready),
       load_cells_(io.adc) {
@@ -80,20 +81,7 @@ void FirmwareApp::tick(uint32_t now_us) {
     if (!ring_.push({now_us, amplitude, code, out.present})) ring_overruns_.fetch_add(1, std::memory_order_relaxed);
   }
 
-  const uint32_t cycles = board_.cycles() - start;
-  if (cycles > cycles_max_.load(std::memory_order_relaxed)) cycles_max_.store(cycles, std::memory_order_relaxed);
-  cycles_sum_ += cycles;
-  cycles_count_.fetch_add(1, std::memory_order_release);
-}
-
-uint32_t FirmwareApp::tick_cycles_mean() const {
-  // The tick preempts the loop: a 64-bit sum read between two equal counts is whole.
-  for (;;) {
-    const uint32_t before = cycles_count_.load(std::memory_order_acquire);
-    const uint64_t sum = cycles_sum_;
-    if (cycles_count_.load(std::memory_order_acquire) != before) continue;
-    return before == 0 ? 0u : static_cast<uint32_t>(sum / before);
-  }
+  tick_cycles_.add(board_.cycles() - start);
 }
 
 FirmwareCounters FirmwareApp::counters() const {
@@ -308,7 +296,8 @@ void FirmwareApp::set_carrier(uint32_t hz) {
   dds_.select(next, dds_.selected_phase());
 }
 
-void FirmwareApp::rest_plate() { amplitude_.write_code(pipeline_.amplitude_map().idle_code()); }
+// Not through amplitude_: that is the tick's, and a tick may land in the middle of this.
+void FirmwareApp::rest_plate() { dac_.write(pipeline_.amplitude_map().idle_code()); }
 
 // ---- host messages ------------------------------------------------------------
 
@@ -355,17 +344,19 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       st.target = condition_.target;
       st.strength = condition_.strength;
       st.ticks = pipeline_.ticks();
-      st.tick_cycles_mean = tick_cycles_mean();
-      st.tick_cycles_max = tick_cycles_max();
+      const CycleStats tick = tick_cycles_.read();
+      st.tick_cycles_mean = tick.mean;
+      st.tick_cycles_max = tick.max;
       st.protocol_errors = counters_.protocol_errors;
       st.force_mN = force_.force_mN;
       st.over_force = force_.over_force;
       st.finger_present = present_.load(std::memory_order_acquire);
       st.carrier_hz = carrier_hz();
       st.faults = pipeline_.faults();
-      st.isr_cycles_mean = interrupt_cycles_.mean();
-      st.isr_cycles_max = interrupt_cycles_.max();
-      st.isr_cycles_p99 = interrupt_cycles_.percentile_permille(990);
+      const CycleStats isr = interrupt_cycles_.read();
+      st.isr_cycles_mean = isr.mean;
+      st.isr_cycles_max = isr.max;
+      st.isr_cycles_p99 = isr.p99;
       st.prepare_us_last = pipeline_.last_prepare_us();
       st.loop_pass_max_us = loop_pass_max_us_;
       st.zforce_layout_beside = zforce_.count(ZforceCount::TimestampBeside);
@@ -400,7 +391,7 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
     }
     case MessageType::SetCarrier: {
       const float hz = in_.carrier.frequency_hz;
-      if (hz >= static_cast<float>(kCarrierMinHz) && hz <= static_cast<float>(kCarrierMaxHz)) {
+      if (carrier_in_range(hz)) {
         sweep_.stop();
         set_carrier(static_cast<uint32_t>(hz + 0.5f));
       } else {
@@ -410,11 +401,9 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
     }
     case MessageType::StartSweep: {
       const protocol::SweepMessage& s = in_.sweep;
-      const auto in_range = [](float hz) {
-        return hz >= static_cast<float>(kCarrierMinHz) && hz <= static_cast<float>(kCarrierMaxHz);
-      };
       SweepConfig c;
-      bool ok = in_range(s.start_hz) && in_range(s.end_hz) && s.duration_ms > 0 && s.duration_ms <= kSweepMaxMs;
+      bool ok = carrier_in_range(s.start_hz) && carrier_in_range(s.end_hz) && s.duration_ms > 0 &&
+                s.duration_ms <= kSweepMaxMs;
       if (ok) {
         c.start_hz = static_cast<uint32_t>(s.start_hz + 0.5f);
         c.stop_hz = static_cast<uint32_t>(s.end_hz + 0.5f);

@@ -6,8 +6,10 @@
 // Threading: loop() runs in the main loop, tick() in the IntervalTimer
 // interrupt (priority above USB), which preempts the loop but never the
 // other way round. They share the pipeline (its own SPSC mailbox and atomic
-// scene swap), the heartbeat, the mouse position, the tick ring and a few
-// counters, all atomics written by one side only.
+// scene swap), the heartbeat, the mouse position, the tick ring, the cycle
+// statistics (a sequence counter, cycle_histogram.hpp) and a few counters:
+// every word has one writer, and the tick's words are 32-bit atomics the
+// loop only reads.
 #include <atomic>
 #include <cstdint>
 
@@ -47,8 +49,11 @@ constexpr uint32_t kStreamFlushUs = 10000;       // streamed records wait at mos
 // Host input handled per loop, so that a flood cannot starve the sensor.
 constexpr int kMaxDatagramsPerLoop = 4;
 constexpr int kMaxReportsPerLoop = 2 * static_cast<int>(protocol::kMaxHidReports);
-constexpr uint32_t kCarrierMinHz = 1000;
+constexpr uint32_t kCarrierMinHz = 1000;         // SetCarrier and StartSweep refuse frequencies outside
 constexpr uint32_t kCarrierMaxHz = 1000000;
+constexpr bool carrier_in_range(float hz) {
+  return hz >= static_cast<float>(kCarrierMinHz) && hz <= static_cast<float>(kCarrierMaxHz);  // NaN: no
+}
 constexpr uint32_t kSweepMaxMs = 600000;         // 10 min
 
 struct Peripherals {
@@ -60,13 +65,16 @@ struct Peripherals {
   Adc& adc;
 };
 
+// A snapshot for the host (counters()). The tick counts watchdog_trips and
+// the tick records of stream_overruns in its own atomics; the loop counts
+// everything else; counters() adds them up.
 struct FirmwareCounters {
   uint32_t protocol_errors = 0;     // malformed or unknown messages (answered with Error)
   uint32_t conditions_set = 0;
   uint32_t conditions_refused = 0;
   uint32_t watchdog_trips = 0;      // the loop stalled: the tick rested the plate
   uint32_t tick_stalls = 0;         // the tick stopped: the loop rested the plate
-  uint32_t stream_overruns = 0;     // streamed records dropped: the host did not read in time
+  uint32_t stream_overruns = 0;     // streamed records dropped: the host did not read in time (reports: loop, ticks: tick)
   uint32_t hid_frames_dropped = 0;  // replies or telemetry the USB host channel had no room for
   uint32_t sensor_restarts = 0;     // zForce configuration started again after it failed
   uint32_t mouse_moves_skipped = 0; // the USB host did not poll the mouse: no move queued
@@ -84,12 +92,9 @@ class FirmwareApp {
   // The whole interrupt handler's cost in DWT cycles, as the board measured
   // it around tick() (entry to exit of its handler); tick only.
   void note_interrupt_cycles(uint32_t cycles) { interrupt_cycles_.add(cycles); }
-  const CycleHistogram& interrupt_cycles() const { return interrupt_cycles_; }
   uint32_t loop_pass_max_us() const { return loop_pass_max_us_; }
 
   FirmwareCounters counters() const;
-  uint32_t tick_cycles_mean() const;
-  uint32_t tick_cycles_max() const { return cycles_max_.load(std::memory_order_relaxed); }
   // The code that rests the plate (the active scene's idle amplitude): for
   // the board's fault handlers.
   uint16_t rest_code() const { return pipeline_.amplitude_map().idle_code(); }
@@ -112,13 +117,14 @@ class FirmwareApp {
   void reply(Channel channel);  // send(), a dropped reply counted
   void send_force();
   void set_carrier(uint32_t hz);
-  void rest_plate();
+  void rest_plate();  // the loop's own DAC write, for when the tick cannot
 
   Board& board_;
   HapticPipeline& pipeline_;
   Ad9834 dds_;
   FrequencySweep sweep_;
-  FsAdjustAmplitude amplitude_;  // written by the tick, and by the loop only when the tick is stopped or held idle
+  Dac12& dac_;                   // the tick writes through amplitude_; the loop's rest_plate() directly
+  FsAdjustAmplitude amplitude_;  // tick only (its code and error count)
   ZforceSensor zforce_;
   LoadCellMonitor load_cells_;
   protocol::HidReassembler hid_in_;
@@ -135,17 +141,15 @@ class FirmwareApp {
   std::atomic<bool> present_{false};
   std::atomic<uint32_t> watchdog_trips_{0};
   std::atomic<uint32_t> ring_overruns_{0};
-  std::atomic<uint32_t> cycles_max_{0};
-  std::atomic<uint32_t> cycles_count_{0};  // also the sequence that makes cycles_sum_ readable
   // While streaming: the time of the tick that took mailbox sample k, at [k % 8] (the mailbox holds 8).
   std::atomic<uint32_t> taken_us_by_slot_[SampleMailbox::kCapacity] = {};
-  uint64_t cycles_sum_ = 0;
+  CycleHistogram tick_cycles_;
   CycleHistogram interrupt_cycles_;
   bool watchdog_tripped_ = false;  // tick only
   uint32_t stream_tick_ = 0;       // tick only
 
   // Main loop only.
-  FirmwareCounters counters_;
+  FirmwareCounters counters_;  // the loop's counts (not watchdog_trips, not the tick's overruns)
   protocol::ConditionMessage condition_;  // what the host last set (status)
   LoadReading force_;
   uint32_t last_mouse_us_ = 0;

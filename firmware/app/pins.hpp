@@ -22,7 +22,9 @@ constexpr bool is_bus_pin(uint8_t pin) { return pin == 11 || pin == 12 || pin ==
 constexpr uint8_t kDdsChipSelect = 10;       // AD9834 FSYNC
 constexpr uint8_t kEthernetChipSelect = 9;   // W5200 on the WIZ820io (not 15: that is A1, a load cell)
 constexpr uint8_t kZforceDataReady = 2;      // zForce DR: high while a message waits
-constexpr uint8_t kLoadCells[4] = {14, 15, 16, 17};  // A0-A3
+constexpr int kLoadCellCount = 4;
+constexpr uint8_t kLoadCells[kLoadCellCount] = {14, 15, 16, 17};  // A0-A3
+constexpr uint8_t kLoadCellAdcBits = 13;     // analogReadResolution: the K66's 16-bit ADC, read at 13 bits
 constexpr uint8_t kDac0 = 66;                // A21: DAC0 -> AD9834 FSADJUST
 
 constexpr bool is_load_cell(uint8_t pin) {
@@ -37,7 +39,7 @@ constexpr bool digital_pin_is_free(uint8_t pin) {
 }
 
 constexpr bool load_cells_are_analog_and_distinct() {
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < kLoadCellCount; ++i) {
     if (!is_analog_input(kLoadCells[i]) || is_bus_pin(kLoadCells[i])) return false;
     for (int j = 0; j < i; ++j) {
       if (kLoadCells[i] == kLoadCells[j]) return false;

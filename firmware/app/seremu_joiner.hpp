@@ -8,12 +8,14 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "frictionfield/protocol/hid_channel.hpp"
+
 namespace ff::firmware {
 
 class SeremuJoiner {
  public:
-  static constexpr size_t kPacketBytes = 32;
-  static constexpr size_t kReportBytes = 64;
+  static constexpr size_t kPacketBytes = protocol::kHostPacketBytes;  // SEREMU_RX_SIZE
+  static constexpr size_t kReportBytes = protocol::kHidReportBytes;
   // A first half left alone this long is stale: the host writes both halves
   // back to back, so a lost second half must not pair the next report's halves wrongly.
   static constexpr uint32_t kHalfTimeoutUs = 20000;

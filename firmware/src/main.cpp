@@ -13,6 +13,8 @@
 #include "firmware/app/host_link_limits.hpp"
 #include "firmware/app/pins.hpp"
 #include "firmware/app/seremu_joiner.hpp"
+#include "frictionfield/core/geometry.hpp"
+#include "frictionfield/protocol/hid_channel.hpp"
 
 #include <Arduino.h>
 #include <Ethernet.h>
@@ -93,10 +95,10 @@ class TeensyDac final : public ff::Dac12 {
 };
 
 class TeensyAdc final : public ff::Adc {
-  uint8_t channel_count() const override { return 4; }
-  uint8_t resolution_bits() const override { return 13; }
+  uint8_t channel_count() const override { return pins::kLoadCellCount; }
+  uint8_t resolution_bits() const override { return pins::kLoadCellAdcBits; }
   ff::BusStatus do_read(uint8_t channel, uint16_t& value) override {
-    if (channel >= 4) return ff::BusStatus::InvalidArgument;
+    if (channel >= pins::kLoadCellCount) return ff::BusStatus::InvalidArgument;
     value = static_cast<uint16_t>(analogRead(pins::kLoadCells[channel]));
     return ff::BusStatus::Ok;
   }
@@ -141,7 +143,7 @@ class TeensyBoard final : public ff::firmware::Board {
     }
     return false;
   }
-  void hid_send(const uint8_t* report) override { Serial.write(report, 64); }
+  void hid_send(const uint8_t* report) override { Serial.write(report, ff::protocol::kHidReportBytes); }
   size_t hid_tx_room() override {
     return ff::firmware::seremu_tx_room(usb_configuration, usb_tx_packet_count(SEREMU_TX_ENDPOINT));
   }
@@ -217,7 +219,7 @@ void setup() {
   yield_active_check_flags &= ~YIELD_CHECK_USB_SERIAL;
   ARM_DEMCR |= ARM_DEMCR_TRCENA;  // DWT cycle counter for the tick's cost
   ARM_DWT_CTRL |= ARM_DWT_CTRL_CYCCNTENA;
-  analogReadResolution(13);
+  analogReadResolution(pins::kLoadCellAdcBits);
   pinMode(pins::kDdsChipSelect, OUTPUT);
   digitalWriteFast(pins::kDdsChipSelect, HIGH);
   pinMode(pins::kZforceDataReady, INPUT);
@@ -230,7 +232,7 @@ void setup() {
   Ethernet.setRetransmissionTimeout(ff::firmware::kW5200RetransmissionMs);
   Ethernet.setRetransmissionCount(ff::firmware::kW5200Retries);
   udp.begin(kUdpPort);
-  Mouse.screenSize(800, 480);
+  Mouse.screenSize(static_cast<uint16_t>(ff::kScreenWidthPx), static_cast<uint16_t>(ff::kScreenHeightPx));
   pipeline.set_clock(micros_for_core);
   app.begin(micros(), ff::firmware::wiring_calibration());
   // Above USB (112): with the default 128, USB traffic would delay every tick.

@@ -1,6 +1,8 @@
 #include "frictionfield/protocol/codec.hpp"
 
 #include <initializer_list>
+#include <new>
+#include <type_traits>
 
 #include "frictionfield/core/scenes.hpp"
 #include "wire.hpp"
@@ -71,6 +73,14 @@ Condition ConditionMessage::to_condition() const {
 }
 
 namespace {
+
+// `x = T()` may build the T on the stack first and copy it; constructing in
+// place does not (every message type is plain data).
+template <class T>
+void reset_in_place(T& x) {
+  static_assert(std::is_trivially_destructible_v<T>, "plain data only");
+  ::new (static_cast<void*>(&x)) T();
+}
 
 // --- scenes ------------------------------------------------------------------
 
@@ -170,8 +180,8 @@ void put_scene(WireWriter& w, const SceneDefinition& s) {
   for (int i = 0; i < s.element_count && i < kMaxSceneElements; ++i) put_element(w, s.elements[i]);
 }
 
+// The get_* functions read into a message decode() has just reset.
 bool get_scene(WireReader& r, SceneDefinition& s) {
-  s = SceneDefinition{};
   const uint8_t rendering = r.u8();
   s.constant = r.f32();
   s.bias = r.f32();
@@ -211,7 +221,6 @@ void put_condition(WireWriter& w, const ConditionMessage& c) {
 // Values the core would have to repair (strength outside (0, 1], a
 // non-monotonic calibration) make the message malformed: refused, not repaired.
 bool get_condition(WireReader& r, ConditionMessage& c) {
-  c = ConditionMessage();  // not `{}`: arm-none-eabi-g++ 12.2 hits an internal compiler error on it
   const uint8_t kind = r.u8(), target = r.u8();
   if (kind > 3 || target > 2) return false;
   c.kind = static_cast<ConditionKind>(kind);
@@ -470,12 +479,16 @@ DecodeStatus decode(const uint8_t* in, size_t size, Message& out) {
   const uint16_t crc = static_cast<uint16_t>(in[kHeaderBytes + length] | (in[kHeaderBytes + length + 1] << 8));
   if (crc16_ccitt(in + 2, kHeaderBytes + length - 2) != crc) return DecodeStatus::BadCrc;
   if (!known_type(in[3])) return DecodeStatus::UnknownType;
-  Message m;
-  m.type = static_cast<MessageType>(in[3]);
-  m.sequence = in[4];
+  // Straight into `out`: a Message-sized temporary would be the deepest frame
+  // of the firmware's main loop (5 KB of the Teensy's 27.8 KB stack).
+  reset_in_place(out);
+  out.type = static_cast<MessageType>(in[3]);
+  out.sequence = in[4];
   WireReader r(in + kHeaderBytes, length);
-  if (!get_payload(r, m) || !r.at_end()) return DecodeStatus::Malformed;
-  out = m;
+  if (!get_payload(r, out) || !r.at_end()) {
+    reset_in_place(out);  // no half-read message for a caller that ignores the status
+    return DecodeStatus::Malformed;
+  }
   return DecodeStatus::Ok;
 }
 

@@ -364,17 +364,46 @@ TEST(Codec, EveryMalformedPayloadIsRejected) {
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Force, {0, 0, 0, 0, 0, 0, 0, 0, 2})), DecodeStatus::Malformed);
 }
 
-TEST(Codec, FailuresLeaveTheOutputUntouched) {
+TEST(Codec, ABadHeaderLeavesTheOutputUntouchedAMalformedPayloadLeavesItDefault) {
   Message out;
   out.type = MessageType::Force;
   out.force.force_mN = 12.0f;
   auto bad = frame_of(condition(ConditionKind::Heightmap));
-  bad[7] = 9;
+  bad[7] = 9;  // kind 9
   EXPECT_EQ(decode(bad.data(), bad.size(), out), DecodeStatus::BadCrc);
-  EXPECT_EQ(decode(reseal(bad).data(), bad.size(), out), DecodeStatus::Malformed);
+  EXPECT_EQ(decode(nullptr, 20, out), DecodeStatus::TooShort);
   EXPECT_EQ(out.type, MessageType::Force);
   EXPECT_FLOAT_EQ(out.force.force_mN, 12.0f);
-  EXPECT_EQ(decode(nullptr, 20, out), DecodeStatus::TooShort);
+  // Decoded in place: a bad payload is found after `out` was written, which
+  // then holds a default Message (messages.hpp: QueryStatus, force 0), never half a condition.
+  EXPECT_EQ(decode(reseal(bad).data(), bad.size(), out), DecodeStatus::Malformed);
+  EXPECT_EQ(out.type, MessageType::QueryStatus);
+  EXPECT_EQ(out.force.force_mN, 0.0f);
+  EXPECT_EQ(out.condition.kind, ConditionKind::Heightmap);
+}
+
+TEST(Codec, DecodingInPlaceKeepsNothingOfWhatTheMessageHeldBefore) {
+  Message out;
+  out.type = MessageType::Samples;
+  out.samples.count = 3;
+  out.samples.has_taken_times = true;
+  for (int i = 0; i < 3; ++i) {
+    out.samples.samples[i] = {100u + i, 1.0f, 2.0f, true};
+    out.samples.taken_us[i] = 7u + i;
+  }
+  out.condition.kind = ConditionKind::General;
+  out.condition.scene.element_count = 2;
+  // One report, no taken times: bytes count 1, flags 0, t_us 5, x 0, y 0, touch 1.
+  const auto f = frame_with_payload(MessageType::Samples, {1, 0, 5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1});
+  ASSERT_EQ(decode(f.data(), f.size(), out), DecodeStatus::Ok);
+  EXPECT_EQ(out.samples.count, 1);
+  EXPECT_FALSE(out.samples.has_taken_times);
+  EXPECT_EQ(out.samples.samples[0].t_us, 5u);
+  EXPECT_TRUE(out.samples.samples[0].touch);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(out.samples.taken_us[i], 0u) << i;  // as in a fresh Message
+  EXPECT_EQ(out.samples.samples[1].t_us, 0u);
+  EXPECT_EQ(out.condition.kind, ConditionKind::Heightmap);
+  EXPECT_EQ(out.condition.scene.element_count, 0);
 }
 
 TEST(Codec, EncodeRefusesASmallBufferAndNonFiniteNumbers) {

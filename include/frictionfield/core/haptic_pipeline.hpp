@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "frictionfield/core/amplitude_map.hpp"
+#include "frictionfield/core/condition.hpp"
 #include "frictionfield/core/sample_mailbox.hpp"
 #include "frictionfield/core/scene_plan.hpp"
 #include "frictionfield/core/tracker.hpp"
@@ -28,12 +29,6 @@ struct TickOutput {
   Vec2 direction;         // what the scene was rendered with (0,0 if unused)
   float amplitude = 0.0f; // A_s in [0, 1]; the idle amplitude without a finger
   uint16_t dac = 0;       // the code sent
-};
-
-// Everything needed to render one experiment condition.
-struct Condition {
-  SceneDefinition scene;
-  AmplitudeSettings amplitude;
 };
 
 class HapticPipeline {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "frictionfield/core/haptic_pipeline.hpp"
+#include "frictionfield/core/condition.hpp"
 
 namespace ff::host {
 

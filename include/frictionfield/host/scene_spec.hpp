@@ -4,7 +4,7 @@
 // geometry, --scene-file for general scenes, table evaluation options.
 #include <string>
 
-#include "frictionfield/core/haptic_pipeline.hpp"
+#include "frictionfield/core/condition.hpp"
 
 namespace CLI {
 class App;

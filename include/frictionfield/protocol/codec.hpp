@@ -28,7 +28,9 @@ ErrorCode error_code_for(DecodeStatus s);
 // Writes one frame; returns its size, or 0 if `capacity` is too small or a
 // number is not finite (a frame that encodes always decodes).
 size_t encode(const Message& m, uint8_t* out, size_t capacity);
-// Reads one frame of exactly `size` bytes; `out` is untouched unless Ok.
+// Reads one frame of exactly `size` bytes into `out`, in place (no second
+// Message on the stack). A bad header (TooShort .. UnknownType) leaves `out`
+// untouched; a Malformed payload leaves it a default Message.
 DecodeStatus decode(const uint8_t* in, size_t size, Message& out);
 
 uint16_t crc16_ccitt(const uint8_t* data, size_t size, uint16_t crc = 0xFFFF);

@@ -3,8 +3,12 @@
 // the USB HID host channel alike. Plain data: no heap, no pointers.
 #include <cstdint>
 
+#include "frictionfield/core/amplitude_map.hpp"
+#include "frictionfield/core/condition.hpp"
 #include "frictionfield/core/fault_counters.hpp"
-#include "frictionfield/core/haptic_pipeline.hpp"
+#include "frictionfield/core/path_curve.hpp"
+#include "frictionfield/core/scene.hpp"
+#include "frictionfield/core/sensor_sample.hpp"
 
 namespace ff::protocol {
 

@@ -1,0 +1,31 @@
+# Fails if a function whose line in the -fstack-usage output beside OBJECT
+# (x.cpp.o -> x.cpp.su) matches FUNCTIONS (a regex) has a frame of LIMIT
+# bytes or more, or if none matches. (Clang with ASan calls every frame
+# dynamic for its fake stacks: only the size is checked.)
+#   cmake -DOBJECT=... -DFUNCTIONS=regex -DLIMIT=1024 -P stack_frames.cmake
+string(REGEX REPLACE "\\.[^./]+$" ".su" su "${OBJECT}")
+if(NOT EXISTS "${su}")
+  message(FATAL_ERROR "stack_frames: ${su} is missing (built with -fstack-usage?)")
+endif()
+file(STRINGS "${su}" lines)
+set(too_deep "")
+set(checked 0)
+foreach(line IN LISTS lines)
+  # file:line:col:function<TAB>bytes<TAB>static|dynamic[,bounded]
+  if(NOT line MATCHES "${FUNCTIONS}")
+    continue()
+  endif()
+  math(EXPR checked "${checked} + 1")
+  if(line MATCHES "^(.*)\t([0-9]+)\t(.*)$")
+    if(CMAKE_MATCH_2 GREATER_EQUAL LIMIT)
+      string(APPEND too_deep "\n  ${CMAKE_MATCH_2} B (${CMAKE_MATCH_3}) ${CMAKE_MATCH_1}")
+    endif()
+  endif()
+endforeach()
+if(checked EQUAL 0)
+  message(FATAL_ERROR "stack_frames: no function in ${su} matches ${FUNCTIONS}")
+endif()
+if(too_deep)
+  message(FATAL_ERROR "stack_frames: frames of ${LIMIT} B or more:${too_deep}")
+endif()
+message(STATUS "stack_frames: ${checked} functions matching ${FUNCTIONS}, every frame under ${LIMIT} B")
