@@ -78,16 +78,16 @@ FF_FASTRUN Vec2 element_gradient(const FieldElement& e, Vec2 p) {
     case ElementKind::Tunnel: {
       const TunnelParams& t = e.tunnel;
       const float d = p.y - t.y_centre;
-      const float w = tunnel_width(t, p.x);
-      const float k = t.scale / w;
+      const float k = t.scale / tunnel_width(t, p.x);
       const float dz_dy = valley_slope(d, k);
       const bool inside = p.x > t.x_start && p.x < t.x_start + t.length;
       float dz_dx = 0.0f;
       if (inside && d != 0.0f) {
-        // h = (w/s) atan(s d / w) - d; |h| has the sign of -d.
+        // h = (w/s) atan(s d / w) - d; |h| has the sign of -d. With kd = s d / w,
+        // dh/dw = (atan(kd) - kd / (1 + kd^2)) / s, and dw/dx = (w_end - w_start) / L.
         const float kd = k * d;
-        const float dh_dw = arctan(kd) / t.scale - (d / w) / (1.0f + kd * kd);
-        dz_dx = -sign_of(d) * dh_dw * (t.width_end - t.width_start) / t.length;
+        const float dh_dw_s = arctan(kd) - kd / (1.0f + kd * kd);
+        dz_dx = -sign_of(d) * dh_dw_s * (t.width_end - t.width_start) / (t.scale * t.length);
       }
       return {dz_dx, dz_dy};
     }

@@ -13,7 +13,10 @@ FF_FASTRUN float nearest_integer(float v) {
   return static_cast<float>(static_cast<int32_t>(v + (v >= 0.0f ? 0.5f : -0.5f)));
 }
 
-FF_FASTRUN SinCos sincos_reduced(float r) {
+namespace {
+
+// Compiled into sincos_turns: a call costs about as much as the polynomials.
+inline __attribute__((always_inline)) SinCos taylor_sincos(float r) {
   // Taylor series to r^9 and r^10: at |r| = pi/4 the next terms are
   // (pi/4)^11 / 11! < 2e-9 and (pi/4)^12 / 12! < 2e-10, far below a float ulp.
   const float z = r * r;
@@ -23,10 +26,14 @@ FF_FASTRUN SinCos sincos_reduced(float r) {
   return {s, c};
 }
 
+}  // namespace
+
+FF_FASTRUN SinCos sincos_reduced(float r) { return taylor_sincos(r); }
+
 FF_FASTRUN SinCos sincos_turns(float turns) {
   const float whole = nearest_integer(turns);
   const float quarters = nearest_integer(4.0f * (turns - whole));  // -2 .. 2
-  const SinCos k = sincos_reduced(2.0f * kPi * ((turns - whole) - 0.25f * quarters));
+  const SinCos k = taylor_sincos(2.0f * kPi * ((turns - whole) - 0.25f * quarters));
   switch ((static_cast<int>(quarters) + 4) & 3) {
     case 1: return {k.cos, -k.sin};
     case 2: return {-k.sin, -k.cos};

@@ -85,17 +85,31 @@ def stack_access(ins):
     return ins.base_register == "sp"
 
 
+# Functions whose data (besides literal pools) is all in SRAM_U on the Teensy.
+# The tracker's member functions read and write only their own object and the
+# stack; the firmware's tracker is HapticPipeline's member after its two table
+# slots (haptic_pipeline.hpp: slots_ first; 96 KiB each, platformio.ini), so it
+# starts at least 192 KiB after RAM's start (0x1FFF0000, teensy3/mk66fx1m0.ld),
+# past SRAM_L's 64 KiB: on the system bus, never competing with FASTRUN's
+# instruction fetches from SRAM_L on the code bus (K66 reference manual:
+# SRAM_L on the code bus, SRAM_U on the system bus).
+SRAM_U_FUNCTIONS = ("_ZN2ff7Tracker",)
+
+
 class CodeMap:
     """Where code and data live on the Teensy: [ram_start, ram_end) is the
     FASTRUN section (zero wait states); every other instruction is in flash.
     table_functions: functions (by name prefix) whose register-based loads
-    read constant tables in flash."""
+    read constant tables in flash; sram_u_functions: functions (by name
+    prefix) whose data accesses other than literal loads go to SRAM_U."""
 
     def __init__(self, ram_start=0, ram_end=0, table_functions=("__ieee754", "__kernel", "sinf", "cosf",
-                                                                 "atan", "atan2f", "sqrtf", "expf", "logf")):
+                                                                 "atan", "atan2f", "sqrtf", "expf", "logf"),
+                 sram_u_functions=SRAM_U_FUNCTIONS):
         self.ram_start = ram_start
         self.ram_end = ram_end
         self.table_functions = tuple(table_functions)
+        self.sram_u_functions = tuple(sram_u_functions)
 
     def memory(self, ins):
         """(flash lines the instruction touches, loads a flash table, data access from SRAM_L code),
@@ -113,7 +127,9 @@ class CodeMap:
             table_load = self.reads_flash_table(ins) and ins.base in _LOAD_SINGLE | {"ldrd", "vldm", "vldmia",
                                                                                      "ldm", "ldmia"}
             data_access = ins.base in _LOAD_SINGLE | _STORE_SINGLE | _MULTIPLE | {"ldrd", "strd"}
-            cached = (tuple(lines), table_load, in_ram and data_access and not stack_access(ins))
+            data_in_sram_u = stack_access(ins) or (ins.literal is None and
+                                                   ins.function.startswith(self.sram_u_functions))
+            cached = (tuple(lines), table_load, in_ram and data_access and not data_in_sram_u)
             ins.extra[key] = cached
         return cached
 

@@ -67,6 +67,11 @@ class HandCountedBlocks(unittest.TestCase):
                  "ldmia r0, {r2, r3}")
         self.assertEqual(self.cycles(block, WORST), 14)
         self.assertEqual(self.cycles(block, BEST), 11)  # the same without the three contention cycles
+        # A function whose data is in SRAM_U (the tracker): no contention at all, except a literal load
+        # (ldr r4, [pc, #0] after ldmia: 2 + 1 literal contention (worst) + 1 SRAM_L).
+        tracker = CodeMap(0, 1 << 32, sram_u_functions=("block",))
+        self.assertEqual(self.cycles(block, WORST, tracker), 11)
+        self.assertEqual(self.cycles(block + "\nldr r4, [pc, #0]\nnop\nnop", WORST, tracker), 11 + 4 + 2)
 
     def test_branches_cost_a_refill_only_when_taken(self):
         source = "cmp r0, #0\nbeq 1f\nadds r0, #1\n1: adds r0, #2"
