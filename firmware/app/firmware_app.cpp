@@ -1,5 +1,6 @@
 #include "firmware/app/firmware_app.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
 #include "frictionfield/core/geometry.hpp"
 #include "frictionfield/core/scenes.hpp"
 #include "frictionfield/drivers/ad9834_registers.hpp"
@@ -50,7 +51,7 @@ void FirmwareApp::begin(uint32_t now_us, const DacCalibration& wiring) {
 
 // ---- the 2 kHz interrupt ----------------------------------------------------
 
-void FirmwareApp::tick(uint32_t now_us) {
+FF_FASTRUN void FirmwareApp::tick(uint32_t now_us) {
   const uint32_t start = board_.cycles();
   // Always run the pipeline, so that its clock stays continuous through a
   // stall (no leap to confirm when the loop comes back); only the output

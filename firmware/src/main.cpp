@@ -13,6 +13,7 @@
 #include "firmware/app/host_link_limits.hpp"
 #include "firmware/app/pins.hpp"
 #include "firmware/app/seremu_joiner.hpp"
+#include "frictionfield/core/fastrun.hpp"
 #include "frictionfield/core/geometry.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
 
@@ -40,7 +41,7 @@ void dac0_enable_on_internal_reference() {
   SIM_SCGC2 |= SIM_SCGC2_DAC0;
   DAC0_C0 = DAC_C0_DACEN;  // DACRFS clear: DACREF_1 = VREF_OUT, 1.2 V (analog_init enabled VREF)
 }
-void dac0_write(uint16_t code) { *(volatile dac_data_t*)&(DAC0_DAT0L) = static_cast<int16_t>(code); }
+FF_FASTRUN void dac0_write(uint16_t code) { *(volatile dac_data_t*)&(DAC0_DAT0L) = static_cast<int16_t>(code); }
 
 // ---- bus interfaces ------------------------------------------------------------
 
@@ -88,7 +89,7 @@ class TeensyDataReady final : public ff::DataReadyInput {
 };
 
 class TeensyDac final : public ff::Dac12 {
-  ff::BusStatus do_write(uint16_t code) override {
+  FF_FASTRUN ff::BusStatus do_write(uint16_t code) override {
     dac0_write(code);  // DAC0 (A21) -> AD9834 FSADJUST
     return ff::BusStatus::Ok;
   }
@@ -147,7 +148,7 @@ class TeensyBoard final : public ff::firmware::Board {
   size_t hid_tx_room() override {
     return ff::firmware::seremu_tx_room(usb_configuration, usb_tx_packet_count(SEREMU_TX_ENDPOINT));
   }
-  uint32_t cycles() override { return ARM_DWT_CYCCNT; }
+  FF_FASTRUN uint32_t cycles() override { return ARM_DWT_CYCCNT; }
   void reboot_to_bootloader() override { _reboot_Teensyduino_(); }
   void watchdog_kick() override {
     // The loop passes every few microseconds; a refresh every 100 ms is plenty
@@ -177,7 +178,9 @@ ff::firmware::FirmwareApp app({spi_bus, 0, i2c_bus, data_ready, dac, adc}, board
 IntervalTimer tick_timer;
 
 uint32_t micros_for_core() { return micros(); }
-void on_tick() {
+// The interrupt's own code in RAM too (docs/cycle-model.md): only
+// Teensyduino's pit0_isr and micros() run from flash.
+FF_FASTRUN void on_tick() {
   const uint32_t entry = ARM_DWT_CYCCNT;
   app.tick(micros());
   app.note_interrupt_cycles(ARM_DWT_CYCCNT - entry);

@@ -90,4 +90,10 @@ FF_FASTRUN float AmplitudeMap::scale(float raw) const {
   return clamp(0.5f + s * (a - 0.5f), 0.5f - 0.5f * s, 0.5f + 0.5f * s);
 }
 
+// flatten: scale() and code_for() compiled in, one call instead of three on the tick.
+FF_FASTRUN __attribute__((flatten)) AmplitudeMap::Output AmplitudeMap::output(float raw) const {
+  const float a = scale(raw);
+  return {a, dac_code(a)};
+}
+
 }  // namespace ff

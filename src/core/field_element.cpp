@@ -1,6 +1,7 @@
 #include "frictionfield/core/field_element.hpp"
 
 #include "frictionfield/core/fastrun.hpp"
+#include "frictionfield/core/tick_math.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -22,33 +23,6 @@ FF_FASTRUN float valley_slope(float u, float a) {
   const float au2 = (a * u) * (a * u);
   // Far from the path (a u)^2 overflows: the slope has saturated at 1 (inf / inf would be NaN).
   return sign_of(u) * (au2 < 1e30f ? au2 / (1.0f + au2) : 1.0f);
-}
-
-// sin and cos of 2 pi turns. The phase is reduced here, exactly (whole turns,
-// then quarter turns), to |2 pi r| <= pi/4, where newlib's sinf/cosf go
-// straight to their kernels: without it every call paid for
-// __ieee754_rem_pio2f (a third of the bump map's tick on the M4).
-struct SinCos {
-  float sin;
-  float cos;
-};
-// Nearest integer (ties away from zero) without a libm call (the FPv4 has no
-// VRINT); floats of magnitude 2^23 and more are integers already.
-FF_FASTRUN float nearest_integer(float v) {
-  if (!(std::fabs(v) < 8388608.0f)) return v;
-  return static_cast<float>(static_cast<int32_t>(v + (v >= 0.0f ? 0.5f : -0.5f)));
-}
-FF_FASTRUN SinCos sincos_turns(float turns) {
-  const float whole = nearest_integer(turns);
-  const float quarters = nearest_integer(4.0f * (turns - whole));  // -2 .. 2
-  const float r = 2.0f * kPi * ((turns - whole) - 0.25f * quarters);
-  const float s = std::sin(r), c = std::cos(r);
-  switch ((static_cast<int>(quarters) + 4) & 3) {
-    case 1: return {c, -s};
-    case 2: return {-s, -c};
-    case 3: return {-c, s};
-    default: return {s, c};
-  }
 }
 
 float valley_height(float u, float a) { return std::fabs(std::atan(a * u) / a - u); }
@@ -104,16 +78,16 @@ FF_FASTRUN Vec2 element_gradient(const FieldElement& e, Vec2 p) {
     case ElementKind::Tunnel: {
       const TunnelParams& t = e.tunnel;
       const float d = p.y - t.y_centre;
-      const float w = tunnel_width(t, p.x);
-      const float k = t.scale / w;
+      const float k = t.scale / tunnel_width(t, p.x);
       const float dz_dy = valley_slope(d, k);
       const bool inside = p.x > t.x_start && p.x < t.x_start + t.length;
       float dz_dx = 0.0f;
       if (inside && d != 0.0f) {
-        // h = (w/s) atan(s d / w) - d; |h| has the sign of -d.
+        // h = (w/s) atan(s d / w) - d; |h| has the sign of -d. With kd = s d / w,
+        // dh/dw = (atan(kd) - kd / (1 + kd^2)) / s, and dw/dx = (w_end - w_start) / L.
         const float kd = k * d;
-        const float dh_dw = std::atan(kd) / t.scale - (d / w) / (1.0f + kd * kd);
-        dz_dx = -sign_of(d) * dh_dw * (t.width_end - t.width_start) / t.length;
+        const float dh_dw_s = arctan(kd) - kd / (1.0f + kd * kd);
+        dz_dx = -sign_of(d) * dh_dw_s * (t.width_end - t.width_start) / (t.scale * t.length);
       }
       return {dz_dx, dz_dy};
     }

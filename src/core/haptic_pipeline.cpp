@@ -43,9 +43,11 @@ FF_FASTRUN TickOutput HapticPipeline::tick(uint32_t now_us) {
   const Needs needs = slot.plan.needs();
   const bool track_motion = needs != Needs::Nothing;
 
+  // At most one report per tick keeps the tick's work bounded: a burst (the
+  // main loop stalled) is taken in order over the next ticks, none is lost.
   SensorSample s;
-  while (mailbox_.take(s)) tracker_.on_sample(s, track_motion);
-  const TrackState track = tracker_.on_tick(now_us, track_motion);
+  if (mailbox_.take(s)) tracker_.on_sample(s, track_motion);
+  const TrackState& track = tracker_.on_tick(now_us, track_motion);
 
   TickOutput out;
   out.t_us = now_us;
@@ -62,8 +64,9 @@ FF_FASTRUN TickOutput HapticPipeline::tick(uint32_t now_us) {
     return out;
   }
   if (needs == Needs::PositionAndDirection) out.direction = track.direction;
-  out.amplitude = slot.map.scale(slot.plan.amplitude(track.position, out.direction));
-  out.dac = slot.map.dac_code(out.amplitude);
+  const AmplitudeMap::Output o = slot.map.output(slot.plan.amplitude(track.position, out.direction));
+  out.amplitude = o.amplitude;
+  out.dac = o.dac;
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "frictionfield/core/path_curve.hpp"
 
 #include "frictionfield/core/fastrun.hpp"
+#include "frictionfield/core/tick_math.hpp"
 
 #include <cmath>
 
@@ -10,16 +11,16 @@ FF_FASTRUN CurvePoint PathCurve::at(float x) const {
   switch (kind) {
     case CurveKind::Cubic: {
       // y = -2T/L^3 s^3 + 3T/L^2 s^2 + y0 on s in [0, L]; flat outside.
-      const float s = clamp(x - x0, 0.0f, length);
-      const float t = s / length;
+      const float per_px = 1.0f / length;  // one division
+      const float t = clamp(x - x0, 0.0f, length) * per_px;
       const float y = y0 + rise * t * t * (3.0f - 2.0f * t);
-      const float slope = 6.0f * rise / length * t * (1.0f - t);
+      const float slope = 6.0f * rise * per_px * t * (1.0f - t);
       return {y, slope};
     }
     case CurveKind::Sine: {
-      const float k = 2.0f * kPi / wavelength;
-      const float phase = k * (x - x0);
-      return {y0 + amplitude * std::sin(phase), amplitude * k * std::cos(phase)};
+      const float per_px = 1.0f / wavelength;  // turns per pixel
+      const SinCos sc = sincos_turns((x - x0) * per_px);
+      return {y0 + amplitude * sc.sin, amplitude * (2.0f * kPi * per_px) * sc.cos};
     }
     case CurveKind::Polyline: {
       if (count == 0) return {0.0f, 0.0f};

@@ -19,6 +19,10 @@ FF_FASTRUN float smoothstep(float t) {
   return t * t * (3.0f - 2.0f * t);
 }
 
+// Helpers of on_sample and on_tick, compiled into them: a call and its
+// register saves cost more than the arithmetic on the M4 (docs/cycle-model.md).
+#define FF_TICK_INLINE inline __attribute__((always_inline))
+
 constexpr float kInitialSpeedSigmaPxS = 1000.0f;  // touch-down: velocity unknown
 constexpr float kMinSpeedPxS = 1e-6f;             // below this the direction is undefined
 
@@ -47,30 +51,33 @@ TrackerConfig TrackerConfig::thesis() {
 
 TrackerConfig TrackerConfig::recommended() { return TrackerConfig{}; }
 
-void Tracker::KalmanAxis::start(float z, float r) {
+void Tracker::KalmanPair::start(Vec2 z, float r) {
   p = z;
-  v = 0.0f;
+  v = {};
   P00 = r;
   P01 = 0.0f;
   P11 = kInitialSpeedSigmaPxS * kInitialSpeedSigmaPxS;
 }
 
-FF_FASTRUN void Tracker::KalmanAxis::predict(float dt, float q) {
+FF_TICK_INLINE void Tracker::KalmanPair::predict(float dt, float q) {
   // Constant velocity driven by white acceleration of spectral density q.
-  p += v * dt;
+  p.x += v.x * dt;
+  p.y += v.y * dt;
   const float dt2 = dt * dt;
   P00 += dt * (2.0f * P01 + dt * P11) + q * dt2 * dt * (1.0f / 3.0f);
   P01 += dt * P11 + q * dt2 * 0.5f;
   P11 += q * dt;
 }
 
-FF_FASTRUN void Tracker::KalmanAxis::update(float z, float r) {
-  const float s = P00 + r;
-  const float k0 = P00 / s;
-  const float k1 = P01 / s;
-  const float innovation = z - p;
-  p += k0 * innovation;
-  v += k1 * innovation;
+FF_TICK_INLINE void Tracker::KalmanPair::update(Vec2 z, float r) {
+  const float inverse_s = 1.0f / (P00 + r);  // the one division per report and filter
+  const float k0 = P00 * inverse_s;
+  const float k1 = P01 * inverse_s;
+  const Vec2 innovation = z - p;
+  p.x += k0 * innovation.x;
+  p.y += k0 * innovation.y;
+  v.x += k1 * innovation.x;
+  v.y += k1 * innovation.y;
   P11 -= k1 * P01;
   P01 *= 1.0f - k0;
   P00 *= 1.0f - k0;
@@ -84,6 +91,12 @@ void Tracker::configure(const TrackerConfig& config) {
   euro.rate_hz = 1e6f / static_cast<float>(kTickPeriodUs);
   filter_x_.configure(euro);
   filter_y_.configure(euro);
+  direction_q_ = config.kalman.accel_noise_px_s2 * config.kalman.accel_noise_px_s2;
+  direction_r_ = config.kalman.measurement_noise_px * config.kalman.measurement_noise_px;
+  position_q_ = config.position_kalman.accel_noise_px_s2 * config.position_kalman.accel_noise_px_s2;
+  position_r_ = config.position_kalman.measurement_noise_px * config.position_kalman.measurement_noise_px;
+  const float span = config.moving_speed_px_s - config.rest_speed_px_s;
+  inverse_fade_span_ = span > 0.0f ? 1.0f / span : 0.0f;
   reset();
 }
 
@@ -99,10 +112,8 @@ void Tracker::reset() {
   have_pending_jump_ = false;
   lifting_ = false;
   stale_reported_ = false;
-  direction_x_ = KalmanAxis{};
-  direction_y_ = KalmanAxis{};
-  position_x_ = KalmanAxis{};
-  position_y_ = KalmanAxis{};
+  direction_ = KalmanPair{};
+  position_ = KalmanPair{};
   have_tick_ = false;
   have_tick_candidate_ = false;
   filters_fresh_ = false;
@@ -120,7 +131,7 @@ FF_FASTRUN void Tracker::lose_finger() {
 
 FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   // No history survives a touch-down or a confirmed jump: no velocity spike.
-  last_ = s;
+  copy_sample(last_, s);
   have_last_ = true;
   have_velocity_ = false;
   raw_velocity_ = {};
@@ -130,48 +141,39 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   stale_reported_ = false;
   filter_x_.reset();
   filter_y_.reset();
-  const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
-  direction_x_.start(s.x, r);
-  direction_y_.start(s.y, r);
-  const float rp = config_.position_kalman.measurement_noise_px * config_.position_kalman.measurement_noise_px;
-  position_x_.start(s.x, rp);
-  position_y_.start(s.y, rp);
+  direction_.start({s.x, s.y}, direction_r_);
+  position_.start({s.x, s.y}, position_r_);
   filters_fresh_ = false;
 }
 
-FF_FASTRUN bool Tracker::is_jump(const SensorSample& s) const {
-  const float dt_s = static_cast<float>(elapsed_us(s.t_us, last_.t_us)) * 1e-6f;
+FF_TICK_INLINE bool Tracker::moved_further_than_allowed(const SensorSample& s, const SensorSample& from) const {
+  const float dt_s = static_cast<float>(elapsed_us(s.t_us, from.t_us)) * 1e-6f;
   const float allowed = config_.max_speed_px_s * dt_s + config_.jump_slack_px;
-  return length(Vec2{s.x, s.y} - Vec2{last_.x, last_.y}) > allowed;
+  // Squared, without a square root: both sides are >= 0 (allowed may be infinite).
+  const Vec2 d = Vec2{s.x, s.y} - Vec2{from.x, from.y};
+  return dot(d, d) > allowed * allowed;
 }
 
-FF_FASTRUN void Tracker::accept(const SensorSample& s, bool need_filter) {
+FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   const int32_t dt_us = elapsed_us(s.t_us, last_.t_us);
-  const float inv_dt = 1.0f / static_cast<float>(dt_us);
-  raw_velocity_ = {(s.x - last_.x) * inv_dt, (s.y - last_.y) * inv_dt};
+  const bool kalman = config_.estimator == Estimator::Kalman || config_.estimator == Estimator::SplitKalman;
+  if (!kalman) {  // the 1-euro estimators extrapolate with the raw velocity; the Kalman filters never read it
+    const float inv_dt = 1.0f / static_cast<float>(dt_us);
+    raw_velocity_ = {(s.x - last_.x) * inv_dt, (s.y - last_.y) * inv_dt};
+  }
   have_velocity_ = true;
-  last_ = s;
+  copy_sample(last_, s);
   ticks_since_sample_ = 0;
   lifting_ = false;
   stale_reported_ = false;
-  const bool kalman = config_.estimator == Estimator::Kalman || config_.estimator == Estimator::SplitKalman;
   if (!need_filter) filters_fresh_ = true;  // restart from this report when motion matters again
   if (!need_filter || !kalman) return;      // the 1-euro estimators filter at the tick
   const float dt_s = static_cast<float>(dt_us) * 1e-6f;
-  const float q = config_.kalman.accel_noise_px_s2 * config_.kalman.accel_noise_px_s2;
-  const float r = config_.kalman.measurement_noise_px * config_.kalman.measurement_noise_px;
-  direction_x_.predict(dt_s, q);
-  direction_y_.predict(dt_s, q);
-  direction_x_.update(s.x, r);
-  direction_y_.update(s.y, r);
+  direction_.predict(dt_s, direction_q_);
+  direction_.update({s.x, s.y}, direction_r_);
   if (config_.estimator == Estimator::SplitKalman) {
-    const KalmanConfig& pk = config_.position_kalman;
-    const float qp = pk.accel_noise_px_s2 * pk.accel_noise_px_s2;
-    const float rp = pk.measurement_noise_px * pk.measurement_noise_px;
-    position_x_.predict(dt_s, qp);
-    position_y_.predict(dt_s, qp);
-    position_x_.update(s.x, rp);
-    position_y_.update(s.y, rp);
+    position_.predict(dt_s, position_q_);
+    position_.update({s.x, s.y}, position_r_);
   }
 }
 
@@ -192,9 +194,11 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
     faults_.add(Fault::OffScreen);
     return;
   }
-  SensorSample s = in;  // within the margin: clamped onto the screen
-  s.x = clamp(s.x, 0.0f, kScreenMaxX);
-  s.y = clamp(s.y, 0.0f, kScreenMaxY);
+  SensorSample s;  // within the margin: clamped onto the screen
+  s.t_us = in.t_us;
+  s.x = clamp(in.x, 0.0f, kScreenMaxX);
+  s.y = clamp(in.y, 0.0f, kScreenMaxY);
+  s.touch = true;
 
   if (have_tick_) {
     // Judge the stamp by the tick clock (the same micros() on the device): a
@@ -215,18 +219,16 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
     faults_.add(Fault::NonIncreasingTime);
     return;
   }
-  if (is_jump(s)) {
+  if (moved_further_than_allowed(s, last_)) {
     if (have_pending_jump_ && elapsed_us(s.t_us, pending_jump_.t_us) > 0) {
-      const float dt_s = static_cast<float>(elapsed_us(s.t_us, pending_jump_.t_us)) * 1e-6f;
-      const float allowed = config_.max_speed_px_s * dt_s + config_.jump_slack_px;
-      if (length(Vec2{s.x, s.y} - Vec2{pending_jump_.x, pending_jump_.y}) <= allowed) {
+      if (!moved_further_than_allowed(s, pending_jump_)) {
         faults_.add(Fault::JumpConfirmed);  // the finger really is there now
         restart_at(s);
         return;
       }
       faults_.add(Fault::JumpRejected);  // the previous candidate was a glitch
     }
-    pending_jump_ = s;
+    copy_sample(pending_jump_, s);
     have_pending_jump_ = true;
     return;
   }
@@ -237,7 +239,7 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   accept(s, need_filter);
 }
 
-FF_FASTRUN uint32_t Tracker::extrapolation_us(uint32_t now_us) {
+FF_TICK_INLINE uint32_t Tracker::extrapolation_us(uint32_t now_us) {
   const int32_t since = elapsed_us(now_us, last_.t_us);
   const uint32_t dt = since > 0 ? static_cast<uint32_t>(since) : 0u;
   if (dt > config_.max_extrapolation_us) {
@@ -248,7 +250,7 @@ FF_FASTRUN uint32_t Tracker::extrapolation_us(uint32_t now_us) {
   return dt;
 }
 
-FF_FASTRUN Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
+FF_TICK_INLINE Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
   switch (config_.estimator) {
     case Estimator::ThesisTicks:
     case Estimator::TimedExtrapolation: {
@@ -268,19 +270,19 @@ FF_FASTRUN Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
     }
     case Estimator::Kalman: {
       const float dt_s = static_cast<float>(extrapolation_us(now_us)) * 1e-6f;
-      velocity = {direction_x_.v, direction_y_.v};
-      return {direction_x_.p + direction_x_.v * dt_s, direction_y_.p + direction_y_.v * dt_s};
+      velocity = direction_.v;
+      return {direction_.p.x + direction_.v.x * dt_s, direction_.p.y + direction_.v.y * dt_s};
     }
     case Estimator::SplitKalman: {
       const float dt_s = static_cast<float>(extrapolation_us(now_us)) * 1e-6f;
-      velocity = {direction_x_.v, direction_y_.v};  // smooth: the direction
-      return {position_x_.p + position_x_.v * dt_s, position_y_.p + position_y_.v * dt_s};  // fast: the position
+      velocity = direction_.v;  // smooth: the direction
+      return {position_.p.x + position_.v.x * dt_s, position_.p.y + position_.v.y * dt_s};  // fast: the position
     }
   }
   return {last_.x, last_.y};
 }
 
-FF_FASTRUN Vec2 Tracker::faded_direction(Vec2 v) const {
+FF_TICK_INLINE Vec2 Tracker::faded_direction(Vec2 v) const {
   // Normalise by the larger component first: squares of tiny (subnormal)
   // speeds lose precision, and v / |v| must stay unit length.
   const float ax = std::fabs(v.x), ay = std::fabs(v.y);
@@ -291,12 +293,12 @@ FF_FASTRUN Vec2 Tracker::faded_direction(Vec2 v) const {
   const float speed = m * len;
   float gain = 1.0f;
   const float lo = config_.rest_speed_px_s, hi = config_.moving_speed_px_s;
-  if (hi > lo) gain = smoothstep((speed - lo) / (hi - lo));
+  if (hi > lo) gain = smoothstep((speed - lo) * inverse_fade_span_);
   else if (hi > 0.0f && speed < hi) gain = 0.0f;
   return (gain / len) * u;
 }
 
-FF_FASTRUN TrackState Tracker::on_tick(uint32_t now_us, bool need_filter) {
+FF_FASTRUN const TrackState& Tracker::on_tick(uint32_t now_us, bool need_filter) {
   if (have_tick_) {
     const int32_t step = elapsed_us(now_us, last_tick_us_);
     if (step <= 0 || step > static_cast<int32_t>(config_.max_tick_step_us)) {
@@ -348,7 +350,8 @@ FF_FASTRUN TrackState Tracker::on_tick(uint32_t now_us, bool need_filter) {
     return state_;
   }
   if (filters_fresh_) {
-    const SensorSample keep = last_;
+    SensorSample keep;
+    copy_sample(keep, last_);
     const Vec2 v = raw_velocity_;
     const bool had_v = have_velocity_;
     restart_at(keep);

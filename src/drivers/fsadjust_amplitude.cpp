@@ -1,5 +1,7 @@
 #include "frictionfield/drivers/fsadjust_amplitude.hpp"
 
+#include "frictionfield/core/fastrun.hpp"
+
 namespace ff {
 
 FsAdjustAmplitude::FsAdjustAmplitude(Dac12& dac, const DacCalibration& calibration)
@@ -12,7 +14,7 @@ FsAdjustAmplitude::FsAdjustAmplitude(Dac12& dac, const DacCalibration& calibrati
 
 BusStatus FsAdjustAmplitude::set_amplitude(float amplitude) { return write_code(calibration_.code_for(amplitude)); }
 
-BusStatus FsAdjustAmplitude::write_code(uint16_t code) {
+FF_FASTRUN BusStatus FsAdjustAmplitude::write_code(uint16_t code) {
   const BusStatus s = dac_.write(code);
   if (s == BusStatus::Ok) {
     last_code_ = code;

@@ -117,8 +117,9 @@ ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const Ti
     summary.amplitude_max = std::max(summary.amplitude_max, out.amplitude);
     amplitude_sum += static_cast<double>(out.amplitude);
     if (sink) sink(now, out);
-    // The tick at or after the last sample, then the extra ticks.
-    if (!more && now >= last_due) {
+    // The tick at or after the last sample and every report taken (a tick
+    // takes one at most), then the extra ticks.
+    if (!more && now >= last_due && pipeline.samples_taken() == pipeline.samples_posted()) {
       if (extra_left == 0) break;
       --extra_left;
     }

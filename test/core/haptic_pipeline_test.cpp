@@ -155,6 +155,26 @@ TEST(HapticPipeline, MailboxOverflowIsCounted) {
   EXPECT_TRUE(p->post_sample({2000, 100, 100, true}));
 }
 
+TEST(HapticPipeline, ABurstOfReportsIsTakenOnePerTickInOrder) {
+  // Bounded work per tick: three reports waiting at one tick are taken by
+  // that tick and the next two, oldest first. The neutral scene renders the
+  // last taken report's position, so each tick shows which one it took.
+  auto p = std::make_unique<HapticPipeline>();
+  const float xs[] = {100.0f, 101.0f, 102.5f};
+  for (uint32_t i = 0; i < 3; ++i) ASSERT_TRUE(p->post_sample({1000 + i * 100u, xs[i], 240.0f, true}));
+  for (uint32_t k = 0; k < 3; ++k) {
+    const TickOutput t = p->tick(1500 + k * kTickPeriodUs);
+    EXPECT_EQ(p->samples_taken(), k + 1);
+    ASSERT_TRUE(t.present);
+    EXPECT_EQ(t.position.x, xs[k]);
+  }
+  const TickOutput idle = p->tick(1500 + 3 * kTickPeriodUs);  // nothing left: the last report stays
+  EXPECT_EQ(p->samples_taken(), 3u);
+  EXPECT_EQ(idle.position.x, xs[2]);
+  EXPECT_EQ(p->faults().total(), 1u);  // the touch-down; no report was dropped
+  EXPECT_EQ(p->faults()[Fault::TouchDown], 1u);
+}
+
 TEST(HapticPipeline, BadStrengthIsCountedAndRepaired) {
   auto p = std::make_unique<HapticPipeline>();
   ASSERT_EQ(p->set_condition(condition(scenes::heightmap(Target::Top), NAN)), PrepareStatus::Ok);

@@ -181,6 +181,21 @@ TEST(Tracker, SingleJumpIsRejectedAConfirmedOneRestarts) {
   EXPECT_NEAR(static_cast<double>(states.back().position.x), 600.0, 1e-3);
 }
 
+TEST(Tracker, AMoveExactlyAtTheSpeedLimitIsNoJump) {
+  // recommended(): 5000 px/s + 25 px slack; 1 ms later a report may be
+  // 5 + 25 = 30 px away. (18, 24) is exactly 30 px: accepted. From there,
+  // (18, 24.1) is 30.08 px: a jump candidate, the position stays.
+  Tracker t(TrackerConfig::recommended());
+  t.on_sample({0, 100.0f, 240.0f, true}, false);
+  t.on_sample({1000, 118.0f, 264.0f, true}, false);
+  EXPECT_EQ(t.on_tick(1000, false).position.x, 118.0f);
+  t.on_sample({2000, 136.0f, 288.1f, true}, false);
+  EXPECT_EQ(t.on_tick(2000, false).position.y, 264.0f);
+  EXPECT_EQ(t.faults()[Fault::JumpConfirmed], 0u);
+  t.on_sample({3000, 118.0f, 264.0f, true}, false);  // back on the old track: the candidate was a glitch
+  EXPECT_EQ(t.faults()[Fault::JumpRejected], 1u);
+}
+
 TEST(Tracker, BadSamplesAreDroppedAndCounted) {
   TrackerRun run(TrackerConfig::recommended());
   auto s = line(0, {100, 240}, {200, 0}, 40);

@@ -20,12 +20,15 @@ TEST(Replay, TicksFromTheFirstSampleAndDeliversSamplesOnTime) {
   const std::vector<TraceRow> rows = {{1000, 10, 10, true}, {1600, 20, 10, true}, {2000, 30, 10, true}};
   std::vector<std::pair<uint64_t, float>> seen;
   const ReplaySummary s = replay(rows, *p, [&](uint64_t t, const TickOutput& o) { seen.push_back({t, o.position.x}); });
-  ASSERT_EQ(seen.size(), 3u);
+  ASSERT_EQ(seen.size(), 4u);
   EXPECT_EQ(seen[0], (std::pair<uint64_t, float>{1000, 10.0f}));
   EXPECT_EQ(seen[1], (std::pair<uint64_t, float>{1500, 10.0f}));  // 1600 is not due yet
-  EXPECT_EQ(seen[2], (std::pair<uint64_t, float>{2000, 30.0f}));  // both 1600 and 2000 are
+  // Both 1600 and 2000 are due; a tick takes one report, the oldest, and the
+  // replay ticks on until the mailbox is empty.
+  EXPECT_EQ(seen[2], (std::pair<uint64_t, float>{2000, 20.0f}));
+  EXPECT_EQ(seen[3], (std::pair<uint64_t, float>{2500, 30.0f}));
   EXPECT_EQ(s.samples, 3u);
-  EXPECT_EQ(s.ticks, 3u);
+  EXPECT_EQ(s.ticks, 4u);
   EXPECT_FLOAT_EQ(s.amplitude_max, 0.5f);
 }
 

@@ -451,7 +451,7 @@ def cycles_section(cycles, accuracy):
     w("")
     w("Events, worst instructions / worst-case cycles of the tick (without the interrupt):")
     w("")
-    events = ("swap", "mailbox-full", "lift-off", "no-finger", "touch-down")
+    events = ("swap", "mailbox-full", "mailbox-drain", "lift-off", "no-finger", "touch-down")
     w("| scene | " + " | ".join(events) + " |")
     w("|---|" + "---|" * len(events))
     for c in cycles:
@@ -460,7 +460,9 @@ def cycles_section(cycles, accuracy):
             for e in events)))
     w("")
     w("*swap*: the first tick after `set_condition` switched scenes (finger down); *mailbox-full*: eight "
-      "reports taken in one tick (the main loop stalled 40 ms); *lift-off*: the tick that takes the lift "
+      "reports waiting at one tick (the main loop stalled), each with its own stamp, all accepted; the tick "
+      "takes one report at most, so the burst is taken in order by that tick and the seven *mailbox-drain* "
+      "ticks after it; *lift-off*: the tick that takes the lift "
       "report; *no-finger*: the four ticks after it; *touch-down*: the tick that takes the first report. "
       "A tick during preparation runs the same code as any other; what preparation changes is the "
       "cache, which the worst case already assumes cold.")

@@ -7,7 +7,9 @@ block (-singlestep -d exec,nochain, -icount shift=0: deterministic), streams
 the execution log through a pipe, and costs each call from its entry to its
 return with tools/cyclemodel/model.py under the best and the worst
 assumptions. Writes calls.csv (one row per call) and cycles.csv (per scene:
-percentiles of the stroke's ticks, the worst tick, the events, preparation).
+percentiles of the stroke's ticks, the worst tick, the events, preparation);
+with --breakdown also breakdown.csv: the worst case of each scene's event
+ticks and of its worst stroke tick, split by function.
 
 Exit codes: 0 ok, 1 the harness failed or a check failed, 2 bad usage/input.
 """
@@ -29,7 +31,7 @@ from exec_log import executed_addresses, measure_calls  # noqa: E402
 
 TICK_SYMBOL = "_ZN2ff14HapticPipeline4tickEm"
 PREPARE_SYMBOL = "_ZN2ff14HapticPipeline13set_conditionERKNS_9ConditionE"
-EVENTS = ("swap", "mailbox-full", "lift-off", "no-finger", "touch-down", "after-touch-down")
+EVENTS = ("swap", "mailbox-full", "mailbox-drain", "lift-off", "no-finger", "touch-down", "after-touch-down")
 
 
 class UsageError(Exception):
@@ -52,7 +54,7 @@ def run_qemu(elf, mode, log_path, semihosting_path, timeout):
     return subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
 
 
-def trace_calls(elf, mode, timeout=1800):
+def trace_calls(elf, mode, timeout=1800, by_function=False):
     """(calls, harness lines): the costed calls and the harness's own output."""
     instructions = disassemble(elf)
     table = symbols(elf)
@@ -71,7 +73,8 @@ def trace_calls(elf, mode, timeout=1800):
         timer.start()
         try:
             with open(fifo, "r", buffering=1 << 20) as log:
-                calls = list(measure_calls(executed_addresses(log), instructions, entries, code_map))
+                calls = list(measure_calls(executed_addresses(log), instructions, entries, code_map,
+                                           by_function))
             qemu.wait()
         finally:
             timer.cancel()
@@ -94,8 +97,42 @@ def label_calls(calls, harness):
             raise RuntimeError(f"trace order differs from the harness's: {call.function} where {kind} was announced")
         rows.append({"kind": kind, "scene": scene, "index": int(index), "function": call.function,
                      "instructions": call.instructions, "cycles_best": call.best, "cycles_worst": call.worst,
-                     "flash_lines": call.flash_lines})
+                     "flash_lines": call.flash_lines, "functions": call.functions})
     return rows
+
+
+def demangle(names):
+    """Readable C++ names (c++filt), in the same order."""
+    try:
+        result = subprocess.run(["arm-none-eabi-c++filt"], input="\n".join(names), capture_output=True,
+                                text=True, check=True)
+        readable = result.stdout.splitlines()
+        return readable if len(readable) == len(names) else list(names)
+    except (OSError, subprocess.CalledProcessError):
+        return list(names)
+
+
+def breakdown(rows):
+    """Per scene, its event ticks and its worst stroke tick split by function
+    (worst assumptions), most expensive function first."""
+    picked = []
+    for scene in dict.fromkeys(r["scene"] for r in rows if r["kind"] not in ("warm-up", "prepare")):
+        mine = [r for r in rows if r["scene"] == scene and r["function"] == "tick"]
+        stroke = [r for r in mine if r["kind"] == "stroke"]
+        picked += [r for r in mine if r["kind"] not in ("stroke", "after-touch-down")]
+        if stroke:
+            picked.append(max(stroke, key=lambda r: r["cycles_worst"]))
+    names = sorted({f for r in picked for f in (r["functions"] or {})})
+    readable = dict(zip(names, demangle(names)))
+    out = []
+    for r in picked:
+        for function, (instructions, cycles, misses) in sorted((r["functions"] or {}).items(),
+                                                               key=lambda item: -item[1][1]):
+            out.append({"scene": r["scene"], "kind": r["kind"], "index": r["index"],
+                        "function": readable[function], "instructions": instructions,
+                        "cycles_worst": cycles, "flash_misses_worst": misses,
+                        "tick_cycles_worst": r["cycles_worst"]})
+    return out
 
 
 def summarise(rows):
@@ -163,16 +200,23 @@ def main(argv=None):
     parser.add_argument("--smoke", action="store_true", help="one scene, a short stroke (scripts/m4-smoke)")
     parser.add_argument("--timeout", type=float, default=1800, help="seconds before qemu is stopped")
     parser.add_argument("--metadata", default="", help="text for the CSV files' first line")
+    parser.add_argument("--breakdown", action="store_true",
+                        help="also write breakdown.csv: event ticks and each scene's worst stroke tick by function")
     args = parser.parse_args(argv)
     try:
         if not os.path.isfile(args.elf):
             raise UsageError(f"{args.elf} does not exist (cmake --build --preset cortex-m4)")
-        calls, harness, code_map = trace_calls(args.elf, "trace smoke" if args.smoke else "trace", args.timeout)
+        calls, harness, code_map = trace_calls(args.elf, "trace smoke" if args.smoke else "trace", args.timeout,
+                                               args.breakdown)
         rows = label_calls(calls, harness)
         summary = summarise(rows)
         os.makedirs(args.out, exist_ok=True)
         metadata = (f"ff-cyclemodel {os.path.basename(args.elf)}; FASTRUN 0x{code_map.ram_start:x}-"
                     f"0x{code_map.ram_end:x}; {args.metadata}")
+        if args.breakdown:
+            write_csv(os.path.join(args.out, "breakdown.csv"), breakdown(rows), metadata)
+        for row in rows:
+            del row["functions"]
         write_csv(os.path.join(args.out, "calls.csv"), rows, metadata)
         write_csv(os.path.join(args.out, "cycles.csv"), summary, metadata)
         print_summary(summary)

@@ -13,6 +13,7 @@ class CallResult:
     best: int
     worst: int
     flash_lines: int
+    functions: dict | None = None  # function -> [instructions, worst cycles, worst flash misses]
 
 
 def executed_addresses(lines):
@@ -26,10 +27,11 @@ def executed_addresses(lines):
         yield int(line[bracket + 10:bracket + 18], 16)
 
 
-def measure_calls(addresses, instructions, entries, code_map):
+def measure_calls(addresses, instructions, entries, code_map, by_function=False):
     """Yields a CallResult per call of the functions in entries (address ->
     name), in execution order. The return address is the one the most recent
-    BL/BLX left (a wrapper's tail call keeps its caller's)."""
+    BL/BLX left (a wrapper's tail call keeps its caller's). by_function: also
+    split the worst case by the function each instruction belongs to."""
     last_return = None
     active = None  # (name, return address, best, worst)
     previous = None
@@ -39,7 +41,8 @@ def measure_calls(addresses, instructions, entries, code_map):
             best.add(previous, address)
             worst.add(previous, address)
             if address == return_address:
-                yield CallResult(name, best.instructions, best.total(), worst.total(), len(worst.flash_lines))
+                yield CallResult(name, best.instructions, best.total(), worst.total(), len(worst.flash_lines),
+                                 worst.functions)
                 active = None
         ins = instructions.get(address)
         if ins is None:
@@ -47,7 +50,7 @@ def measure_calls(addresses, instructions, entries, code_map):
         if active is None and address in entries:
             if last_return is None:
                 raise ValueError(f"{entries[address]} entered without a call")
-            active = (entries[address], last_return, CallCost(BEST, code_map), CallCost(WORST, code_map))
+            active = (entries[address], last_return, CallCost(BEST, code_map), CallCost(WORST, code_map, by_function))
         if ins.base in ("bl", "blx"):
             last_return = address + ins.size
         previous = ins

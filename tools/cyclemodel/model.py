@@ -29,7 +29,7 @@ class Assumptions:
     cold_code_cache: bool    # every flash line a call touches misses once (main loop evicted it)
     flash_miss: int          # core cycles of a flash read that misses: 7..13
     table_load_misses: bool  # loads of constant tables by code in flash (libm) miss every time
-    sram_l_contention: int   # per data access by code running from SRAM_L (FASTRUN): 0..1
+    sram_l_contention: int   # per data access by code running from SRAM_L (FASTRUN), stack excepted: 0..1
 
 
 BEST = Assumptions("best", refill=1, store_register_offset=1, multiply_accumulate=1, divide=2,
@@ -41,19 +41,26 @@ WORST = Assumptions("worst", refill=3, store_register_offset=2, multiply_accumul
 
 # The IntervalTimer interrupt around FirmwareApp::tick -> HapticPipeline::tick,
 # estimated from the code (Teensyduino teensy3/IntervalTimer.cpp pit0_isr,
-# pins_teensy.c micros(), analog.c analogWriteDAC0; firmware/src/main.cpp;
+# pins_teensy.c micros(), mk20dx128.c ResetHandler; firmware/src/main.cpp;
 # firmware/app/firmware_app.cpp): not traced. Peripheral accesses cross the
 # 60 MHz bus (3 core cycles each and more through the bridge).
 ISR_WRAPPER = (
     # (piece, best, worst)
-    ("exception entry: 8 words stacked, vector fetch (worst: the vector misses flash)", 12, 12 + 13),
+    # ResetHandler copies the vectors to _VectorsRam and points SCB_VTOR there:
+    # the vector fetch never waits for flash (worst: one SRAM_L contention cycle).
+    ("exception entry: 8 words stacked, vector fetch from the RAM vector table", 12, 12 + 1),
     ("lazy FP stacking at the tick's first FP instruction (worst: interrupted code had FP state)", 0, 18),
     ("exception return (worst: FP context restored too)", 10, 10 + 18),
     ("pit0_isr: clear PIT_TFLG0 (bus write), indirect call", 8, 14),
     ("on_tick: micros() (SysTick and ICSR reads, interrupts masked, division by 180)", 20, 40),
     ("FirmwareApp::tick around the pipeline: two DWT reads, heartbeat, atomics, stream ring, statistics", 35, 70),
-    ("DAC write: Dac12::write -> analogWrite(A21) -> analogWriteDAC0 (three bus accesses)", 30, 60),
-    ("flash misses of the wrapper's code (about 12 lines, worst: all evicted)", 0, 12 * 13),
+    ("DAC write: FsAdjustAmplitude::write_code -> Dac12::write -> TeensyDac::do_write (one 16-bit store "
+     "to DAC0_DAT0L)", 20, 40),
+    # on_tick, FirmwareApp::tick, the DAC write and TeensyBoard::cycles are
+    # FF_FASTRUN: only Teensyduino's pit0_isr (~20 bytes with its literals)
+    # and micros() (~70 bytes) stay in flash.
+    ("flash misses of the wrapper's code in flash (pit0_isr and micros(): about 8 lines, worst: all evicted)",
+     0, 8 * 13),
 )
 ISR_BEST = sum(best for _, best, _ in ISR_WRAPPER)
 ISR_WORST = sum(worst for _, _, worst in ISR_WRAPPER)
@@ -66,17 +73,43 @@ _BRANCH = {"b", "bl", "blx", "bx", "cbz", "cbnz"}
 _FP_MAC = {"vmla", "vmls", "vnmla", "vnmls", "vfma", "vfms", "vfnma", "vfnms"}
 
 
+def stack_access(ins):
+    """PUSH/POP/VPUSH/VPOP and loads/stores addressed by SP. The stack is at
+    the top of the Teensy's RAM (Teensyduino teensy3/mk66fx1m0.ld: _estack =
+    0x1FFF0000 + 256K), in SRAM_U on the system bus: it never competes with
+    instruction fetches from SRAM_L (FASTRUN) on the code bus."""
+    if ins.base in ("push", "pop", "vpush", "vpop"):
+        return True
+    if ins.base in _MULTIPLE:
+        return ins.dest == "sp"
+    return ins.base_register == "sp"
+
+
+# Functions whose data (besides literal pools) is all in SRAM_U on the Teensy.
+# The tracker's member functions read and write only their own object and the
+# stack; the firmware's tracker is HapticPipeline's member after its two table
+# slots (haptic_pipeline.hpp: slots_ first; 96 KiB each, platformio.ini), so it
+# starts at least 192 KiB after RAM's start (0x1FFF0000, teensy3/mk66fx1m0.ld),
+# past SRAM_L's 64 KiB: on the system bus, never competing with FASTRUN's
+# instruction fetches from SRAM_L on the code bus (K66 reference manual:
+# SRAM_L on the code bus, SRAM_U on the system bus).
+SRAM_U_FUNCTIONS = ("_ZN2ff7Tracker",)
+
+
 class CodeMap:
     """Where code and data live on the Teensy: [ram_start, ram_end) is the
     FASTRUN section (zero wait states); every other instruction is in flash.
     table_functions: functions (by name prefix) whose register-based loads
-    read constant tables in flash."""
+    read constant tables in flash; sram_u_functions: functions (by name
+    prefix) whose data accesses other than literal loads go to SRAM_U."""
 
     def __init__(self, ram_start=0, ram_end=0, table_functions=("__ieee754", "__kernel", "sinf", "cosf",
-                                                                 "atan", "atan2f", "sqrtf", "expf", "logf")):
+                                                                 "atan", "atan2f", "sqrtf", "expf", "logf"),
+                 sram_u_functions=SRAM_U_FUNCTIONS):
         self.ram_start = ram_start
         self.ram_end = ram_end
         self.table_functions = tuple(table_functions)
+        self.sram_u_functions = tuple(sram_u_functions)
 
     def memory(self, ins):
         """(flash lines the instruction touches, loads a flash table, data access from SRAM_L code),
@@ -94,7 +127,9 @@ class CodeMap:
             table_load = self.reads_flash_table(ins) and ins.base in _LOAD_SINGLE | {"ldrd", "vldm", "vldmia",
                                                                                      "ldm", "ldmia"}
             data_access = ins.base in _LOAD_SINGLE | _STORE_SINGLE | _MULTIPLE | {"ldrd", "strd"}
-            cached = (tuple(lines), table_load, in_ram and data_access)
+            data_in_sram_u = stack_access(ins) or (ins.literal is None and
+                                                   ins.function.startswith(self.sram_u_functions))
+            cached = (tuple(lines), table_load, in_ram and data_access and not data_in_sram_u)
             ins.extra[key] = cached
         return cached
 
@@ -161,7 +196,7 @@ def instruction_cycles(ins, previous, taken, a):
 class CallCost:
     """Accumulates one call's instructions and cycles under one set of assumptions."""
 
-    def __init__(self, assumptions, code_map):
+    def __init__(self, assumptions, code_map, by_function=False):
         self.a = assumptions
         self.code_map = code_map
         self.instructions = 0
@@ -169,17 +204,30 @@ class CallCost:
         self.flash_lines = set()
         self.table_loads = 0
         self.previous = None
+        # function -> [instructions, cycles with its wait states, flash misses charged]; only if asked
+        self.functions = {} if by_function else None
 
     def add(self, ins, next_address):
         a = self.a
-        self.cycles += instruction_cycles(ins, self.previous, next_address != ins.address + ins.size, a)
-        self.instructions += 1
+        cycles = instruction_cycles(ins, self.previous, next_address != ins.address + ins.size, a)
         lines, table_load, ram_data_access = self.code_map.memory(ins)
+        misses = 0
+        if self.functions is not None and a.cold_code_cache:
+            misses = sum(1 for line in lines if line not in self.flash_lines)
         self.flash_lines.update(lines)
         if table_load:
             self.table_loads += 1
+            if a.table_load_misses:
+                misses += 1
         if ram_data_access:
-            self.cycles += a.sram_l_contention
+            cycles += a.sram_l_contention
+        self.cycles += cycles
+        self.instructions += 1
+        if self.functions is not None:
+            entry = self.functions.setdefault(ins.function, [0, 0, 0])
+            entry[0] += 1
+            entry[1] += cycles + misses * a.flash_miss
+            entry[2] += misses
         self.previous = ins
 
     def total(self):

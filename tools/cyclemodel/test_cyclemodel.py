@@ -57,7 +57,21 @@ class HandCountedBlocks(unittest.TestCase):
         # push 1+4; vpush 1+2; vpop 1+2; pop with pc 1+4+P (best P = 1, worst 3)
         block = "push {r4, r5, r6, lr}\nvpush {s16, s17}\nvpop {s16, s17}\npop {r4, r5, r6, pc}"
         self.assertEqual(self.cycles(block, BEST, end=0x1000), 5 + 3 + 3 + 6)
-        self.assertEqual(self.cycles(block, WORST, end=0x1000), 5 + 3 + 3 + 8 + 1 * 4)  # +1 per access (SRAM_L)
+        # Worst: only the refill; the stack is in SRAM_U (system bus), no SRAM_L contention.
+        self.assertEqual(self.cycles(block, WORST, end=0x1000), 5 + 3 + 3 + 8)
+
+    def test_sram_l_contention_only_for_data_off_the_stack(self):
+        # RAM code, worst: ldr [r0] 2 + 1 (SRAM_L contention); ldr [sp, #4] 1 (pipelined, stack);
+        # str [r1] 1 + 1; str [sp] 1; stmdb sp!, {r4, r5} 1 + 2; ldmia r0, {r2, r3} 1 + 2 + 1 = 14
+        block = ("ldr r2, [r0]\nldr r3, [sp, #4]\nstr r2, [r1]\nstr r3, [sp]\nstmdb sp!, {r4, r5}\n"
+                 "ldmia r0, {r2, r3}")
+        self.assertEqual(self.cycles(block, WORST), 14)
+        self.assertEqual(self.cycles(block, BEST), 11)  # the same without the three contention cycles
+        # A function whose data is in SRAM_U (the tracker): no contention at all, except a literal load
+        # (ldr r4, [pc, #0] after ldmia: 2 + 1 literal contention (worst) + 1 SRAM_L).
+        tracker = CodeMap(0, 1 << 32, sram_u_functions=("block",))
+        self.assertEqual(self.cycles(block, WORST, tracker), 11)
+        self.assertEqual(self.cycles(block + "\nldr r4, [pc, #0]\nnop\nnop", WORST, tracker), 11 + 4 + 2)
 
     def test_branches_cost_a_refill_only_when_taken(self):
         source = "cmp r0, #0\nbeq 1f\nadds r0, #1\n1: adds r0, #2"

@@ -60,8 +60,8 @@ SensorSample sample_at(const StrokePoint& p, bool touch) {
   return s;
 }
 
-// One scene: swap to it with the finger down, its stroke, a full mailbox,
-// lift-off, touch-down.
+// One scene: swap to it with the finger down, its stroke, a full mailbox and
+// the ticks that drain it, lift-off, touch-down.
 void trace_scene(SceneId id, int moving_ticks) {
   const char* name = scene_name(id);
   Condition condition;
@@ -83,11 +83,18 @@ void trace_scene(SceneId id, int moving_ticks) {
     const TickOutput out = tick("stroke", name, k);
     if (k > 0 && !out.present) ++g_failures;
   }
-  // Eight reports in one tick (the main loop stalled, the mailbox is full).
-  for (uint32_t i = 0; i < SampleMailbox::kCapacity; ++i) {
-    g_pipeline.post_sample(sample_at(workload.at((moving_ticks + static_cast<int>(i)) * 0.0005f), true));
+  // Eight reports waiting at one tick (the main loop stalled, the mailbox is
+  // full), each with its own stamp and on the stroke, so that the tracker
+  // accepts every one: the tick takes one, the next seven one each.
+  constexpr int kWaiting = static_cast<int>(SampleMailbox::kCapacity);
+  for (int i = 0; i < kWaiting; ++i) {
+    const int k = moving_ticks - kWaiting + 1 + i;  // the last eight tick times, the newest now
+    SensorSample s = sample_at(workload.at(k * 0.0005f), true);
+    s.t_us = g_now_us - static_cast<uint32_t>(kWaiting - 1 - i) * 500u;
+    g_pipeline.post_sample(s);
   }
   tick("mailbox-full", name, 0);
+  for (int i = 1; i < kWaiting; ++i) tick("mailbox-drain", name, i);
   g_pipeline.post_sample(sample_at(workload.at(0.0f), false));
   tick("lift-off", name, 0);
   for (int k = 0; k < 4; ++k) tick("no-finger", name, k);

@@ -42,6 +42,12 @@ class AmplitudeMap {
   // A_s = 0.5 + s (curve(A) - 0.5), finite and inside [0.5 - s/2, 0.5 + s/2].
   float scale(float raw_amplitude) const;
   uint16_t dac_code(float scaled_amplitude) const { return settings_.calibration.code_for(scaled_amplitude); }
+  // scale() and dac_code() in one call, for the tick.
+  struct Output {
+    float amplitude;
+    uint16_t dac;
+  };
+  Output output(float raw_amplitude) const;
   float idle_amplitude() const { return settings_.idle_amplitude; }
   uint16_t idle_code() const { return idle_code_; }
   const AmplitudeSettings& settings() const { return settings_; }

@@ -29,7 +29,7 @@ class SampleMailbox {
     const uint32_t tail = tail_.load(std::memory_order_relaxed);
     const uint32_t head = head_.load(std::memory_order_acquire);
     if (head == tail) return false;
-    out = slots_[tail & (kCapacity - 1)];
+    copy_sample(out, slots_[tail & (kCapacity - 1)]);
     tail_.store(tail + 1, std::memory_order_release);
     return true;
   }

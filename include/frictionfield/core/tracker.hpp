@@ -70,7 +70,7 @@ class Tracker {
   void on_sample(const SensorSample& s, bool need_filter = true);
   // Advances to the tick at now_us and returns the state there.
   // With need_filter = false only presence and the last sample are updated.
-  TrackState on_tick(uint32_t now_us, bool need_filter = true);
+  const TrackState& on_tick(uint32_t now_us, bool need_filter = true);  // state()
 
   const TrackState& state() const { return state_; }
   const FaultCounters& faults() const { return faults_; }
@@ -80,7 +80,8 @@ class Tracker {
  private:
   void restart_at(const SensorSample& s);
   void accept(const SensorSample& s, bool need_filter);
-  bool is_jump(const SensorSample& s) const;
+  // Further from `from` than max_speed allows in the time between (plus the slack).
+  bool moved_further_than_allowed(const SensorSample& s, const SensorSample& from) const;
   void lose_finger();
   Vec2 estimate(uint32_t now_us, Vec2& velocity);
   uint32_t extrapolation_us(uint32_t now_us);
@@ -92,7 +93,7 @@ class Tracker {
   TrackState state_;
   FaultCounters faults_;
 
-  // Newest accepted sample and the raw velocity to it.
+  // Newest accepted sample and the raw velocity to it (1-euro estimators only).
   SensorSample last_;
   Vec2 raw_velocity_;            // px/us
   bool have_last_ = false;
@@ -105,15 +106,21 @@ class Tracker {
   bool lifting_ = false;
   uint32_t untouched_since_us_ = 0;
   bool stale_reported_ = false;  // StaleSample counted once per gap
-  // Kalman state per axis: position, velocity (px/s), covariance.
-  struct KalmanAxis {
-    float p = 0.0f, v = 0.0f;             // px, px/s
+  // A constant-velocity Kalman filter for both axes: position, velocity
+  // (px/s) per axis, and one covariance, because both axes start alike and
+  // see the same intervals and noise, so their covariances are equal.
+  struct KalmanPair {
+    Vec2 p, v;                            // px, px/s
     float P00 = 0.0f, P01 = 0.0f, P11 = 0.0f;
-    void start(float z, float r);
+    void start(Vec2 z, float r);
     void predict(float dt_s, float q);
-    void update(float z, float r);
-  } direction_x_, direction_y_,  // the direction (or only) filter
-      position_x_, position_y_;    // SplitKalman's position filter
+    void update(Vec2 z, float r);
+  } direction_,  // the direction (or only) filter
+      position_;   // SplitKalman's position filter
+  // From the configuration, so that a report costs no squares or divisions of it.
+  float direction_q_ = 0.0f, direction_r_ = 0.0f;  // accel_noise^2, measurement_noise^2
+  float position_q_ = 0.0f, position_r_ = 0.0f;
+  float inverse_fade_span_ = 0.0f;  // 1 / (moving_speed - rest_speed), 0 without a fade
   bool filters_fresh_ = false;  // filters restarted from the last sample on next use
   uint32_t last_tick_us_ = 0;
   bool have_tick_ = false;
