@@ -1,6 +1,7 @@
 """The whole 180-trial study, headless, through the real ff-sim (the
 firmware on the host, same UDP protocol), then ff-analyse on its logs.
-Also refreshes the screenshots of docs/experiment.md."""
+With FF_REFRESH_DOC_IMAGES=1 it also refreshes the screenshots of
+docs/experiment.md (a test run never writes into the tree otherwise)."""
 import os
 import shutil
 import subprocess
@@ -82,9 +83,10 @@ def test_trial_screen_screenshot(study):
     assert px(400, 190) == (0, 0, 0) and px(400, 290) == (0, 0, 0)  # black between them
     assert px(60, 240) == (200, 200, 200)  # start circle
     assert px(750, 240) == (200, 200, 200)  # end zone
-    os.makedirs(DOC_IMAGES, exist_ok=True)
-    for name in os.listdir(study[0] / "shots"):
-        shutil.copy(study[0] / "shots" / name, os.path.join(DOC_IMAGES, name))
+    if os.environ.get("FF_REFRESH_DOC_IMAGES") == "1":
+        os.makedirs(DOC_IMAGES, exist_ok=True)
+        for name in os.listdir(study[0] / "shots"):
+            shutil.copy(study[0] / "shots" / name, os.path.join(DOC_IMAGES, name))
 
 
 def test_analysis_of_the_simulated_study(study, tmp_path):
@@ -93,7 +95,8 @@ def test_analysis_of_the_simulated_study(study, tmp_path):
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "report" / "fig15_learning.png").exists()
     assert "one participant: no group statistics" in (tmp_path / "report" / "summary.md").read_text()
-    shutil.copy(tmp_path / "report" / "participant_1.png", os.path.join(DOC_IMAGES, "report_participant.png"))
+    if os.environ.get("FF_REFRESH_DOC_IMAGES") == "1":
+        shutil.copy(tmp_path / "report" / "participant_1.png", os.path.join(DOC_IMAGES, "report_participant.png"))
 
 
 def test_python_codec_against_the_cpp_codec_in_ff_sim():
