@@ -18,8 +18,8 @@ void white_200hz(TraceOptions& o) {
 
 // Starts, stops and careful tracing: about a fifth of the moving time below 70 px/s.
 void slow_fingers_only(TraceOptions& o) {
-  o.motion.slow_fraction = 0.3;
-  o.motion.hesitation_fraction = 0.3;
+  o.motion.slow_fraction = 0.1;
+  o.motion.hesitation_fraction = 0.2;
   o.motion.reversal_fraction = 0.3;
 }
 
