@@ -80,9 +80,20 @@ class Planner {
       rightwards_ = !rightwards_;
       x1 = std::clamp(rightwards_ ? here.x + length : here.x - length, 40.0, 690.0);
     }
-    const double u1 = std::clamp(6.0 * rng_.gaussian(), -18.0, 18.0);
+    double u1 = std::clamp(6.0 * rng_.gaussian(), -18.0, 18.0);
     double peak = speed();
-    x1 = here.x + (x1 - here.x) * slow_down(std::fabs(x1 - here.x), peak);
+    if (o_.slow_fraction > 0.0) {
+      Segment planned;
+      planned.shape = StrokeShape::AlongPath;
+      planned.p0 = here;
+      planned.p1 = {x1, path_y(x1, rise_) + u1};
+      planned.rise_px = rise_;
+      planned.u0 = here.y - path_y(here.x, rise_);
+      planned.u1 = u1;
+      const double scale = slow_down(stroke_length(planned), peak);
+      x1 = here.x + scale * (x1 - here.x);
+      u1 = planned.u0 + scale * (u1 - planned.u0);
+    }
     // Leave the current offset from the path continuous: start from where the finger is.
     if (hesitates()) {
       const double f = hesitation_rng_.uniform(0.35, 0.65);
@@ -125,15 +136,16 @@ class Planner {
   // A bowed stroke to p1 with the effects of MotionOptions applied.
   void straight_stroke(Point p1, double peak, double bow) {
     const Point here = motion_.position();
-    const double scale = slow_down(std::hypot(p1.x - here.x, p1.y - here.y), peak);
-    p1 = {here.x + scale * (p1.x - here.x), here.y + scale * (p1.y - here.y)};
-    bow *= scale;
+    Segment whole;
+    whole.p0 = here;
+    whole.p1 = p1;
+    whole.bow_px = bow;
+    // Scaling the chord and the bow together scales the arc by the same share.
+    const double scale = o_.slow_fraction > 0.0 ? slow_down(stroke_length(whole), peak) : 1.0;
+    p1 = whole.p1 = {here.x + scale * (p1.x - here.x), here.y + scale * (p1.y - here.y)};
+    bow = whole.bow_px = bow * scale;
     if (hesitates()) {
       // Stop on the bowed curve and go on from there: two halves, each bowed half as much.
-      Segment whole;
-      whole.p0 = here;
-      whole.p1 = p1;
-      whole.bow_px = bow;
       Point mid, tangent;
       stroke_curve(whole, hesitation_rng_.uniform(0.35, 0.65), mid, tangent);
       motion_.stroke_to(mid, peak, 0.5 * bow);
@@ -149,7 +161,8 @@ class Planner {
   }
 
   // A slow stroke (slow_fraction of them): `peak` becomes slow and the
-  // stroke short enough to last 0.8-2 s; returns the share of `length` kept.
+  // stroke (arc `length`) short enough to last 0.8-2 s; returns the share of
+  // the stroke kept (along a curved path only nearly its share of the arc).
   double slow_down(double length, double& peak) {
     if (o_.slow_fraction <= 0.0 || !slow_rng_.chance(o_.slow_fraction)) return 1.0;
     peak = slow_rng_.log_uniform(o_.slow_min_px_s, o_.slow_max_px_s);
