@@ -31,7 +31,7 @@ constexpr const char* kDescription =
     "stamp latency, period jitter, correlated noise, drift) is off by default and switched on one\n"
     "by one or as a named class (--class; docs/tracking.md#trace-classes).\n"
     "\n"
-    "Output (docs/spec.md#trace-files): t_us,x,y,touch,x_true,y_true[,event]\n"
+    "Output (docs/spec.md#trace-files): t_us,x,y,touch,x_true,y_true[,x_tremor,y_tremor][,event]\n"
     "  x_true, y_true  the true finger at t_us (readers ignore these columns; nan while lifted):\n"
     "                  its voluntary motion, without tremor\n"
     "  x_tremor, y_tremor  with tremor: the tremor's displacement at t_us, on top of x_true, y_true\n"
@@ -95,11 +95,14 @@ void print_summary(const GeneratedTrace& trace, const TraceOptions& o) {
   if (trace.tremor.enabled() || o.motion.slow_fraction > 0.0 || o.motion.hesitation_fraction > 0.0 ||
       o.motion.reversal_fraction > 0.0 || so.latency_us > 0.0 || so.latency_spread_us > 0.0 ||
       so.period_jitter_us > 0.0 || so.correlated_noise_px > 0.0 || so.drift_px > 0.0) {
+    char tremor[64] = "no tremor";
+    if (trace.tremor.enabled())
+      std::snprintf(tremor, sizeof tremor, "tremor %.2f px at %.1f Hz", o.tremor.amplitude_px, trace.tremor.frequency_hz());
     std::fprintf(stderr,
-                 "ff-tracegen: slow strokes %.0f %%, hesitations %.0f %%, reversals %.0f %%, tremor %.2f px at %.1f Hz; "
+                 "ff-tracegen: slow strokes %.0f %%, hesitations %.0f %%, reversals %.0f %%, %s; "
                  "%.0f Hz, latency %.0f-%.0f us, period jitter %.0f us, correlated noise %.2f px (tau %.0f ms), drift %.2f px\n",
                  100.0 * o.motion.slow_fraction, 100.0 * o.motion.hesitation_fraction, 100.0 * o.motion.reversal_fraction,
-                 o.tremor.amplitude_px, trace.tremor.frequency_hz(), so.rate_hz, so.latency_us,
+                 tremor, so.rate_hz, so.latency_us,
                  so.latency_us + so.latency_spread_us, so.period_jitter_us, so.correlated_noise_px,
                  so.correlated_noise_tau_s * 1e3, so.drift_px);
   }

@@ -16,7 +16,8 @@ void white_200hz(TraceOptions& o) {
   o.sensor.quantum_px = kZForceQuantumPx;
 }
 
-// Starts, stops and careful tracing: about a fifth of the moving time below 70 px/s.
+// Starts, stops and careful tracing: about a fifth of the moving ticks at
+// 20-70 px/s (docs/tracking.md#trace-classes), against 13 % without.
 void slow_fingers_only(TraceOptions& o) {
   o.motion.slow_fraction = 0.1;
   o.motion.hesitation_fraction = 0.2;
@@ -56,7 +57,7 @@ void realistic(TraceOptions& o, double rate_hz) {
 const std::vector<TraceClass>& trace_classes() {
   static const std::vector<TraceClass> kClasses = {
       {"white-200hz", "today's model: 200 Hz, 150 us stamp jitter, 1 px white noise, 0.5 px quantum", white_200hz},
-      {"slow-fingers", "white-200hz with 30 % slow strokes (20-70 px/s), 30 % hesitations, 30 % sharp reversals",
+      {"slow-fingers", "white-200hz with 10 % slow strokes (20-70 px/s), 20 % hesitations, 30 % sharp reversals",
        [](TraceOptions& o) { white_200hz(o); slow_fingers_only(o); }},
       {"tremor", "white-200hz with 8-12 Hz tremor of 1.5 px (0.3 mm) peak", [](TraceOptions& o) { white_200hz(o); tremor_only(o); }},
       {"latency", "white-200hz stamped 1-3 ms after the scan", [](TraceOptions& o) { white_200hz(o); latency_only(o); }},
