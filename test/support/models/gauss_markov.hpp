@@ -4,6 +4,7 @@
 // E[e(t) e(t + dt)] = sigma^2 exp(-dt / tau). Sampled at any, irregular,
 // times with the exact discretisation, so that one process serves every
 // report rate: the sensor's correlated noise and its slow drift.
+#include <algorithm>
 #include <cmath>
 
 #include "support/random.hpp"

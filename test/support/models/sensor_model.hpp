@@ -1,7 +1,9 @@
 #pragma once
 // The zForce as the Teensy sees it: ~200 Hz reports with timing jitter,
 // noise and quantisation, plus every fault the tracker must survive,
-// inserted on request at random (seeded) places.
+// inserted on request at random (seeded) places. On request also what a real
+// sensor adds (stamp latency, period jitter, correlated noise, drift) and
+// what a real finger adds on top of its voluntary motion (tremor).
 #include <cstdint>
 #include <string>
 #include <vector>
