@@ -11,8 +11,24 @@
 namespace ff::support {
 
 // Independent streams from one user seed (motion, timing, noise, faults), so
-// that changing the noise level leaves the finger's motion untouched.
-enum class Stream : uint64_t { Single = 0, Motion = 1, Timing = 2, Noise = 3, Faults = 4 };
+// that changing the noise level leaves the finger's motion untouched. Each
+// optional effect of the trace models draws from its own stream, so that
+// switching one on leaves the others' draws (and, all off, the trace) unchanged.
+enum class Stream : uint64_t {
+  Single = 0,
+  Motion = 1,
+  Timing = 2,
+  Noise = 3,
+  Faults = 4,
+  SlowStrokes = 5,
+  Hesitations = 6,
+  Reversals = 7,
+  Tremor = 8,
+  Latency = 9,
+  PeriodJitter = 10,
+  CorrelatedNoise = 11,
+  Drift = 12,
+};
 
 inline uint64_t splitmix64(uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;

@@ -7,9 +7,11 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "frictionfield/host/cli_conventions.hpp"
 #include "support/models/sensor_model.hpp"
+#include "support/models/trace_classes.hpp"
 #include "trace_writer.hpp"
 
 namespace {
@@ -25,9 +27,14 @@ constexpr const char* kDescription =
     "speed is drawn between --speed-min and --speed-max; the finger pauses briefly at each reversal.\n"
     "The zForce sensor is simulated at --rate Hz with timing jitter, Gaussian noise and optional\n"
     "quantisation, and each fault the tracker must handle can be inserted on request.\n"
+    "What real fingers and sensors add (slow strokes, hesitations, sharp reversals, 8-12 Hz tremor;\n"
+    "stamp latency, period jitter, correlated noise, drift) is off by default and switched on one\n"
+    "by one or as a named class (--class; docs/tracking.md#trace-classes).\n"
     "\n"
-    "Output (docs/spec.md#trace-files): t_us,x,y,touch,x_true,y_true[,event]\n"
-    "  x_true, y_true  the true finger at t_us (readers ignore these columns; nan while lifted)\n"
+    "Output (docs/spec.md#trace-files): t_us,x,y,touch,x_true,y_true[,x_tremor,y_tremor][,event]\n"
+    "  x_true, y_true  the true finger at t_us (readers ignore these columns; nan while lifted):\n"
+    "                  its voluntary motion, without tremor\n"
+    "  x_tremor, y_tremor  with tremor: the tremor's displacement at t_us, on top of x_true, y_true\n"
     "  event           with --events: what each row exercises (touch-down, lift-off, late, jump, ...)\n"
     "The same seed and options always give the same file.";
 
@@ -36,10 +43,13 @@ constexpr const char* kFooter =
     "  ff-tracegen --strategy along --duration 10 --seed 3 -o along.csv\n"
     "  ff-tracegen --strategy across --noise high --quantise px --truth-ticks truth.csv -o across.csv\n"
     "  ff-tracegen --all-faults --events --wrap -o faults.csv     # every fault, clock wrapping\n"
-    "  ff-tracegen --duration 3600 --lifts 200 --rests 300 -o hour.csv   # an hour-long session";
+    "  ff-tracegen --duration 3600 --lifts 200 --rests 300 -o hour.csv   # an hour-long session\n"
+    "  ff-tracegen --class realistic-1khz --seed 4 -o real.csv    # every effect, 1 kHz\n"
+    "  ff-tracegen --correlated-noise-px 1.5 --correlated-tau-ms 30 --noise-px 0.5 -o wander.csv";
 
 struct Cli {
   std::string output = "-";
+  std::string trace_class;
   std::string truth_ticks;
   std::string strategy = "mixed";
   std::string paths = "all";
@@ -81,6 +91,21 @@ void print_summary(const GeneratedTrace& trace, const TraceOptions& o) {
                trace.end_us() >= (uint64_t{1} << 32) && trace.start_us < (uint64_t{1} << 32) ? " (32-bit clock wraps)" : "");
   std::fprintf(stderr, "ff-tracegen: %d strokes, peak speed mean %.0f mm/s, max %.0f mm/s; %d rests, %d lifts\n", strokes,
                strokes ? peak_sum / strokes * kMmPerPx : 0.0, peak_max * kMmPerPx, rests, lifts);
+  const SensorOptions& so = o.sensor;
+  if (trace.tremor.enabled() || o.motion.slow_fraction > 0.0 || o.motion.hesitation_fraction > 0.0 ||
+      o.motion.reversal_fraction > 0.0 || so.latency_us > 0.0 || so.latency_spread_us > 0.0 ||
+      so.period_jitter_us > 0.0 || so.correlated_noise_px > 0.0 || so.drift_px > 0.0) {
+    char tremor[64] = "no tremor";
+    if (trace.tremor.enabled())
+      std::snprintf(tremor, sizeof tremor, "tremor %.2f px at %.1f Hz", o.tremor.amplitude_px, trace.tremor.frequency_hz());
+    std::fprintf(stderr,
+                 "ff-tracegen: slow strokes %.0f %%, hesitations %.0f %%, reversals %.0f %%, %s; "
+                 "%.0f Hz, latency %.0f-%.0f us, period jitter %.0f us, correlated noise %.2f px (tau %.0f ms), drift %.2f px\n",
+                 100.0 * o.motion.slow_fraction, 100.0 * o.motion.hesitation_fraction, 100.0 * o.motion.reversal_fraction,
+                 tremor, so.rate_hz, so.latency_us,
+                 so.latency_us + so.latency_spread_us, so.period_jitter_us, so.correlated_noise_px,
+                 so.correlated_noise_tau_s * 1e3, so.drift_px);
+  }
   std::string faults;
   for (int e = static_cast<int>(SampleEvent::AfterGap); e < static_cast<int>(SampleEvent::kCount); ++e) {
     if (trace.events[e] == 0) continue;
@@ -91,11 +116,26 @@ void print_summary(const GeneratedTrace& trace, const TraceOptions& o) {
                trace.events[static_cast<int>(SampleEvent::LiftReport)], faults.c_str());
 }
 
+// The value of --class NAME / --class=NAME, read before the other options
+// so that the class is the starting point they modify ("" if none).
+std::string class_argument(int argc, char** argv) {
+  const std::string flag = "--class";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == flag && i + 1 < argc) return argv[i + 1];
+    if (a.rfind(flag + "=", 0) == 0) return a.substr(flag.size() + 1);
+  }
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   TraceOptions o;
   Cli cli;
+  std::vector<std::string> known_classes;
+  for (const TraceClass& c : trace_classes()) known_classes.push_back(c.name);
+  if (const TraceClass* preset = find_trace_class(class_argument(argc, argv))) preset->apply(o);
   CLI::App app{kDescription, "ff-tracegen"};
   app.footer(kFooter);
   app.get_formatter()->column_width(34);
@@ -107,6 +147,11 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.seed, "Random seed: same seed and options, same trace")->capture_default_str();
   app.add_option("--duration", o.motion.duration_s, "Length of the exploration in seconds")
       ->capture_default_str()->check(CLI::Range(0.05, 24.0 * 3600.0));
+
+  std::string class_help = "Start from a named class of finger and sensor; the options below change it "
+                           "(docs/tracking.md#trace-classes):";
+  for (const TraceClass& c : trace_classes()) class_help += std::string("\n  ") + c.name + ": " + c.description;
+  app.add_option("--class", cli.trace_class, class_help)->check(CLI::IsMember(known_classes));
 
   auto* motion = "Motion";
   app.add_option("--strategy", cli.strategy, "along: back and forth along the paths; across: strokes across them; "
@@ -124,6 +169,21 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::NonNegativeNumber)->group(motion);
   app.add_option("--lifts", o.motion.lifts, "Lift-offs: the finger leaves for 0.15-0.6 s and lands elsewhere")
       ->capture_default_str()->check(CLI::NonNegativeNumber)->group(motion);
+  app.add_option("--slow-strokes", o.motion.slow_fraction, "Share of strokes that are slow: peak 20-70 px/s "
+                                                           "(4-14 mm/s), lasting 0.8-2 s")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
+  app.add_option("--hesitations", o.motion.hesitation_fraction, "Share of strokes that stop mid-way for 0.08-0.3 s")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
+  app.add_option("--reversals", o.motion.reversal_fraction, "Share of strokes that turn straight back (no dwell) "
+                                                            "for 15-40 % of their length")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
+  app.add_option("--tremor-px", o.tremor.amplitude_px, "Tremor amplitude, peak per axis (px; physiological "
+                                                       "0.5-2.5 px = 0.1-0.5 mm); in the reports, not in x_true")
+      ->capture_default_str()->check(CLI::Range(0.0, 50.0))->group(motion);
+  app.add_option("--tremor-hz", o.tremor.min_hz, "Lowest tremor frequency (Hz; drawn once per trace up to --tremor-hz-max)")
+      ->capture_default_str()->check(CLI::Range(0.1, 100.0))->group(motion);
+  app.add_option("--tremor-hz-max", o.tremor.max_hz, "Highest tremor frequency (Hz)")
+      ->capture_default_str()->check(CLI::Range(0.1, 100.0))->group(motion);
 
   auto* sensor = "Sensor";
   app.add_option("--rate", o.sensor.rate_hz, "Sensor report rate (Hz)")
@@ -142,6 +202,22 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 100.0))->group(sensor);
   app.add_option("--latency-us", o.sensor.latency_us, "Reports describe the finger this long before their timestamp")
       ->capture_default_str()->check(CLI::Range(0.0, 1e6))->group(sensor);
+  app.add_option("--latency-spread-us", o.sensor.latency_spread_us, "Each report's latency varies: --latency-us "
+                                                                    "+ uniform(0, this) (us)")
+      ->capture_default_str()->check(CLI::Range(0.0, 1e6))->group(sensor);
+  app.add_option("--period-jitter-us", o.sensor.period_jitter_us, "The scan interval varies, 1 sigma (us; clipped to "
+                                                                  "30 % of the period): the report clock wanders")
+      ->capture_default_str()->check(CLI::Range(0.0, 1e5))->group(sensor);
+  double correlated_tau_ms = o.sensor.correlated_noise_tau_s * 1e3;
+  app.add_option("--correlated-noise-px", o.sensor.correlated_noise_px, "Temporally correlated noise (first-order "
+                                                                        "Gauss-Markov), 1 sigma per axis (px), added to the white noise")
+      ->capture_default_str()->check(CLI::Range(0.0, 100.0))->group(sensor);
+  app.add_option("--correlated-tau-ms", correlated_tau_ms, "Its correlation time (ms)")
+      ->capture_default_str()->check(CLI::Range(0.01, 1e5))->group(sensor);
+  app.add_option("--drift-px", o.sensor.drift_px, "Slow drift of the reported frame, 1 sigma per axis (px)")
+      ->capture_default_str()->check(CLI::Range(0.0, 1000.0))->group(sensor);
+  app.add_option("--drift-tau-s", o.sensor.drift_tau_s, "Its correlation time (s)")
+      ->capture_default_str()->check(CLI::Range(0.01, 1e5))->group(sensor);
 
   auto* faults = "Faults (each inserted N times at seeded random places, away from each other)";
   app.add_option("--missing", o.faults.missing, "Gaps of 1-6 missing reports")->check(CLI::NonNegativeNumber)->group(faults);
@@ -178,9 +254,19 @@ int main(int argc, char** argv) {
                  o.motion.speed_min_mm_s);
     return 2;
   }
-  o.sensor.noise_px = cli.noise == "none" ? 0.0 : (cli.noise == "high" ? kNoiseHighPx : kNoiseLowPx);
+  if (o.tremor.max_hz < o.tremor.min_hz) {
+    std::fprintf(stderr, "ff-tracegen: --tremor-hz-max (%g) is below --tremor-hz (%g)\n", o.tremor.max_hz,
+                 o.tremor.min_hz);
+    return 2;
+  }
+  o.sensor.correlated_noise_tau_s = correlated_tau_ms * 1e-3;
+  // A class brings its own noise and quantum; --noise and --quantise change them when given.
+  const bool from_class = !cli.trace_class.empty();
+  if (!from_class || app.count("--noise") > 0)
+    o.sensor.noise_px = cli.noise == "none" ? 0.0 : (cli.noise == "high" ? kNoiseHighPx : kNoiseLowPx);
   if (cli.noise_px >= 0.0) o.sensor.noise_px = cli.noise_px;
-  o.sensor.quantum_px = cli.quantise == "px" ? 1.0 : (cli.quantise == "zforce" ? kZForceQuantumPx : 0.0);
+  if (!from_class || app.count("--quantise") > 0)
+    o.sensor.quantum_px = cli.quantise == "px" ? 1.0 : (cli.quantise == "zforce" ? kZForceQuantumPx : 0.0);
   if (cli.quantum_px >= 0.0) o.sensor.quantum_px = cli.quantum_px;
   o.motion.dwell_min_s = 0.0;
   if (cli.all_faults) {

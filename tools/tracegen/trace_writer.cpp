@@ -23,17 +23,23 @@ std::string format_number(double v) {
 }
 
 void write_trace(std::ostream& out, const GeneratedTrace& trace, bool with_events) {
-  out << "t_us,x,y,touch,x_true,y_true" << (with_events ? ",event" : "") << '\n';
+  const bool tremor = trace.tremor.enabled();
+  out << "t_us,x,y,touch,x_true,y_true" << (tremor ? ",x_tremor,y_tremor" : "") << (with_events ? ",event" : "") << '\n';
   for (const TraceSample& s : trace.samples) {
     out << s.t_us << ',' << format_number(s.x) << ',' << format_number(s.y) << ',' << (s.touch ? 1 : 0) << ','
         << format_number(s.x_true) << ',' << format_number(s.y_true);
+    if (tremor) {
+      const Point shake = trace.tremor_at(s.t_us);
+      out << ',' << format_number(shake.x) << ',' << format_number(shake.y);
+    }
     if (with_events) out << ',' << to_string(s.event);
     out << '\n';
   }
 }
 
 uint64_t write_truth_ticks(std::ostream& out, const GeneratedTrace& trace, const Progress& progress) {
-  out << "t_us,x_true,y_true,vx_true,vy_true,touch\n";
+  const bool tremor = trace.tremor.enabled();
+  out << "t_us,x_true,y_true,vx_true,vy_true,touch" << (tremor ? ",x_tremor,y_tremor" : "") << '\n';
   if (trace.samples.empty()) return 0;
   const uint64_t t0 = trace.samples.front().t_us;
   const uint64_t span = trace.end_us() > t0 ? trace.end_us() - t0 : 0;
@@ -45,7 +51,12 @@ uint64_t write_truth_ticks(std::ostream& out, const GeneratedTrace& trace, const
     const double nan = std::nan("");
     out << t << ',' << format_number(s.touching ? s.position.x : nan) << ','
         << format_number(s.touching ? s.position.y : nan) << ',' << format_number(s.velocity.x) << ','
-        << format_number(s.velocity.y) << ',' << (s.touching ? 1 : 0) << '\n';
+        << format_number(s.velocity.y) << ',' << (s.touching ? 1 : 0);
+    if (tremor) {
+      const Point shake = trace.tremor_at(t);
+      out << ',' << format_number(shake.x) << ',' << format_number(shake.y);
+    }
+    out << '\n';
     if (progress && k % report_every == 0) progress(static_cast<double>(k) / static_cast<double>(last + 1));
   }
   if (progress) progress(1.0);

@@ -9,8 +9,8 @@
 namespace ff::bench {
 
 namespace {
-constexpr const char* kBegin = "<!-- track-bench:begin -->";
-constexpr const char* kEnd = "<!-- track-bench:end -->";
+std::string begin_marker(const std::string& marker) { return "<!-- " + marker + ":begin -->"; }
+std::string end_marker(const std::string& marker) { return "<!-- " + marker + ":end -->"; }
 
 std::string fixed(double v, int decimals) {
   char buf[64];
@@ -82,8 +82,9 @@ void write_report(std::ostream& out, const std::vector<ReportRow>& rows, const s
   }
 }
 
-std::string replace_marked_text(const std::string& document, const std::string& text) {
-  const std::string block = std::string(kBegin) + "\n" + text + kEnd;
+std::string replace_marked_text(const std::string& document, const std::string& text, const std::string& marker) {
+  const std::string kBegin = begin_marker(marker), kEnd = end_marker(marker);
+  const std::string block = kBegin + "\n" + text + kEnd;
   const size_t begin = document.find(kBegin);
   const size_t end = begin == std::string::npos ? std::string::npos : document.find(kEnd, begin);
   if (begin == std::string::npos || end == std::string::npos) {
@@ -91,10 +92,11 @@ std::string replace_marked_text(const std::string& document, const std::string& 
     if (!out.empty() && out.back() != '\n') out += '\n';
     return out + block + "\n";
   }
-  return document.substr(0, begin) + block + document.substr(end + std::string(kEnd).size());
+  return document.substr(0, begin) + block + document.substr(end + kEnd.size());
 }
 
-bool replace_marked_section(const std::string& path, const std::string& text, std::string& error) {
+bool replace_marked_section(const std::string& path, const std::string& text, std::string& error,
+                            const std::string& marker) {
   std::string document;
   {
     std::ifstream in(path);
@@ -109,7 +111,7 @@ bool replace_marked_section(const std::string& path, const std::string& text, st
     error = "cannot write " + path;
     return false;
   }
-  out << replace_marked_text(document, text);
+  out << replace_marked_text(document, text, marker);
   if (!out) {
     error = "writing " + path + " failed";
     return false;

@@ -30,9 +30,12 @@ std::string generated_set_description(double duration_s);
 void write_report(std::ostream& out, const std::vector<ReportRow>& rows, const std::string& set_description,
                   double moving_speed_px_s);
 
-// Replaces the text between "<!-- track-bench:begin -->" and
-// "<!-- track-bench:end -->" in the file (appends both if absent).
-bool replace_marked_section(const std::string& path, const std::string& text, std::string& error);
-std::string replace_marked_text(const std::string& document, const std::string& text);
+// Replaces the text between "<!-- MARKER:begin -->" and "<!-- MARKER:end -->"
+// in the file (appends both if absent); MARKER is track-bench for the main
+// table, track-bench-classes for the per-class one.
+bool replace_marked_section(const std::string& path, const std::string& text, std::string& error,
+                            const std::string& marker = "track-bench");
+std::string replace_marked_text(const std::string& document, const std::string& text,
+                                const std::string& marker = "track-bench");
 
 }  // namespace ff::bench

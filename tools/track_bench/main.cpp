@@ -13,6 +13,7 @@
 
 #include "frictionfield/host/cli_conventions.hpp"
 #include "bench_report.hpp"
+#include "class_report.hpp"
 #include "proposed_config.hpp"
 #include "tracking_evaluation.hpp"
 
@@ -35,7 +36,10 @@ constexpr const char* kDescription =
     "  A_ideal comes from the same prepared scene fed the true position and true direction:\n"
     "  heightmap (direction-dependent) and frictionmap (position only),\n"
     "  heightmap at rest: RMS of A - 0.5 while the finger rests (chatter; ideal is 0.5),\n"
-    "  host cost of HapticPipeline::tick() on the heightmap (ns per tick, this machine).";
+    "  host cost of HapticPipeline::tick() on the heightmap (ns per tick, this machine).\n"
+    "With --classes: the same metrics per class of finger and sensor (white noise at 200 Hz, slow\n"
+    "fingers, tremor, stamp latency, correlated noise, everything at 100 Hz / 200 Hz / 1 kHz), for the\n"
+    "thesis pipeline and recommended(), with recommended()'s ratio to the thesis pipeline.";
 
 struct NamedConfig {
   NamedConfig(std::string n, const TrackerConfig& c) : name(std::move(n)), config(c) {}
@@ -239,6 +243,27 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
   return best.t;
 }
 
+// The per-class table: the thesis pipeline and recommended() on each class.
+std::string run_classes(const std::vector<std::string>& names, double duration_s, const EvalOptions& base) {
+  EvalOptions options = base;
+  options.cost = false;
+  std::vector<ClassRow> rows;
+  for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
+    if (!names.empty() && std::find(names.begin(), names.end(), trace_class.name) == names.end()) continue;
+    std::fprintf(stderr, "ff-track-bench: class %s: generating 6 traces of %.0f s...\n", trace_class.name, duration_s);
+    std::vector<PreparedCase> cases;
+    for (const TrackCase& c : class_cases(trace_class, duration_s)) cases.push_back(prepare_case(c));
+    const double slow = slow_share(cases, options.moving_speed_px_s);
+    for (const auto& [name, config] : {std::pair<const char*, TrackerConfig>{"thesis", TrackerConfig::thesis()},
+                                       {"recommended()", TrackerConfig::recommended()}}) {
+      rows.push_back({trace_class.name, name, evaluate(config, cases, options), slow});
+    }
+  }
+  std::ostringstream table;
+  write_class_report(table, rows, duration_s, options.moving_speed_px_s);
+  return table.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -294,10 +319,41 @@ int main(int argc, char** argv) {
   app.add_option("--smoother-r", trace_options.smoother.measurement_noise_px,
                  "Offline smoother: report noise, 1 sigma per axis (px)")
       ->capture_default_str()->check(CLI::PositiveNumber)->group(traces);
+  bool classes = false;
+  std::vector<std::string> class_names;
+  std::vector<std::string> known_classes;
+  for (const tracegen::TraceClass& c : tracegen::trace_classes()) known_classes.push_back(c.name);
+  auto* per_class = "Per class of finger and sensor (docs/tracking.md#trace-classes)";
+  app.add_flag("--classes", classes, "Instead of the table above: the thesis pipeline and recommended() on each "
+                                     "trace class, with the ratios to the thesis pipeline; the finger counts as "
+                                     "moving above 4 mm/s unless --moving-above is given. With --write-doc, "
+                                     "between <!-- track-bench-classes:begin --> and <!-- track-bench-classes:end -->")
+      ->group(per_class);
+  app.add_option("--class", class_names, "Only these classes (implies --classes)")
+      ->check(CLI::IsMember(known_classes))->group(per_class);
   std::string dump_path;
   app.add_option("--dump-ticks", dump_path, "Write every tick of the first low-noise trace for the tuned configuration "
                                             "(truth, estimate, amplitudes) to this CSV, for plots");
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
+
+  if (classes || !class_names.empty()) {
+    if (!trace_paths.empty() || run_tune) {
+      std::fprintf(stderr, "ff-track-bench: --classes works on generated traces; it takes neither --trace nor --tune\n");
+      return 2;
+    }
+    if (app.count("--moving-above") == 0) options.moving_speed_px_s = kClassMovingSpeedPxS;
+    const std::string table = run_classes(class_names, duration_s, options);
+    std::cout << table;
+    if (!doc_path.empty()) {
+      std::string error;
+      if (!replace_marked_section(doc_path, table, error, "track-bench-classes")) {
+        std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
+        return 1;
+      }
+      std::fprintf(stderr, "ff-track-bench: table written to %s\n", doc_path.c_str());
+    }
+    return 0;
+  }
 
   std::vector<LevelSet> levels;
   if (trace_paths.empty()) {

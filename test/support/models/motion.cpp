@@ -97,13 +97,14 @@ void Motion::stroke_along_path(double x1, double rise_px, double u1, double peak
   cursor_ = s.p1;
 }
 
-void Motion::hold(double duration_s, bool rest) {
+void Motion::hold(double duration_s, bool rest, bool hesitation) {
   if (duration_s <= 0.0) return;
   Segment s;
   s.kind = SegmentKind::Hold;
   s.p0 = s.p1 = cursor_;
   s.duration_s = duration_s;
   s.rest = rest;
+  s.hesitation = hesitation;
   push(s);
 }
 

@@ -49,6 +49,7 @@ struct Segment {
   double rise_px = 0.0;         // AlongPath: which path
   double u0 = 0.0, u1 = 0.0;    // AlongPath: offsets from the path at the ends
   bool rest = false;            // Hold: a rest rather than a dwell
+  bool hesitation = false;      // Hold: a pause in the middle of a stroke
   double peak_speed_px_s = 0.0; // Stroke: the speed the stroke was planned for
 };
 
@@ -62,7 +63,7 @@ class Motion {
   void stroke_for(Point p1, double duration_s, double bow_px = 0.0);
   // Along the path with the given rise from the current x to x1, ending u1 px off it.
   void stroke_along_path(double x1, double rise_px, double u1, double peak_speed_px_s);
-  void hold(double duration_s, bool rest);
+  void hold(double duration_s, bool rest, bool hesitation = false);
   // Finger off the screen for duration_s, then down again at `landing`.
   void lift(double duration_s, Point landing);
 

@@ -15,7 +15,10 @@ Point clamp_to_screen(Point p) { return {std::clamp(p.x, kMinX, kMaxX), std::cla
 
 class Planner {
  public:
-  Planner(const MotionOptions& o, Random& rng) : o_(o), rng_(rng), motion_(start_point()) {
+  Planner(const MotionOptions& o, uint64_t seed)
+      : o_(o), rng_(seed, Stream::Motion), slow_rng_(seed, Stream::SlowStrokes),
+        hesitation_rng_(seed, Stream::Hesitations), reversal_rng_(seed, Stream::Reversals),
+        motion_(start_point()) {
     // Rests and lifts at random moments between 10 % and 90 % of the trace.
     for (int i = 0; i < o.rests; ++i) events_.push_back({rng_.uniform(0.1, 0.9) * o.duration_s, false});
     for (int i = 0; i < o.lifts; ++i) events_.push_back({rng_.uniform(0.1, 0.9) * o.duration_s, true});
@@ -77,9 +80,32 @@ class Planner {
       rightwards_ = !rightwards_;
       x1 = std::clamp(rightwards_ ? here.x + length : here.x - length, 40.0, 690.0);
     }
-    const double u1 = std::clamp(6.0 * rng_.gaussian(), -18.0, 18.0);
+    double u1 = std::clamp(6.0 * rng_.gaussian(), -18.0, 18.0);
+    double peak = speed();
+    if (o_.slow_fraction > 0.0) {
+      Segment planned;
+      planned.shape = StrokeShape::AlongPath;
+      planned.p0 = here;
+      planned.p1 = {x1, path_y(x1, rise_) + u1};
+      planned.rise_px = rise_;
+      planned.u0 = here.y - path_y(here.x, rise_);
+      planned.u1 = u1;
+      const double scale = slow_down(stroke_length(planned), peak);
+      x1 = here.x + scale * (x1 - here.x);
+      u1 = planned.u0 + scale * (u1 - planned.u0);
+    }
     // Leave the current offset from the path continuous: start from where the finger is.
-    motion_.stroke_along_path(x1, rise_, u1, speed());
+    if (hesitates()) {
+      const double f = hesitation_rng_.uniform(0.35, 0.65);
+      const double u0 = here.y - path_y(here.x, rise_);
+      motion_.stroke_along_path(here.x + f * (x1 - here.x), rise_, u0 + f * (u1 - u0), peak);
+      hesitate();
+    }
+    motion_.stroke_along_path(x1, rise_, u1, peak);
+    if (reverses()) {
+      const double back = reversal_rng_.uniform(0.15, 0.40);
+      motion_.stroke_along_path(x1 - back * (x1 - here.x), rise_, u1, peak);
+    }
     const bool went_right = x1 > here.x;
     rightwards_ = rng_.chance(0.85) ? !went_right : went_right;  // mostly back and forth
   }
@@ -89,13 +115,14 @@ class Planner {
   void across_stroke() {
     const Point here = motion_.position();
     if (here.x > 680.0) {
-      motion_.stroke_to(clamp_to_screen({rng_.uniform(60.0, 160.0), 240.0 + 30.0 * rng_.gaussian()}), speed(),
-                        20.0 * rng_.gaussian());
+      // One call, as before: the order its arguments draw in is the compiler's.
+      straight_stroke(clamp_to_screen({rng_.uniform(60.0, 160.0), 240.0 + 30.0 * rng_.gaussian()}), speed(),
+                      20.0 * rng_.gaussian());
       return;
     }
     if (here.x < 150.0) {
-      motion_.stroke_to(clamp_to_screen({rng_.uniform(180.0, 500.0), rng_.uniform(100.0, 380.0)}), speed(),
-                        20.0 * rng_.gaussian());
+      straight_stroke(clamp_to_screen({rng_.uniform(180.0, 500.0), rng_.uniform(100.0, 380.0)}), speed(),
+                      20.0 * rng_.gaussian());
       return;
     }
     downwards_ = here.y < 240.0 ? true : (here.y > 240.0 ? false : !downwards_);
@@ -103,8 +130,50 @@ class Planner {
     const double centre = 240.0 + 40.0 * rng_.gaussian();
     const double y1 = downwards_ ? centre + reach / 2.0 : centre - reach / 2.0;
     const double x1 = here.x + rng_.uniform(-20.0, 90.0);
-    motion_.stroke_to(clamp_to_screen({x1, y1}), speed(), 10.0 * rng_.gaussian());
+    straight_stroke(clamp_to_screen({x1, y1}), speed(), 10.0 * rng_.gaussian());
   }
+
+  // A bowed stroke to p1 with the effects of MotionOptions applied.
+  void straight_stroke(Point p1, double peak, double bow) {
+    const Point here = motion_.position();
+    Segment whole;
+    whole.p0 = here;
+    whole.p1 = p1;
+    whole.bow_px = bow;
+    // Scaling the chord and the bow together scales the arc by the same share.
+    const double scale = o_.slow_fraction > 0.0 ? slow_down(stroke_length(whole), peak) : 1.0;
+    p1 = whole.p1 = {here.x + scale * (p1.x - here.x), here.y + scale * (p1.y - here.y)};
+    bow = whole.bow_px = bow * scale;
+    if (hesitates()) {
+      // Stop on the bowed curve and go on from there: two halves, each bowed half as much.
+      Point mid, tangent;
+      stroke_curve(whole, hesitation_rng_.uniform(0.35, 0.65), mid, tangent);
+      motion_.stroke_to(mid, peak, 0.5 * bow);
+      hesitate();
+      motion_.stroke_to(p1, peak, 0.5 * bow);
+    } else {
+      motion_.stroke_to(p1, peak, bow);
+    }
+    if (reverses()) {
+      const double back = reversal_rng_.uniform(0.15, 0.40);
+      motion_.stroke_to({p1.x - back * (p1.x - here.x), p1.y - back * (p1.y - here.y)}, peak);
+    }
+  }
+
+  // A slow stroke (slow_fraction of them): `peak` becomes slow and the
+  // stroke (arc `length`) short enough to last 0.8-2 s; returns the share of
+  // the stroke kept (along a curved path only nearly its share of the arc).
+  double slow_down(double length, double& peak) {
+    if (o_.slow_fraction <= 0.0 || !slow_rng_.chance(o_.slow_fraction)) return 1.0;
+    peak = slow_rng_.log_uniform(o_.slow_min_px_s, o_.slow_max_px_s);
+    const double slow_length = peak * slow_rng_.uniform(0.8, 2.0) / kMinJerkPeakRate;
+    return length > slow_length ? slow_length / length : 1.0;
+  }
+  bool hesitates() { return o_.hesitation_fraction > 0.0 && hesitation_rng_.chance(o_.hesitation_fraction); }
+  void hesitate() {
+    motion_.hold(hesitation_rng_.uniform(o_.hesitation_min_s, o_.hesitation_max_s), false, true);
+  }
+  bool reverses() { return o_.reversal_fraction > 0.0 && reversal_rng_.chance(o_.reversal_fraction); }
 
   void dwell() { motion_.hold(rng_.uniform(o_.dwell_min_s, o_.dwell_max_s), false); }
 
@@ -122,7 +191,8 @@ class Planner {
   }
 
   const MotionOptions& o_;
-  Random& rng_;
+  Random rng_;
+  Random slow_rng_, hesitation_rng_, reversal_rng_;
   Motion motion_;
   std::vector<Event> events_;
   size_t next_event_ = 0;
@@ -172,6 +242,6 @@ bool parse_path_choice(const std::string& text, PathChoice& out) {
   return false;
 }
 
-Motion plan_motion(const MotionOptions& options, Random& rng) { return Planner(options, rng).run(); }
+Motion plan_motion(const MotionOptions& options, uint64_t seed) { return Planner(options, seed).run(); }
 
 }  // namespace ff::tracegen

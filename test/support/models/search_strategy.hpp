@@ -38,10 +38,27 @@ struct MotionOptions {
   int lifts = 0;
   double lift_min_s = 0.15;
   double lift_max_s = 0.6;
+
+  // What real fingers add (issue 14), each off by default and drawn from its
+  // own random stream, so that the default motion stays exactly as it was.
+  // Slow strokes: this share of strokes peaks at slow_min..slow_max px/s
+  // (log-uniform; starts, stops, careful tracing) and is shortened to last
+  // 0.8-2 s.
+  double slow_fraction = 0.0;
+  double slow_min_px_s = 20.0;
+  double slow_max_px_s = 70.0;
+  // Hesitations: this share of strokes stops once mid-way (35-65 % of the
+  // way) for hesitation_min..max s and then goes on.
+  double hesitation_fraction = 0.0;
+  double hesitation_min_s = 0.08;
+  double hesitation_max_s = 0.3;
+  // Sharp reversals: this share of strokes turns straight back (no dwell)
+  // for 15-40 % of its length at the same peak speed.
+  double reversal_fraction = 0.0;
 };
 
 // The motion is at least options.duration_s long (it ends after the stroke
-// that crosses the duration).
-Motion plan_motion(const MotionOptions& options, Random& rng);
+// that crosses the duration). The same seed and options, the same motion.
+Motion plan_motion(const MotionOptions& options, uint64_t seed);
 
 }  // namespace ff::tracegen

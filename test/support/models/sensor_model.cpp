@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "support/models/gauss_markov.hpp"
 
 namespace ff::tracegen {
 
@@ -16,6 +17,7 @@ constexpr uint64_t kClockWrap = uint64_t{1} << 32;
 // A report before timestamps are made absolute: times relative to motion start.
 struct Report {
   int64_t t_rel_us = 0;
+  double latency_us = 0.0;
   double x = 0.0, y = 0.0;
   bool touch = false;
   SampleEvent event = SampleEvent::Normal;
@@ -26,9 +28,13 @@ enum class Plan : uint8_t { None, Missing, Late, Jump, Duplicate, NonFinite, Off
 
 class SensorSimulator {
  public:
-  SensorSimulator(const Motion& motion, const TraceOptions& o)
-      : motion_(motion), o_(o), timing_(o.seed, Stream::Timing), noise_(o.seed, Stream::Noise),
-        faults_(o.seed, Stream::Faults) {}
+  SensorSimulator(const Motion& motion, const Tremor& tremor, const TraceOptions& o)
+      : motion_(motion), tremor_(tremor), o_(o), timing_(o.seed, Stream::Timing), noise_(o.seed, Stream::Noise),
+        faults_(o.seed, Stream::Faults), latency_rng_(o.seed, Stream::Latency),
+        period_rng_(o.seed, Stream::PeriodJitter), correlated_rng_(o.seed, Stream::CorrelatedNoise),
+        drift_rng_(o.seed, Stream::Drift), correlated_x_(o.sensor.correlated_noise_px, o.sensor.correlated_noise_tau_s),
+        correlated_y_(o.sensor.correlated_noise_px, o.sensor.correlated_noise_tau_s),
+        drift_x_(o.sensor.drift_px, o.sensor.drift_tau_s), drift_y_(o.sensor.drift_px, o.sensor.drift_tau_s) {}
 
   std::vector<Report> run() {
     std::vector<Report> reports = scan();
@@ -44,11 +50,30 @@ class SensorSimulator {
     return q > 0.0 ? std::round(v / q) * q : v;
   }
 
-  // A report of the finger as the sensor sees it at t_rel_us.
+  // A report stamped at t_rel_us of the finger as the sensor scanned it
+  // r.latency_us earlier. Each effect is added only when on, so that with
+  // all of them off the numbers are exactly those of the plain model.
   void measure(Report& r) {
-    const TrueState s = motion_.at((static_cast<double>(r.t_rel_us) - o_.sensor.latency_us) * 1e-6);
-    r.x = quantise(s.position.x + o_.sensor.noise_px * noise_.gaussian());
-    r.y = quantise(s.position.y + o_.sensor.noise_px * noise_.gaussian());
+    const SensorOptions& o = o_.sensor;
+    r.latency_us = o.latency_us;
+    if (o.latency_spread_us > 0.0) r.latency_us += latency_rng_.uniform(0.0, o.latency_spread_us);
+    const double scan_s = (static_cast<double>(r.t_rel_us) - r.latency_us) * 1e-6;
+    const TrueState s = motion_.at(scan_s);
+    Point seen = s.position;
+    if (tremor_.enabled()) {
+      const Point shake = tremor_.at(scan_s);
+      seen = {seen.x + shake.x, seen.y + shake.y};
+    }
+    if (o.correlated_noise_px > 0.0) {
+      seen.x += correlated_x_.at(scan_s, correlated_rng_);
+      seen.y += correlated_y_.at(scan_s, correlated_rng_);
+    }
+    if (o.drift_px > 0.0) {
+      seen.x += drift_x_.at(scan_s, drift_rng_);
+      seen.y += drift_y_.at(scan_s, drift_rng_);
+    }
+    r.x = quantise(seen.x + o.noise_px * noise_.gaussian());
+    r.y = quantise(seen.y + o.noise_px * noise_.gaussian());
   }
 
   // Reports on a jittered grid while the finger is down; one touch = 0 report
@@ -60,8 +85,12 @@ class SensorSimulator {
     const double end_us = motion_.duration_s() * 1e6;
     bool was_touching = false;
     Report last;
+    double wandering = 0.0;  // the scan clock with period jitter
     for (int64_t n = 0;; ++n) {
-      const double nominal = static_cast<double>(n) * period_us;
+      if (n > 0 && o_.sensor.period_jitter_us > 0.0) {
+        wandering += period_us + std::clamp(o_.sensor.period_jitter_us * period_rng_.gaussian(), -max_jitter, max_jitter);
+      }
+      const double nominal = o_.sensor.period_jitter_us > 0.0 ? wandering : static_cast<double>(n) * period_us;
       if (nominal > end_us) break;
       const double jitter = n == 0 ? 0.0 : std::clamp(o_.sensor.jitter_us * timing_.gaussian(), -max_jitter, max_jitter);
       Report r;
@@ -151,7 +180,9 @@ class SensorSimulator {
           break;
         case Plan::Late: {
           // Read late: the position is from the scan, the stamp from the read.
-          r.t_rel_us += faults_.integer(1000, 12000);
+          const int late_us = faults_.integer(1000, 12000);
+          r.t_rel_us += late_us;
+          r.latency_us += late_us;
           r.event = SampleEvent::Late;
           overwritten_until = r.t_rel_us + 300;
           break;
@@ -212,8 +243,11 @@ class SensorSimulator {
   }
 
   const Motion& motion_;
+  const Tremor& tremor_;
   const TraceOptions& o_;
   Random timing_, noise_, faults_;
+  Random latency_rng_, period_rng_, correlated_rng_, drift_rng_;
+  GaussMarkov correlated_x_, correlated_y_, drift_x_, drift_y_;
   std::vector<Plan> plans_;
   std::vector<bool> taken_;
 };
@@ -263,11 +297,19 @@ TrueState GeneratedTrace::truth_at(uint64_t t_us) const {
   return motion.at(rel * 1e-6);
 }
 
+Point GeneratedTrace::tremor_at(uint64_t t_us) const {
+  const double rel = static_cast<double>(static_cast<int64_t>(t_us - start_us));
+  return tremor.at(rel * 1e-6);
+}
+
 GeneratedTrace generate_trace(const TraceOptions& options) {
   GeneratedTrace trace;
-  Random motion_rng(options.seed, Stream::Motion);
-  trace.motion = plan_motion(options.motion, motion_rng);
-  const std::vector<Report> reports = SensorSimulator(trace.motion, options).run();
+  trace.motion = plan_motion(options.motion, options.seed);
+  if (options.tremor.amplitude_px > 0.0) {
+    Random tremor_rng(options.seed, Stream::Tremor);
+    trace.tremor = Tremor(options.tremor, tremor_rng);
+  }
+  const std::vector<Report> reports = SensorSimulator(trace.motion, trace.tremor, options).run();
 
   trace.start_us = options.faults.start_us;
   if (options.faults.wrap) trace.start_us = kClockWrap - static_cast<uint64_t>(wrap_point_us(trace.motion, reports));
@@ -280,6 +322,7 @@ GeneratedTrace generate_trace(const TraceOptions& options) {
     s.y = r.y;
     s.touch = r.touch;
     s.event = r.event;
+    s.latency_us = r.latency_us;
     const TrueState truth = trace.motion.at(static_cast<double>(r.t_rel_us) * 1e-6);
     // A touch = 0 report has no finger to be true about (the last one comes
     // after the motion ends).

@@ -1,13 +1,16 @@
 #pragma once
 // The zForce as the Teensy sees it: ~200 Hz reports with timing jitter,
 // noise and quantisation, plus every fault the tracker must survive,
-// inserted on request at random (seeded) places.
+// inserted on request at random (seeded) places. On request also what a real
+// sensor adds (stamp latency, period jitter, correlated noise, drift) and
+// what a real finger adds on top of its voluntary motion (tremor).
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "support/models/motion.hpp"
 #include "support/models/search_strategy.hpp"
+#include "support/models/tremor.hpp"
 
 namespace ff::tracegen {
 
@@ -34,8 +37,9 @@ struct TraceSample {
   double x = 0.0;         // reported (noisy, quantised, maybe faulty)
   double y = 0.0;
   bool touch = false;
-  double x_true = 0.0;    // the finger at t_us (NaN while lifted)
+  double x_true = 0.0;    // the finger's voluntary motion at t_us (NaN while lifted; no tremor)
   double y_true = 0.0;
+  double latency_us = 0.0;  // how long before t_us the sensor scanned what x, y report
   SampleEvent event = SampleEvent::Normal;
 };
 
@@ -52,6 +56,21 @@ struct SensorOptions {
   double noise_px = kNoiseLowPx;
   double quantum_px = 0.0;    // 0: no quantisation
   double latency_us = 0.0;    // reports describe the finger this long before t_us
+
+  // What a real sensor adds (issue 14), each off by default and drawn from
+  // its own random stream, so that the default trace stays exactly as it was.
+  double latency_spread_us = 0.0;  // each report's latency: latency_us + uniform(0, spread)
+  // The scan interval itself varies (1 sigma, clipped to +-30 % of the
+  // period): unlike jitter_us, which scatters stamps around a fixed grid, the
+  // errors accumulate and the clock wanders.
+  double period_jitter_us = 0.0;
+  // Temporally correlated noise: a Gauss-Markov process per axis
+  // (gauss_markov.hpp), added to the white noise_px.
+  double correlated_noise_px = 0.0;
+  double correlated_noise_tau_s = 0.03;
+  // Slow drift of the whole coordinate frame: the same process, slower.
+  double drift_px = 0.0;
+  double drift_tau_s = 10.0;
 };
 
 struct FaultOptions {
@@ -67,19 +86,23 @@ struct FaultOptions {
 
 struct TraceOptions {
   MotionOptions motion;
+  TremorOptions tremor;  // part of what the sensor sees, not of the truth
   SensorOptions sensor;
   FaultOptions faults;
   uint64_t seed = 1;
 };
 
 struct GeneratedTrace {
-  Motion motion;
+  Motion motion;  // the voluntary motion: the truth
+  Tremor tremor;  // the involuntary tremor on top of it
   uint64_t start_us = 0;  // file time of motion time 0 (= the first report)
   std::vector<TraceSample> samples;
   int events[static_cast<int>(SampleEvent::kCount)] = {};  // rows of each kind
 
   // The true finger at a file time.
   TrueState truth_at(uint64_t t_us) const;
+  // The tremor's displacement at a file time (zero without tremor).
+  Point tremor_at(uint64_t t_us) const;
   uint64_t end_us() const { return samples.empty() ? start_us : samples.back().t_us; }
 };
 

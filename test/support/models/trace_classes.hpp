@@ -1,0 +1,25 @@
+#pragma once
+// Named kinds of generated traces: today's white-noise model and the
+// realistic fingers and sensors of issue 14, one effect at a time and all
+// together, so that the tracking benchmark can report per class and
+// ff-tracegen can write any of them (--class).
+#include <string>
+#include <vector>
+
+#include "support/models/sensor_model.hpp"
+
+namespace ff::tracegen {
+
+struct TraceClass {
+  const char* name;
+  const char* description;
+  // Sets the motion effects, the tremor and the sensor; leaves the seed, the
+  // strategy, the paths, the duration, rests, lifts and faults alone.
+  void (*apply)(TraceOptions& options);
+};
+
+const std::vector<TraceClass>& trace_classes();
+// nullptr for an unknown name.
+const TraceClass* find_trace_class(const std::string& name);
+
+}  // namespace ff::tracegen

@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""The trace classes as a user runs them: ff-track-bench --classes / --class
+and ff-tracegen --class and the effect options, as subprocesses, with exit
+codes (0 ok, 1 failed check, 2 bad usage) and what they print.
+
+usage: trace_classes_cli_test.py path/to/ff-track-bench path/to/ff-tracegen
+"""
+import csv
+import io
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BENCH = TRACEGEN = None
+CLASSES = ["white-200hz", "slow-fingers", "tremor", "latency", "correlated-noise",
+           "realistic-100hz", "realistic-200hz", "realistic-1khz"]
+
+
+def run(*args):
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True)
+
+
+def table_rows(out):
+    """{(class, tracker): [cells]} of the per-class table."""
+    rows = {}
+    for line in out.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 12 and cells[0] in CLASSES:
+            rows[(cells[0], cells[1])] = cells
+    return rows
+
+
+def ratio(cell):
+    return float(cell.rstrip("×"))
+
+
+class TrackBenchClasses(unittest.TestCase):
+    def test_every_class_has_the_thesis_pipeline_and_recommended(self):
+        res = run(BENCH, "--classes", "--duration", "2")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        rows = table_rows(res.stdout)
+        self.assertEqual(len(rows), 2 * len(CLASSES), res.stdout)
+        for name in CLASSES:
+            thesis, recommended = rows[(name, "thesis")], rows[(name, "recommended()")]
+            # The baseline's ratios to itself are 1; the others are value / baseline.
+            self.assertEqual(thesis[6], "1.00×")
+            self.assertAlmostEqual(ratio(recommended[6]), float(recommended[5]) / float(thesis[5]), delta=0.02)
+            self.assertEqual(thesis[11], recommended[11])  # the same traces for both
+        self.assertIn("moves above 4 mm/s", res.stdout)
+        self.assertIn("Generated traces, not a sensor", res.stdout)
+
+    def test_white_200hz_at_10_mm_s_is_the_standard_tables_low_noise_rows(self):
+        # The same six traces two ways: the class machinery and the standard set.
+        classes = run(BENCH, "--class", "white-200hz", "--moving-above", "50", "--duration", "4")
+        standard = run(BENCH, "--duration", "4")
+        self.assertEqual(classes.returncode, 0, classes.stderr)
+        self.assertEqual(standard.returncode, 0, standard.stderr)
+        rows = table_rows(classes.stdout)
+        self.assertEqual(len(rows), 2)
+        for tracker, standard_name in (("thesis", "thesis (ticks + 1-euro, filtered derivative)"),
+                                       ("recommended()", "recommended()")):
+            line = next(l for l in standard.stdout.splitlines() if l.startswith("| %s | low |" % standard_name))
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            mine = rows[("white-200hz", tracker)]
+            self.assertEqual(mine[2], cells[4])  # lag
+            self.assertEqual(mine[3], cells[2])  # position RMSE
+            self.assertEqual(mine[5], cells[7])  # heightmap amplitude RMS
+            self.assertEqual(mine[7], cells[9])  # frictionmap amplitude RMS
+
+    def test_write_doc_fills_its_own_markers(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            doc = os.path.join(tmp, "doc.md")
+            with open(doc, "w") as f:
+                f.write("# T\n<!-- track-bench:begin -->\nmain table\n<!-- track-bench:end -->\n"
+                        "<!-- track-bench-classes:begin -->\nold\n<!-- track-bench-classes:end -->\nafter\n")
+            res = run(BENCH, "--class", "latency", "--duration", "2", "--write-doc", doc)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(doc) as f:
+                text = f.read()
+            self.assertIn("main table", text)  # the other table untouched
+            self.assertNotIn("\nold\n", text)
+            self.assertIn("| latency | recommended() |", text)
+            self.assertTrue(text.endswith("<!-- track-bench-classes:end -->\nafter\n"))
+
+    def test_bad_usage_exits_2(self):
+        self.assertEqual(run(BENCH, "--class", "no-such-class").returncode, 2)
+        res = run(BENCH, "--classes", "--tune")
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("--classes", res.stderr)
+
+
+def read_trace(text):
+    return list(csv.DictReader(io.StringIO(text)))
+
+
+class TracegenClasses(unittest.TestCase):
+    def test_a_class_is_reproducible_and_carries_its_effects(self):
+        a = run(TRACEGEN, "-q", "--class", "realistic-1khz", "--seed", "4", "--duration", "3")
+        b = run(TRACEGEN, "-q", "--class", "realistic-1khz", "--seed", "4", "--duration", "3")
+        self.assertEqual(a.returncode, 0, a.stderr)
+        self.assertEqual(a.stdout, b.stdout)
+        rows = read_trace(a.stdout)
+        self.assertIn("x_tremor", rows[0])
+        touch = [r for r in rows if r["touch"] == "1"]
+        span_s = (int(touch[-1]["t_us"]) - int(touch[0]["t_us"])) * 1e-6
+        self.assertAlmostEqual((len(touch) - 1) / span_s, 1000.0, delta=20.0)  # 1 kHz
+        # Tremor of 1 px peak: |x_tremor| <= 1 (written to 0.001 px).
+        self.assertLessEqual(max(abs(float(r["x_tremor"])) for r in touch), 1.0005)
+
+    def test_white_200hz_is_the_plain_model_with_zforce_quantum(self):
+        a = run(TRACEGEN, "-q", "--class", "white-200hz", "--seed", "3", "--duration", "2")
+        b = run(TRACEGEN, "-q", "--quantise", "zforce", "--seed", "3", "--duration", "2")
+        self.assertEqual(a.returncode, 0, a.stderr)
+        self.assertEqual(a.stdout, b.stdout)
+
+    def test_options_change_the_class_they_follow(self):
+        base = read_trace(run(TRACEGEN, "-q", "--class", "latency", "--seed", "2", "--duration", "2").stdout)
+        none = read_trace(run(TRACEGEN, "-q", "--class", "latency", "--noise", "none", "--quantise", "none",
+                              "--seed", "2", "--duration", "2").stdout)
+        self.assertEqual(len(base), len(none))
+        # Without noise and quantum only the latency separates report and truth: at most
+        # 3 ms of a finger that moves under 2000 px/s.
+        for r in none:
+            if r["touch"] == "1":
+                self.assertLess(math.hypot(float(r["x"]) - float(r["x_true"]), float(r["y"]) - float(r["y_true"])), 6.5)
+
+    def test_correlated_noise_option_and_help(self):
+        res = run(TRACEGEN, "-q", "--correlated-noise-px", "2", "--correlated-tau-ms", "40", "--noise", "none",
+                  "--seed", "1", "--duration", "30")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        rows = [r for r in read_trace(res.stdout) if r["touch"] == "1"]
+        e = [float(r["x"]) - float(r["x_true"]) for r in rows]
+        mean = sum(e) / len(e)
+        var = sum((x - mean) ** 2 for x in e) / (len(e) - 1)
+        # ~6000 reports, ~6000 * (1 - 0.88) / (1 + 0.88) ~ 380 independent ones: variance to ~7 %.
+        self.assertAlmostEqual(var, 4.0, delta=1.2)
+        lag1 = sum((e[i] - mean) * (e[i + 1] - mean) for i in range(len(e) - 1)) / (var * (len(e) - 1))
+        self.assertAlmostEqual(lag1, math.exp(-5.0 / 40.0), delta=0.03)
+        help_text = run(TRACEGEN, "--help").stdout
+        for option in ("--class", "--slow-strokes", "--hesitations", "--reversals", "--tremor-px",
+                       "--latency-spread-us", "--period-jitter-us", "--correlated-noise-px", "--drift-px"):
+            self.assertIn(option, help_text)
+        for name in CLASSES:
+            self.assertIn(name, help_text)
+
+    def test_bad_values_exit_2(self):
+        self.assertEqual(run(TRACEGEN, "--class", "no-such-class").returncode, 2)
+        self.assertEqual(run(TRACEGEN, "--slow-strokes", "1.5").returncode, 2)
+        res = run(TRACEGEN, "--tremor-hz", "12", "--tremor-hz-max", "8")
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("--tremor-hz-max", res.stderr)
+
+
+if __name__ == "__main__":
+    BENCH, TRACEGEN = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    unittest.main(argv=sys.argv[:1], verbosity=1)

@@ -1,0 +1,35 @@
+#pragma once
+// Tracking accuracy per trace class (issue 14): each named class of finger
+// and sensor (support/models/trace_classes.hpp) on the standard strokes, for
+// the thesis pipeline and recommended(), and each metric as a ratio to the
+// thesis pipeline's on the same class.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "support/models/trace_classes.hpp"
+#include "tracking_evaluation.hpp"
+
+namespace ff::bench {
+
+// The finger "moves" above 4 mm/s in the class table, so that slow strokes,
+// starts and stops (20-70 px/s) are judged too.
+constexpr double kClassMovingSpeedPxS = 20.0;
+
+// standard_cases' six strokes and targets with the class's finger and sensor.
+std::vector<TrackCase> class_cases(const tracegen::TraceClass& trace_class, double duration_s);
+
+// Share of the moving ticks (speed >= moving_speed_px_s) at 20-70 px/s: how slow a class is.
+double slow_share(const std::vector<PreparedCase>& cases, double moving_speed_px_s);
+
+struct ClassRow {
+  std::string trace_class;
+  std::string tracker;  // per class, the first row is the thesis pipeline, the baseline of the ratios
+  Metrics metrics;
+  double slow_share = 0.0;
+};
+
+void write_class_report(std::ostream& out, const std::vector<ClassRow>& rows, double duration_s,
+                        double moving_speed_px_s);
+
+}  // namespace ff::bench
