@@ -34,8 +34,10 @@ Parsed parse(std::vector<std::string> words) {
   return p;
 }
 
+// One file per test: ctest runs the tests of this file in parallel processes.
 std::string scene_file(const char* text) {
-  const std::string path = ::testing::TempDir() + "/ff_scene_spec_test.txt";
+  const std::string path = ::testing::TempDir() + "/ff_scene_spec_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".txt";
   std::ofstream(path) << text;
   return path;
 }
