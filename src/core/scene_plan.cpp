@@ -273,8 +273,9 @@ float ScenePlan::find_max_gradient() {
   // a dense scan for every built-in scene at a third of the evaluations
   // (preparation <= 2 ms of modelled MK66 time, docs/benchmarks.md).
   // 48 px and four hills made every built-in scene prepare in <= 1.87 ms but
-  // missed max|G| by 5e-4 on randomised thesis scenes (test/stress precision):
-  // back to 32 px and six until a cheaper search passes that test.
+  // missed max|G| by 5e-4 on randomised thesis scenes (test/stress precision),
+  // and 32 px with four hills by 2.7e-4 (FF_STRESS_CASES=100): 32 px and six;
+  // the search's own code is what got cheaper (search_max_gradient).
   // Squares first (no division or root per evaluation); the scaled search
   // of old only for fields whose squares leave float's normal range.
   bool out_of_range = false;
@@ -282,8 +283,9 @@ float ScenePlan::find_max_gradient() {
   return out_of_range ? search_max_gradient(false, &out_of_range) : std::sqrt(best_squared);
 }
 
-// In RAM on the M4 (no flash wait states): preparation runs it ~1000 times.
-FF_FASTRUN float ScenePlan::search_max_gradient(bool squared, bool* out_of_range) {
+// In RAM on the M4 (no flash wait states), with the field's evaluation in this
+// file compiled in (flatten: 2.5 KB of RAM): preparation evaluates ~800 times.
+FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool squared, bool* out_of_range) {
   float scan_step = 32.0f;
   int candidates = 6;
   for (int e = 0; e < count_; ++e) {
@@ -311,7 +313,11 @@ FF_FASTRUN float ScenePlan::search_max_gradient(bool squared, bool* out_of_range
   // with it, so the candidates spread over distinct peaks (textures have rows
   // of nearly equal ones).
   const float neighbourhood = 1.5f * kStep;
+  // The lowest kept value: a node at or below it replaces nothing (its
+  // neighbour's slot holds at least as much), so most of the scan skips the slots.
+  float lowest_kept = -1.0f;
   auto consider = [&](Vec2 p, float m) __attribute__((always_inline)) {
+    if (!(m > lowest_kept)) return;
     int slot = -1;
     for (int i = 0; i < candidates && slot < 0; ++i) {
       if (best_m[i] >= 0.0f && std::fabs(best_p[i].x - p.x) <= neighbourhood &&
@@ -326,6 +332,8 @@ FF_FASTRUN float ScenePlan::search_max_gradient(bool squared, bool* out_of_range
     if (m > best_m[slot]) {
       best_m[slot] = m;
       best_p[slot] = p;
+      lowest_kept = best_m[0];
+      for (int i = 1; i < candidates; ++i) lowest_kept = best_m[i] < lowest_kept ? best_m[i] : lowest_kept;
     }
   };
 
