@@ -71,6 +71,15 @@ uint16_t nodes_for(float extent, float spacing) {
   return static_cast<uint16_t>(std::ceil(extent / spacing) + 1.0f);
 }
 
+// |G| without overflow or underflow of the squares: scale by the larger
+// component; 0 for a non-finite G. In flash (only the rare fallback search).
+__attribute__((noinline)) float safe_length(Vec2 g) {
+  const float m = std::fmax(std::fabs(g.x), std::fabs(g.y));
+  if (!(m > 0.0f) || !std::isfinite(m)) return 0.0f;
+  const Vec2 u = (1.0f / m) * g;
+  return m * length(u);
+}
+
 }  // namespace
 
 PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
@@ -264,8 +273,19 @@ float ScenePlan::find_max_gradient() {
   // a dense scan for every built-in scene at a third of the evaluations
   // (preparation <= 2 ms of modelled MK66 time, docs/benchmarks.md).
   // 48 px and four hills made every built-in scene prepare in <= 1.87 ms but
-  // missed max|G| by 5e-4 on randomised thesis scenes (test/stress precision):
-  // back to 32 px and six until a cheaper search passes that test.
+  // missed max|G| by 5e-4 on randomised thesis scenes (test/stress precision),
+  // and 32 px with four hills by 2.7e-4 (FF_STRESS_CASES=100): 32 px and six;
+  // the search's own code is what got cheaper (search_max_gradient).
+  // Squares first (no division or root per evaluation); the scaled search
+  // of old only for fields whose squares leave float's normal range.
+  bool out_of_range = false;
+  const float best_squared = search_max_gradient(true, &out_of_range);
+  return out_of_range ? search_max_gradient(false, &out_of_range) : std::sqrt(best_squared);
+}
+
+// In RAM on the M4 (no flash wait states), with the field's evaluation in this
+// file compiled in (flatten: 2.5 KB of RAM): preparation evaluates ~800 times.
+FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool squared, bool* out_of_range) {
   float scan_step = 32.0f;
   int candidates = 6;
   for (int e = 0; e < count_; ++e) {
@@ -277,23 +297,27 @@ float ScenePlan::find_max_gradient() {
   const float kStep = std::fmax(scan_step, 2.0f);
   constexpr int kCandidates = 6;
   Vec2 best_p[kCandidates];
-  float best_m[kCandidates];  // |G| (not squared)
+  float best_m[kCandidates];  // |G|^2 if squared, else |G|
   for (int i = 0; i < kCandidates; ++i) best_m[i] = -1.0f;
 
-  auto magnitude = [&](Vec2 p) {
-    ++stats_.gradient_evaluations;
+  uint32_t evaluations = 0;  // in a register, not the plan's memory
+  auto magnitude = [&](Vec2 p) __attribute__((always_inline)) {
+    ++evaluations;
     const Vec2 g = scaled_field(p);
-    // |G| without overflow or underflow of the squares: scale by the larger component.
-    const float m = std::fmax(std::fabs(g.x), std::fabs(g.y));
-    if (!(m > 0.0f) || !std::isfinite(m)) return 0.0f;
-    const Vec2 u = (1.0f / m) * g;
-    return m * length(u);
+    if (!squared) return safe_length(g);
+    const float m2 = g.x * g.x + g.y * g.y;
+    if (!(m2 <= FLT_MAX)) *out_of_range = true;  // overflow, or a non-finite field
+    return m2;
   };
   // Keep the best node of each hill: a node next to a kept one competes only
   // with it, so the candidates spread over distinct peaks (textures have rows
   // of nearly equal ones).
   const float neighbourhood = 1.5f * kStep;
-  auto consider = [&](Vec2 p, float m) {
+  // The lowest kept value: a node at or below it replaces nothing (its
+  // neighbour's slot holds at least as much), so most of the scan skips the slots.
+  float lowest_kept = -1.0f;
+  auto consider = [&](Vec2 p, float m) __attribute__((always_inline)) {
+    if (!(m > lowest_kept)) return;
     int slot = -1;
     for (int i = 0; i < candidates && slot < 0; ++i) {
       if (best_m[i] >= 0.0f && std::fabs(best_p[i].x - p.x) <= neighbourhood &&
@@ -308,6 +332,8 @@ float ScenePlan::find_max_gradient() {
     if (m > best_m[slot]) {
       best_m[slot] = m;
       best_p[slot] = p;
+      lowest_kept = best_m[0];
+      for (int i = 1; i < candidates; ++i) lowest_kept = best_m[i] < lowest_kept ? best_m[i] : lowest_kept;
     }
   };
 
@@ -342,6 +368,7 @@ float ScenePlan::find_max_gradient() {
   for (int c = 0; c < candidates; ++c) {
     if (best_m[c] < 0.0f) continue;
     Vec2 p = best_p[c];
+    Vec2 from = p;  // where the last move came from: known to be lower
     float m = best_m[c];
     for (float step = 0.5f * kStep; step >= 1.0f / 32.0f;) {
       const Vec2 moves[4] = {{step, 0}, {-step, 0}, {0, step}, {0, -step}};
@@ -349,9 +376,11 @@ float ScenePlan::find_max_gradient() {
       for (const Vec2& d : moves) {
         const Vec2 q{clamp(p.x + d.x, 0.0f, kScreenMaxX), clamp(p.y + d.y, 0.0f, kScreenMaxY)};
         if (q.x == p.x && q.y == p.y) continue;  // pinned at the screen's edge
+        if (q.x == from.x && q.y == from.y) continue;  // back where it was: not higher
         const float mq = magnitude(q);
         if (mq > m) {
           m = mq;
+          from = p;
           p = q;
           moved = true;
         }
@@ -360,6 +389,9 @@ float ScenePlan::find_max_gradient() {
     }
     best = m > best ? m : best;
   }
+  // Below 2^-100, squares of the smaller values underflow: not resolved.
+  if (squared && best < 0x1p-100f) *out_of_range = true;
+  stats_.gradient_evaluations += evaluations;
   return best;
 }
 

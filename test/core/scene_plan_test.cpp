@@ -255,6 +255,41 @@ TEST(ScenePlan, MaxGradientOfHugeWeightsSaturatesInsteadOfOverflowing) {
   EXPECT_EQ(max_lsb_difference(a, b), 0.0);
 }
 
+TEST(ScenePlan, MaxGradientIsScaleFreeWhereSquaresLeaveFloat) {
+  // max|G| is searched on |G|^2; a sampled map is not normalised, so heights
+  // of 1e30 (squares overflow) or 1e-30 (squares underflow) must give the
+  // plane's |G| = |(0.5, -0.25)| = 0.5590170 times the scale all the same.
+  const double expected = std::hypot(0.5, 0.25);
+  for (float scale : {1.0f, 1e30f, 1e-30f}) {
+    std::vector<float> z;
+    const SceneDefinition s = sampled_plane(z, 0.5f * scale, -0.25f * scale);
+    Arena arena;
+    ScenePlan plan;
+    ASSERT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok) << scale;
+    EXPECT_NEAR(static_cast<double>(plan.stats().max_gradient) / static_cast<double>(scale) / expected, 1.0, 1e-5)
+        << scale;
+  }
+  // Closed form: weights are normalised, so 1e30 and 1e-30 give one
+  // rendering and max|G| in proportion (a sink's |G| = |w|, a saddle's
+  // |w| |p - c| <= |w| hypot(400, 240) at the screen's corners).
+  for (float w : {1e30f, 1e-30f}) {
+    SceneDefinition s;
+    s.rendering = Rendering::Directional;
+    s.add(FieldElement::saddle({400.0f, 240.0f}, w));
+    s.add(FieldElement::point_sink({100.0f, 100.0f}, w));
+    SceneDefinition unit = s;
+    unit.elements[0].weight = unit.elements[1].weight = 1.0f;
+    ScenePlan a, b;
+    ASSERT_EQ(a.prepare(s, nullptr, 0), PrepareStatus::Ok);
+    ASSERT_EQ(b.prepare(unit, nullptr, 0), PrepareStatus::Ok);
+    EXPECT_NEAR(static_cast<double>(a.stats().max_gradient) / static_cast<double>(w) /
+                    static_cast<double>(b.stats().max_gradient),
+                1.0, 1e-6)
+        << w;
+    EXPECT_EQ(max_lsb_difference(a, b), 0.0) << w;
+  }
+}
+
 TEST(ScenePlan, HeightTableIsOneSidedAtTheEdges) {
   // The plane Z = 0.5 x sampled at 10 px, nodes at x = 0 .. 800. Central
   // differences one spacing either side, the samples clamped to the grid:

@@ -62,6 +62,10 @@ class ScenePlan {
   Vec2 closed_form_field(Vec2 p) const;
   float closed_form_profile(Vec2 p) const;
   float find_max_gradient();
+  // The scan and compass search of find_max_gradient. squared: compare
+  // |G|^2 (no division or root per evaluation) and set *out_of_range when a
+  // square overflowed or the maximum is too small for squares to resolve it.
+  float search_max_gradient(bool squared, bool* out_of_range);
 
   Rendering rendering_ = Rendering::Constant;
   Needs needs_ = Needs::Nothing;
