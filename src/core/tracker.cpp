@@ -49,7 +49,13 @@ TrackerConfig TrackerConfig::thesis() {
   return c;
 }
 
-TrackerConfig TrackerConfig::recommended() { return TrackerConfig{}; }
+TrackerConfig TrackerConfig::recommended() { return recommended(SensorProfile{}); }
+
+TrackerConfig TrackerConfig::recommended(const SensorProfile& sensor) {
+  TrackerConfig c;
+  if (is_valid(sensor)) c.sensor = sensor;
+  return c;
+}
 
 void Tracker::KalmanPair::start(Vec2 z, float r) {
   p = z;

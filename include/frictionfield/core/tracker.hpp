@@ -7,6 +7,7 @@
 #include "frictionfield/core/fault_counters.hpp"
 #include "frictionfield/core/geometry.hpp"
 #include "frictionfield/core/one_euro_filter.hpp"
+#include "frictionfield/core/sensor_profile.hpp"
 #include "frictionfield/core/sensor_sample.hpp"
 
 namespace ff {
@@ -31,6 +32,7 @@ struct KalmanConfig {
 
 struct TrackerConfig {
   Estimator estimator = Estimator::SplitKalman;
+  SensorProfile sensor;                // the sensor these constants were derived for
   OneEuroConfig one_euro;              // ThesisTicks and TimedExtrapolation
   KalmanConfig kalman;                 // Kalman; SplitKalman's direction filter
   KalmanConfig position_kalman{700.0f, 1.5f};  // SplitKalman's position filter
@@ -48,7 +50,9 @@ struct TrackerConfig {
   uint32_t max_sample_lead_us = 2000;     // a report may be stamped this far after the last tick
 
   static TrackerConfig thesis();       // exactly the thesis (docs/spec.md#thesis-tracker) (no fade)
-  static TrackerConfig recommended();  // the benchmarked default
+  static TrackerConfig recommended();  // the benchmarked default, for the default SensorProfile
+  // The benchmarked tracker for a measured sensor (an invalid profile: the default's).
+  static TrackerConfig recommended(const SensorProfile& sensor);
 };
 
 struct TrackState {

@@ -1,0 +1,18 @@
+#include "frictionfield/core/sensor_profile.hpp"
+
+#include "frictionfield/core/geometry.hpp"
+
+namespace ff {
+
+bool is_valid(const SensorProfile& p) {
+  using L = SensorProfileLimits;
+  const auto within = [](float v, float lo, float hi) { return is_finite(v) && v >= lo && v <= hi; };
+  return within(p.white_noise_px, 0.0f, L::kMaxNoisePx) && p.white_noise_px > 0.0f &&
+         within(p.correlated_noise_px, 0.0f, L::kMaxNoisePx) &&
+         within(p.correlation_time_ms, 0.0f, L::kMaxCorrelationTimeMs) &&
+         (p.correlated_noise_px == 0.0f || p.correlation_time_ms > 0.0f) &&
+         within(p.tremor_px, 0.0f, L::kMaxNoisePx) && within(p.report_rate_hz, L::kMinRateHz, L::kMaxRateHz) &&
+         within(p.jitter_us, 0.0f, L::kMaxJitterUs) && p.latency_us <= L::kMaxLatencyUs;
+}
+
+}  // namespace ff
