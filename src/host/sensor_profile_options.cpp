@@ -1,0 +1,38 @@
+#include "frictionfield/host/sensor_profile_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+namespace ff::host {
+
+void add_sensor_profile_options(CLI::App& app, SensorProfile& p) {
+  using L = SensorProfileLimits;
+  const char* group = "Sensor profile (docs/tracking.md#calibration)";
+  app.add_option("--white-noise-px", p.white_noise_px, "report noise independent from report to report, 1 sigma per axis")
+      ->check(CLI::Range(1e-3f, L::kMaxNoisePx))->capture_default_str()->group(group);
+  app.add_option("--correlated-noise-px", p.correlated_noise_px, "slow noise wander (Gauss-Markov), 1 sigma per axis")
+      ->check(CLI::Range(0.0f, L::kMaxNoisePx))->capture_default_str()->group(group);
+  app.add_option("--correlation-time-ms", p.correlation_time_ms, "the wander's time constant")
+      ->check(CLI::Range(0.0f, L::kMaxCorrelationTimeMs))->capture_default_str()->group(group);
+  app.add_option("--tremor-px", p.tremor_px, "8-12 Hz tremor of a resting finger, peak per axis")
+      ->check(CLI::Range(0.0f, L::kMaxNoisePx))->capture_default_str()->group(group);
+  app.add_option("--report-rate-hz", p.report_rate_hz, "mean sensor reports per second")
+      ->check(CLI::Range(L::kMinRateHz, L::kMaxRateHz))->capture_default_str()->group(group);
+  app.add_option("--jitter-us", p.jitter_us, "1 sigma of the report interval")
+      ->check(CLI::Range(0.0f, L::kMaxJitterUs))->capture_default_str()->group(group);
+  app.add_option("--latency-us", p.latency_us, "from the sensor's scan to the report's stamp")
+      ->check(CLI::Range(0u, L::kMaxLatencyUs))->capture_default_str()->group(group);
+}
+
+std::string sensor_profile_flags(const SensorProfile& p) {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "--white-noise-px %.3g --correlated-noise-px %.3g --correlation-time-ms %.3g --tremor-px %.3g "
+                "--report-rate-hz %.4g --jitter-us %.3g --latency-us %u",
+                double{p.white_noise_px}, double{p.correlated_noise_px}, double{p.correlation_time_ms},
+                double{p.tremor_px}, double{p.report_rate_hz}, double{p.jitter_us},
+                static_cast<unsigned>(p.latency_us));
+  return buf;
+}
+
+}  // namespace ff::host
