@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "frictionfield/bus/clock.hpp"
+#include "frictionfield/core/velocity_noise.hpp"
 
 namespace ff {
 
@@ -25,6 +26,7 @@ FF_FASTRUN float smoothstep(float t) {
 
 constexpr float kInitialSpeedSigmaPxS = 1000.0f;  // touch-down: velocity unknown
 constexpr float kMinSpeedPxS = 1e-6f;             // below this the direction is undefined
+constexpr float kMaxWidening = 100.0f;            // of the direction filter's covariance per report
 
 }  // namespace
 
@@ -42,8 +44,9 @@ TrackerConfig TrackerConfig::thesis() {
   TrackerConfig c;
   c.estimator = Estimator::ThesisTicks;
   c.one_euro = OneEuroConfig{};
-  c.rest_speed_px_s = 0.0f;  // v_hat = dxhat / |dxhat| at any speed
-  c.moving_speed_px_s = 0.0f;
+  c.rest_sigmas = 0.0f;  // v_hat = dxhat / |dxhat| at any speed
+  c.moving_sigmas = 0.0f;
+  c.compensate_latency = false;
   c.max_extrapolation_us = std::numeric_limits<uint32_t>::max();  // the thesis never stops counting
   c.max_speed_px_s = std::numeric_limits<float>::infinity();       // no jump rejection
   return c;
@@ -57,38 +60,6 @@ TrackerConfig TrackerConfig::recommended(const SensorProfile& sensor) {
   return c;
 }
 
-void Tracker::KalmanPair::start(Vec2 z, float r) {
-  p = z;
-  v = {};
-  P00 = r;
-  P01 = 0.0f;
-  P11 = kInitialSpeedSigmaPxS * kInitialSpeedSigmaPxS;
-}
-
-FF_TICK_INLINE void Tracker::KalmanPair::predict(float dt, float q) {
-  // Constant velocity driven by white acceleration of spectral density q.
-  p.x += v.x * dt;
-  p.y += v.y * dt;
-  const float dt2 = dt * dt;
-  P00 += dt * (2.0f * P01 + dt * P11) + q * dt2 * dt * (1.0f / 3.0f);
-  P01 += dt * P11 + q * dt2 * 0.5f;
-  P11 += q * dt;
-}
-
-FF_TICK_INLINE void Tracker::KalmanPair::update(Vec2 z, float r) {
-  const float inverse_s = 1.0f / (P00 + r);  // the one division per report and filter
-  const float k0 = P00 * inverse_s;
-  const float k1 = P01 * inverse_s;
-  const Vec2 innovation = z - p;
-  p.x += k0 * innovation.x;
-  p.y += k0 * innovation.y;
-  v.x += k1 * innovation.x;
-  v.y += k1 * innovation.y;
-  P11 -= k1 * P01;
-  P01 *= 1.0f - k0;
-  P00 *= 1.0f - k0;
-}
-
 Tracker::Tracker(const TrackerConfig& config) { configure(config); }
 
 void Tracker::configure(const TrackerConfig& config) {
@@ -97,12 +68,27 @@ void Tracker::configure(const TrackerConfig& config) {
   euro.rate_hz = 1e6f / static_cast<float>(kTickPeriodUs);
   filter_x_.configure(euro);
   filter_y_.configure(euro);
+  if (!is_valid(config_.sensor)) config_.sensor = SensorProfile{};
+  const SensorProfile& sensor = config_.sensor;
+  noise_ = ReportNoise::of(sensor);
+  // The position filter follows the wander: at low frequencies it looks like
+  // motion, and averaging it away would cost the lag this filter exists to avoid.
+  position_noise_ = noise_.white_only();
   direction_q_ = config.kalman.accel_noise_px_s2 * config.kalman.accel_noise_px_s2;
-  direction_r_ = config.kalman.measurement_noise_px * config.kalman.measurement_noise_px;
   position_q_ = config.position_kalman.accel_noise_px_s2 * config.position_kalman.accel_noise_px_s2;
-  position_r_ = config.position_kalman.measurement_noise_px * config.position_kalman.measurement_noise_px;
-  const float span = config.moving_speed_px_s - config.rest_speed_px_s;
-  inverse_fade_span_ = span > 0.0f ? 1.0f / span : 0.0f;
+  latency_us_ = config.compensate_latency ? sensor.latency_us : 0u;
+  inverse_maneuver_nis_ = config.maneuver_nis > 0.0f ? 1.0f / config.maneuver_nis : 0.0f;
+  const bool kalman = config.estimator == Estimator::Kalman || config.estimator == Estimator::SplitKalman;
+  const float low = config.rest_sigmas * config.rest_sigmas, high = config.moving_sigmas * config.moving_sigmas;
+  fade_low_ = low;
+  inverse_fade_span_ = 0.0f;
+  if (kalman && high > low) {  // what the fade measures speeds against (not per tick: a few ms here)
+    inverse_fade_span_ = 1.0f / (high - low);
+    const SteadyStateFilter steady = steady_state_filter(direction_q_, noise_, sensor);
+    steady_velocity_variance_ = steady.velocity_variance;
+    resting_velocity_variance_ = resting_velocity_variance(steady, sensor);
+
+  }
   reset();
 }
 
@@ -118,11 +104,20 @@ void Tracker::reset() {
   have_pending_jump_ = false;
   lifting_ = false;
   stale_reported_ = false;
-  direction_ = KalmanPair{};
-  position_ = KalmanPair{};
+  direction_ = FingerKalman{};
+  position_ = FingerKalman{};
   have_tick_ = false;
   have_tick_candidate_ = false;
   filters_fresh_ = false;
+}
+
+FF_TICK_INLINE void Tracker::learn_velocity_noise() {
+  // What a resting finger shows, plus what the filter has not yet learned
+  // (P11 above its settled value after a touch-down, a gap or a change of
+  // motion). Once per report, so that a tick costs no division for it.
+  if (inverse_fade_span_ <= 0.0f) return;
+  const float excess = direction_.P11 - steady_velocity_variance_;
+  inverse_velocity_noise_ = 1.0f / (resting_velocity_variance_ + (excess > 0.0f ? excess : 0.0f));
 }
 
 FF_FASTRUN void Tracker::lose_finger() {
@@ -147,8 +142,9 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   stale_reported_ = false;
   filter_x_.reset();
   filter_y_.reset();
-  direction_.start({s.x, s.y}, direction_r_);
-  position_.start({s.x, s.y}, position_r_);
+  direction_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
+  position_.start({s.x, s.y}, position_noise_, kInitialSpeedSigmaPxS);
+  learn_velocity_noise();
   filters_fresh_ = false;
 }
 
@@ -175,11 +171,22 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   if (!need_filter) filters_fresh_ = true;  // restart from this report when motion matters again
   if (!need_filter || !kalman) return;      // the 1-euro estimators filter at the tick
   const float dt_s = static_cast<float>(dt_us) * 1e-6f;
-  direction_.predict(dt_s, direction_q_);
-  direction_.update({s.x, s.y}, direction_r_);
+  const Vec2 z{s.x, s.y};
+  direction_.predict(dt_s, direction_q_, noise_);
+  float inverse_s = direction_.inverse_innovation(noise_);
+  if (inverse_maneuver_nis_ > 0.0f) {
+    const Vec2 r = direction_.innovation(z);
+    const float widen = dot(r, r) * inverse_s * inverse_maneuver_nis_;
+    if (widen > 1.0f) {  // the finger changed its motion
+      direction_.widen(widen < kMaxWidening ? widen : kMaxWidening);
+      inverse_s = direction_.inverse_innovation(noise_);
+    }
+  }
+  direction_.update(z, inverse_s);
+  learn_velocity_noise();
   if (config_.estimator == Estimator::SplitKalman) {
-    position_.predict(dt_s, position_q_);
-    position_.update({s.x, s.y}, position_r_);
+    position_.predict(dt_s, position_q_, position_noise_);
+    position_.update(z, position_.inverse_innovation(position_noise_));
   }
 }
 
@@ -201,7 +208,7 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
     return;
   }
   SensorSample s;  // within the margin: clamped onto the screen
-  s.t_us = in.t_us;
+  s.t_us = in.t_us - latency_us_;  // when the sensor saw the finger (judged by the stamp below)
   s.x = clamp(in.x, 0.0f, kScreenMaxX);
   s.y = clamp(in.y, 0.0f, kScreenMaxY);
   s.touch = true;
@@ -209,7 +216,7 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   if (have_tick_) {
     // Judge the stamp by the tick clock (the same micros() on the device): a
     // report from the future, or older than the stale timeout, is a glitch.
-    const int32_t lead = elapsed_us(s.t_us, last_tick_us_);
+    const int32_t lead = elapsed_us(in.t_us, last_tick_us_);
     if (lead > static_cast<int32_t>(config_.max_sample_lead_us) ||
         -lead > static_cast<int32_t>(config_.stale_timeout_us)) {
       faults_.add(Fault::SampleTimeImplausible);
@@ -296,11 +303,12 @@ FF_TICK_INLINE Vec2 Tracker::faded_direction(Vec2 v) const {
   if (!is_finite(v) || !(m > kMinSpeedPxS)) return {};  // at rest (or not a number): no direction
   const Vec2 u = (1.0f / m) * v;
   const float len = length(u);  // in [1, sqrt 2]
-  const float speed = m * len;
   float gain = 1.0f;
-  const float lo = config_.rest_speed_px_s, hi = config_.moving_speed_px_s;
-  if (hi > lo) gain = smoothstep((speed - lo) * inverse_fade_span_);
-  else if (hi > 0.0f && speed < hi) gain = 0.0f;
+  if (inverse_fade_span_ > 0.0f) {
+    // The speed in standard deviations of the velocity's noise (learn_velocity_noise).
+    const float speed = m * len;
+    gain = smoothstep((speed * speed * inverse_velocity_noise_ - fade_low_) * inverse_fade_span_);
+  }
   return (gain / len) * u;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/sensor_profile_options.hpp"
 #include "bench_report.hpp"
 #include "class_report.hpp"
 #include "proposed_config.hpp"
@@ -43,12 +44,8 @@ constexpr const char* kDescription =
 
 struct NamedConfig {
   NamedConfig(std::string n, const TrackerConfig& c) : name(std::move(n)), config(c) {}
-  NamedConfig(std::string n, const TrackerConfig& c, const TrackerConfig& d)
-      : name(std::move(n)), config(c), split(true), direction(d) {}
   std::string name;
   TrackerConfig config;
-  bool split = false;  // direction from `direction` (a second tracker)
-  TrackerConfig direction;
 };
 
 TrackerConfig with_derivative(TrackerConfig c, DerivativeFrom d) {
@@ -63,14 +60,16 @@ TrackerConfig with_estimator(TrackerConfig c, Estimator e) {
 
 using Tuned = ProposedConstants;
 
-TrackerConfig tuned_config(const Tuned& t) { return proposed_tracker(t); }
 
+std::string tuned_name(const Tuned& t) {
+  char name[160];
+  std::snprintf(name, sizeof name, "tuned (direction q %.0f, position q %.0f, fade %.1f-%.1f sigma)",
+                static_cast<double>(t.direction_accel_px_s2), static_cast<double>(t.position_accel_px_s2),
+                static_cast<double>(t.rest_sigmas), static_cast<double>(t.moving_sigmas));
+  return name;
+}
 
-// Candidate: position from a fast Kalman (no lag), direction from the tuned one.
-constexpr float kSplitPositionQ = 700.0f;
-constexpr float kSplitPositionR = 1.5f;
-
-std::vector<NamedConfig> standard_configs(const Tuned& tuned, const Tuned& split_position) {
+std::vector<NamedConfig> standard_configs(const Tuned& tuned, bool with_tuned) {
   const TrackerConfig rec = TrackerConfig::recommended();
   std::vector<NamedConfig> configs = {
       {"thesis (ticks + 1-euro, filtered derivative)", TrackerConfig::thesis()},
@@ -79,24 +78,10 @@ std::vector<NamedConfig> standard_configs(const Tuned& tuned, const Tuned& split
        with_derivative(with_estimator(rec, Estimator::TimedExtrapolation), DerivativeFrom::PreviousFiltered)},
       {"timed extrapolation + 1-euro (raw)",
        with_derivative(with_estimator(rec, Estimator::TimedExtrapolation), DerivativeFrom::PreviousRaw)},
-      {"kalman, one filter (recommended() constants)", with_estimator(TrackerConfig{}, Estimator::Kalman)},
+      {"kalman, one filter (the direction filter alone)", with_estimator(rec, Estimator::Kalman)},
       {"recommended()", rec},
   };
-  if (tuned.accel_noise_px_s2 > 0.0f) {
-    char name[160];
-    std::snprintf(name, sizeof name, "kalman tuned (q %.0f, r %.1f, fade %.0f-%.0f px/s)",
-                  static_cast<double>(tuned.accel_noise_px_s2), static_cast<double>(tuned.measurement_noise_px),
-                  static_cast<double>(tuned.rest_speed_px_s), static_cast<double>(tuned.moving_speed_px_s));
-    configs.emplace_back(name, tuned_config(tuned));
-    if (split_position.accel_noise_px_s2 > 0.0f) {
-      Tuned position = tuned;
-      position.accel_noise_px_s2 = split_position.accel_noise_px_s2;
-      position.measurement_noise_px = split_position.measurement_noise_px;
-      std::snprintf(name, sizeof name, "candidate: position kalman (q %.0f, r %.1f) + direction from the tuned one",
-                    static_cast<double>(position.accel_noise_px_s2), static_cast<double>(position.measurement_noise_px));
-      configs.emplace_back(name, tuned_config(position), tuned_config(tuned));
-    }
-  }
+  if (with_tuned) configs.emplace_back(tuned_name(tuned), proposed_tracker(tuned));
   return configs;
 }
 
@@ -104,12 +89,13 @@ struct LevelSet {
   std::string label;
   double noise_px;
   std::vector<PreparedCase> cases;
+  SensorProfile sensor;  // what the trackers are told about the sensor
 };
 
 // Trace files as one set: each judged against its truth columns or the offline smoother.
-bool load_trace_level(const std::vector<std::string>& paths, const TraceFileOptions& options, LevelSet& level,
-                      std::string& error) {
-  level = LevelSet{"recorded", 0.0, {}};
+bool load_trace_level(const std::vector<std::string>& paths, const TraceFileOptions& options,
+                      const SensorProfile& sensor, LevelSet& level, std::string& error) {
+  level = LevelSet{"recorded", 0.0, {}, sensor};
   for (const std::string& path : paths) {
     PreparedCase c;
     if (!load_trace_case(path, options, c, error)) return false;
@@ -124,20 +110,21 @@ bool load_trace_level(const std::vector<std::string>& paths, const TraceFileOpti
 std::vector<LevelSet> prepare_levels(double duration_s) {
   std::vector<LevelSet> levels;
   for (auto [label, noise] : {std::pair<const char*, double>{"low", 1.0}, {"high", 2.5}}) {
-    LevelSet level{label, noise, {}};
+    LevelSet level{label, noise, {}, {}};
     for (const TrackCase& c : standard_cases(noise, duration_s)) level.cases.push_back(prepare_case(c));
+    level.sensor = tracegen::nominal_profile(level.cases.front().spec.options);
     levels.push_back(std::move(level));
   }
   return levels;
 }
 
-// Grid search for the Kalman constants and the rest-fade speeds. The
-// objective is the heightmap amplitude error while moving (mean over both
-// noise levels); candidates must keep the lag under max_lag_ms (the goal: 2
-// ms), the frictionmap error no
-// worse than the thesis pipeline's, and the heightmap chatter at rest (RMS of
-// A - 0.5, worst level) under `rest_bound`. Every candidate is logged, and
-// the trade-off between moving error and rest chatter is printed at the end.
+// Grid search for the finger's acceleration densities and the direction
+// confidence's fade. The objective is the heightmap amplitude error while
+// moving (mean over the sets); candidates must keep the lag under max_lag_ms,
+// the frictionmap error no worse than the thesis pipeline's, and the
+// heightmap chatter at rest (RMS of A - 0.5, worst set) under `rest_bound`.
+// Every candidate is logged, and the trade-off between moving error and rest
+// chatter is printed at the end.
 Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_lag_ms, std::ostream& log) {
   EvalOptions options;
   options.cost = false;
@@ -149,17 +136,16 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     double hm = 0.0, fm_ratio = 0.0, lag = 0.0, rest = 0.0;
     std::vector<double> hm_level, rest_level;
     bool fits = false;  // lag and frictionmap constraints
-    bool ok() const { return fits; }
   };
   std::vector<Scored> all;
   auto score = [&](const Tuned& t) {
     Scored s{t, 0.0, 0.0, 0.0, 0.0, {}, {}, false};
     for (size_t i = 0; i < levels.size(); ++i) {
-      const Metrics m = evaluate(tuned_config(t), levels[i].cases, options);
+      const Metrics m = evaluate(proposed_tracker(t, levels[i].sensor), levels[i].cases, options);
       s.hm += m.heightmap_rms / static_cast<double>(levels.size());
       s.hm_level.push_back(m.heightmap_rms);
       s.rest_level.push_back(m.heightmap_rest_rms);
-      s.lag = std::max(s.lag, m.lag_ms);
+      s.lag = std::max(s.lag, std::fabs(m.lag_ms));
       s.rest = std::max(s.rest, m.heightmap_rest_rms);
       s.fm_ratio = std::max(s.fm_ratio, m.frictionmap_rms / thesis_fm[i]);
     }
@@ -177,12 +163,12 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
       }
       return out;
     };
-    char line[320];
+    char line[360];
     std::snprintf(line, sizeof line,
-                  "%s q=%-6.0f r=%-5.2f rest=%-4.0f moving=%-4.0f  HM RMS %.4f (%s)  lag %.2f ms  "
+                  "%s dir q=%-5.0f pos q=%-5.0f fade=%.1f-%.1f sigma  HM RMS %.4f (%s)  |lag| %.2f ms  "
                   "FM/thesis %.3f  rest %.4f (%s)%s\n",
-                  stage, static_cast<double>(s.t.accel_noise_px_s2), static_cast<double>(s.t.measurement_noise_px),
-                  static_cast<double>(s.t.rest_speed_px_s), static_cast<double>(s.t.moving_speed_px_s), s.hm,
+                  stage, static_cast<double>(s.t.direction_accel_px_s2), static_cast<double>(s.t.position_accel_px_s2),
+                  static_cast<double>(s.t.rest_sigmas), static_cast<double>(s.t.moving_sigmas), s.hm,
                   per_level(s.hm_level).c_str(), s.lag, s.fm_ratio, s.rest, per_level(s.rest_level).c_str(),
                   s.fits ? "" : "  (lag or frictionmap constraint violated)");
     log << line;
@@ -194,48 +180,39 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     return a_ok ? a.hm < b.hm : a.hm + a.rest < b.hm + b.rest;
   };
 
-  const TrackerConfig rec = TrackerConfig::recommended();
-  Scored best = score({rec.kalman.accel_noise_px_s2, rec.kalman.measurement_noise_px, rec.rest_speed_px_s,
-                       rec.moving_speed_px_s});
+  Scored best = score(recommended_constants());
   print("start ", best);
-  // Stage 1: Kalman constants, fade at the recommended speeds.
-  for (float q : {250.0f, 400.0f, 600.0f, 900.0f, 1300.0f, 2000.0f, 3000.0f, 6000.0f}) {
-    for (float r : {1.5f, 3.0f, 4.5f, 6.5f, 9.0f, 13.0f}) {
-      const Scored s = score({q, r, best.t.rest_speed_px_s, best.t.moving_speed_px_s});
-      print("kalman", s);
+  for (int round = 0; round < 2; ++round) {
+    // The direction filter and the fade together: a smoother filter allows a lower fade.
+    const Tuned centre = best.t;
+    for (float qf : {0.5f, 0.7f, 1.0f, 1.4f, 2.0f}) {
+      for (float lo : {2.0f, 2.5f, 3.0f, 3.5f, 4.0f}) {
+        for (float width : {1.5f, 3.0f, 4.5f}) {
+          const Scored s = score({centre.direction_accel_px_s2 * qf, centre.position_accel_px_s2, lo, lo + width,
+                                  centre.maneuver_nis});
+          print("dir   ", s);
+          if (better(s, best)) best = s;
+        }
+      }
+    }
+    // The position filter: lag against the frictionmap.
+    const Tuned direction = best.t;
+    for (float qf : {0.5f, 0.7f, 1.4f, 2.0f}) {
+      const Scored s = score({direction.direction_accel_px_s2, direction.position_accel_px_s2 * qf,
+                              direction.rest_sigmas, direction.moving_sigmas, direction.maneuver_nis});
+      print("pos   ", s);
       if (better(s, best)) best = s;
     }
   }
-  // Stage 2: fade speeds at the best constants.
-  for (int round = 0; round < 2; ++round) {
-    const Tuned centre = best.t;
-    for (float lo : {0.0f, 10.0f, 20.0f, 30.0f, 45.0f, 60.0f}) {
-      for (float width : {15.0f, 30.0f, 50.0f, 80.0f, 120.0f}) {
-        const Scored s = score({centre.accel_noise_px_s2, centre.measurement_noise_px, lo, lo + width});
-        print("fade  ", s);
-        if (better(s, best)) best = s;
-      }
-    }
-    // Stage 3: constants again around the best, at the chosen fade.
-    const Tuned fade = best.t;
-    for (float qf : {0.6f, 0.8f, 1.0f, 1.25f, 1.6f}) {
-      for (float rf : {0.6f, 0.8f, 1.0f, 1.25f, 1.6f}) {
-        const Scored s = score({fade.accel_noise_px_s2 * qf, fade.measurement_noise_px * rf, fade.rest_speed_px_s,
-                                fade.moving_speed_px_s});
-        print("refine", s);
-        if (better(s, best)) best = s;
-      }
-    }
-  }
   // The trade-off: for each bound on rest chatter, the best moving error.
-  log << "trade-off (lag <= " << max_lag_ms << " ms, frictionmap no worse than thesis): rest chatter bound -> best\n";
-  for (double bound : {0.02, 0.04, 0.06, 0.08, 0.10, 0.15, 0.20, 0.30}) {
+  log << "trade-off (|lag| <= " << max_lag_ms << " ms, frictionmap no worse than thesis): rest chatter bound -> best\n";
+  for (double bound : {0.005, 0.01, 0.02, 0.04, 0.08}) {
     const Scored* pick = nullptr;
     for (const Scored& s : all)
       if (s.fits && s.rest <= bound && (pick == nullptr || s.hm < pick->hm)) pick = &s;
     if (pick != nullptr) {
       char tag[32];
-      std::snprintf(tag, sizeof tag, "<=%.2f", bound);
+      std::snprintf(tag, sizeof tag, "<=%.3f", bound);
       print(tag, *pick);
     }
   }
@@ -244,7 +221,8 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
 }
 
 // The per-class table: the thesis pipeline and recommended() on each class.
-std::string run_classes(const std::vector<std::string>& names, double duration_s, const EvalOptions& base) {
+std::string run_classes(const std::vector<std::string>& names, double duration_s, const EvalOptions& base,
+                        const Tuned& candidate, const std::string& dump_path) {
   EvalOptions options = base;
   options.cost = false;
   std::vector<ClassRow> rows;
@@ -254,8 +232,16 @@ std::string run_classes(const std::vector<std::string>& names, double duration_s
     std::vector<PreparedCase> cases;
     for (const TrackCase& c : class_cases(trace_class, duration_s)) cases.push_back(prepare_case(c));
     const double slow = slow_share(cases, options.moving_speed_px_s);
+    const SensorProfile sensor = tracegen::nominal_profile(cases.front().spec.options);
+    if (!dump_path.empty() && rows.empty()) {
+      for (size_t i = 0; i < cases.size(); ++i) {
+        std::ofstream dump(i == 0 ? dump_path : dump_path + "." + std::to_string(i));
+        dump_ticks(dump, proposed_tracker(candidate, sensor), cases[i]);
+      }
+    }
     for (const auto& [name, config] : {std::pair<const char*, TrackerConfig>{"thesis", TrackerConfig::thesis()},
-                                       {"recommended()", TrackerConfig::recommended()}}) {
+                                       {"recommended()", TrackerConfig::recommended()},
+                                       {"recommended(profile)", proposed_tracker(candidate, sensor)}}) {
       rows.push_back({trace_class.name, name, evaluate(config, cases, options), slow});
     }
   }
@@ -272,8 +258,7 @@ int main(int argc, char** argv) {
   bool run_tune = false;
   double rest_bound = 0.08;
   double max_lag_ms = 2.0;
-  Tuned tuned = kProposed;
-  Tuned split{kSplitPositionQ, kSplitPositionR, 0.0f, 0.0f};
+  Tuned tuned = recommended_constants();
   EvalOptions options;
 
   CLI::App app{kDescription, "ff-track-bench"};
@@ -289,17 +274,18 @@ int main(int argc, char** argv) {
   app.add_option("--rest-bound", rest_bound, "Tuning: largest allowed heightmap chatter at rest (RMS of A - 0.5)")
       ->capture_default_str();
   auto* row = "The tuned row (defaults: the proposed constants, docs/tracking.md)";
-  app.add_option("--kalman-q", tuned.accel_noise_px_s2, "KalmanConfig::accel_noise_px_s2")->capture_default_str()->group(row);
-  app.add_option("--kalman-r", tuned.measurement_noise_px, "KalmanConfig::measurement_noise_px")->capture_default_str()->group(row);
-  app.add_option("--rest-speed", tuned.rest_speed_px_s, "TrackerConfig::rest_speed_px_s")->capture_default_str()->group(row);
-  app.add_option("--moving-speed-fade", tuned.moving_speed_px_s, "TrackerConfig::moving_speed_px_s")
+  app.add_option("--direction-q", tuned.direction_accel_px_s2, "The direction filter's KalmanConfig::accel_noise_px_s2")
       ->capture_default_str()->group(row);
-  app.add_option("--split-q", split.accel_noise_px_s2, "Candidate row: the position filter's accel_noise_px_s2 "
-                                                       "(0: no candidate row)")->capture_default_str()->group(row);
-  app.add_option("--split-r", split.measurement_noise_px, "Candidate row: the position filter's measurement_noise_px")
+  app.add_option("--position-q", tuned.position_accel_px_s2, "The position filter's KalmanConfig::accel_noise_px_s2")
+      ->capture_default_str()->group(row);
+  app.add_option("--rest-sigmas", tuned.rest_sigmas, "TrackerConfig::rest_sigmas")->capture_default_str()->group(row);
+  app.add_option("--moving-sigmas", tuned.moving_sigmas, "TrackerConfig::moving_sigmas")->capture_default_str()->group(row);
+  app.add_option("--maneuver-nis", tuned.maneuver_nis, "TrackerConfig::maneuver_nis (0: never widen)")
       ->capture_default_str()->group(row);
   std::vector<std::string> trace_paths;
   TraceFileOptions trace_options;
+  SensorProfile trace_sensor;
+  ff::host::add_sensor_profile_options(app, trace_sensor);
   std::string target_word = "middle";
   auto* traces = "Trace files instead of the generated set";
   app.add_option("--trace", trace_paths,
@@ -342,7 +328,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     if (app.count("--moving-above") == 0) options.moving_speed_px_s = kClassMovingSpeedPxS;
-    const std::string table = run_classes(class_names, duration_s, options);
+    const std::string table = run_classes(class_names, duration_s, options, tuned, dump_path);
     std::cout << table;
     if (!doc_path.empty()) {
       std::string error;
@@ -363,7 +349,7 @@ int main(int argc, char** argv) {
     trace_options.target = target_word == "top" ? Target::Top : (target_word == "bottom" ? Target::Bottom : Target::Middle);
     LevelSet level;
     std::string error;
-    if (!load_trace_level(trace_paths, trace_options, level, error)) {
+    if (!load_trace_level(trace_paths, trace_options, trace_sensor, level, error)) {
       std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
       return 2;
     }
@@ -372,17 +358,20 @@ int main(int argc, char** argv) {
   if (run_tune) tuned = tune(levels, rest_bound, max_lag_ms, std::cerr);
 
   std::vector<ReportRow> rows;
-  const std::vector<NamedConfig> configs = standard_configs(tuned, split);
-  for (const NamedConfig& nc : configs) {
+  const bool with_tuned = run_tune || app.count("--direction-q") + app.count("--position-q") +
+                                           app.count("--rest-sigmas") + app.count("--moving-sigmas") +
+                                           app.count("--maneuver-nis") > 0;
+  for (const NamedConfig& nc : standard_configs(tuned, with_tuned)) {
     for (const LevelSet& level : levels) {
       std::fprintf(stderr, "ff-track-bench: %s, %s noise\n", nc.name.c_str(), level.label.c_str());
-      rows.push_back({nc.name, level.label,
-                      evaluate(nc.config, level.cases, options, nc.split ? &nc.direction : nullptr)});
+      TrackerConfig config = nc.config;
+      config.sensor = level.sensor;  // as calibrated: the thesis pipeline ignores it
+      rows.push_back({nc.name, level.label, evaluate(config, level.cases, options)});
     }
   }
   if (!dump_path.empty()) {
     std::ofstream dump(dump_path);
-    dump_ticks(dump, tuned_config(tuned), levels.front().cases.front());
+    dump_ticks(dump, proposed_tracker(tuned, levels.front().sensor), levels.front().cases.front());
   }
   std::ostringstream table;
   std::string description = generated_set_description(duration_s);

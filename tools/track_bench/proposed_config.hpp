@@ -1,30 +1,34 @@
 #pragma once
-// The tracker constants ff-track-bench --tune found on the standard set
-// (docs/tracking.md), proposed for TrackerConfig::recommended().
+// The tracker constants ff-track-bench tunes (docs/tracking.md): the finger's
+// acceleration density for the direction and the position filter and the
+// direction confidence's fade; the sensor's side comes from its SensorProfile.
 #include "frictionfield/core/tracker.hpp"
 
 namespace ff::bench {
 
 struct ProposedConstants {
-  float accel_noise_px_s2;
-  float measurement_noise_px;
-  float rest_speed_px_s;
-  float moving_speed_px_s;
+  float direction_accel_px_s2;  // KalmanConfig of the direction filter
+  float position_accel_px_s2;   // KalmanConfig of the position filter
+  float rest_sigmas;
+  float moving_sigmas;
+  float maneuver_nis;
 };
 
-// Once the filter has settled only the ratio accel_noise_px_s2 /
-// measurement_noise_px matters (here ~90; the benchmark gives identical rows
-// for 400 / 4.5 and 600 / 6.5 alike); r alone only weighs the first reports
-// after a touch-down against the initial speed uncertainty.
-constexpr ProposedConstants kProposed{280.0f, 3.1f, 20.0f, 70.0f};
+// recommended()'s own constants.
+inline ProposedConstants recommended_constants() {
+  const TrackerConfig r = TrackerConfig::recommended();
+  return {r.kalman.accel_noise_px_s2, r.position_kalman.accel_noise_px_s2, r.rest_sigmas, r.moving_sigmas,
+          r.maneuver_nis};
+}
 
-inline TrackerConfig proposed_tracker(const ProposedConstants& c = kProposed) {
-  TrackerConfig t = TrackerConfig::recommended();
-  t.estimator = Estimator::Kalman;
-  t.kalman.accel_noise_px_s2 = c.accel_noise_px_s2;
-  t.kalman.measurement_noise_px = c.measurement_noise_px;
-  t.rest_speed_px_s = c.rest_speed_px_s;
-  t.moving_speed_px_s = c.moving_speed_px_s;
+// recommended(sensor) with these constants.
+inline TrackerConfig proposed_tracker(const ProposedConstants& c, const SensorProfile& sensor = SensorProfile{}) {
+  TrackerConfig t = TrackerConfig::recommended(sensor);
+  t.kalman.accel_noise_px_s2 = c.direction_accel_px_s2;
+  t.position_kalman.accel_noise_px_s2 = c.position_accel_px_s2;
+  t.rest_sigmas = c.rest_sigmas;
+  t.moving_sigmas = c.moving_sigmas;
+  t.maneuver_nis = c.maneuver_nis;
   return t;
 }
 

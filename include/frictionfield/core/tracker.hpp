@@ -5,8 +5,10 @@
 #include <cstdint>
 
 #include "frictionfield/core/fault_counters.hpp"
+#include "frictionfield/core/finger_kalman.hpp"
 #include "frictionfield/core/geometry.hpp"
 #include "frictionfield/core/one_euro_filter.hpp"
+#include "frictionfield/core/report_noise.hpp"
 #include "frictionfield/core/sensor_profile.hpp"
 #include "frictionfield/core/sensor_sample.hpp"
 
@@ -24,22 +26,33 @@ enum class Estimator : uint8_t {
 const char* to_string(Estimator e);
 
 struct KalmanConfig {
-  // Tuned by ff-track-bench on generated traces (docs/tracking.md): once
-  // settled only the ratio matters; ~90 trades direction noise against lag.
-  float accel_noise_px_s2 = 280.0f;    // white-acceleration spectral density sqrt(q)
-  float measurement_noise_px = 3.1f;   // sensor noise (1 sigma)
+  // The finger's side of the model: white acceleration of spectral density
+  // accel_noise^2 (px^2/s^3). The sensor's side, the report noise, comes from
+  // the SensorProfile (report_noise.hpp). Tuned by ff-track-bench on the
+  // trace classes (docs/tracking.md).
+  float accel_noise_px_s2 = 45.0f;
 };
 
 struct TrackerConfig {
   Estimator estimator = Estimator::SplitKalman;
-  SensorProfile sensor;                // the sensor these constants were derived for
+  SensorProfile sensor;                // the sensor: report noise and stamp latency
   OneEuroConfig one_euro;              // ThesisTicks and TimedExtrapolation
   KalmanConfig kalman;                 // Kalman; SplitKalman's direction filter
-  KalmanConfig position_kalman{700.0f, 1.5f};  // SplitKalman's position filter
-  // Direction fades to zero between these speeds (px/s) so that a resting
-  // finger renders 0.5 instead of chattering; both 0 disables the fade.
-  float rest_speed_px_s = 20.0f;
-  float moving_speed_px_s = 70.0f;
+  KalmanConfig position_kalman{450.0f};  // SplitKalman's position filter
+  // Direction confidence: the direction fades in as the speed stands out of
+  // the velocity's noise, from rest_sigmas to moving_sigmas standard
+  // deviations of what a resting finger shows (velocity_noise.hpp) plus the
+  // filter's excess uncertainty (after a touch-down, during a gap), so that a
+  // resting finger renders 0.5 instead of chattering. Both 0: no fade.
+  float rest_sigmas = 3.0f;
+  float moving_sigmas = 6.0f;
+  bool compensate_latency = true;      // date reports sensor.latency_us before their stamp
+  // A report this improbable for the direction filter (normalised innovation
+  // squared, chi^2 with 2 degrees of freedom) means the finger changed its
+  // motion: the filter's covariance is widened by nis / maneuver_nis so that
+  // it catches up instead of overshooting. 0: never.
+  float maneuver_nis = 9.0f;
+
   uint32_t max_extrapolation_us = 15000;  // then hold the position
   uint32_t stale_timeout_us = 250000;     // no sample this long: lift-off
   uint32_t lift_off_timeout_us = 20000;   // touch = 0 this long: lift-off
@@ -49,7 +62,7 @@ struct TrackerConfig {
   uint32_t max_tick_step_us = 100000;     // a longer step between ticks is suspect until confirmed
   uint32_t max_sample_lead_us = 2000;     // a report may be stamped this far after the last tick
 
-  static TrackerConfig thesis();       // exactly the thesis (docs/spec.md#thesis-tracker) (no fade)
+  static TrackerConfig thesis();       // exactly the thesis (docs/spec.md#thesis-tracker) (no fade, no latency)
   static TrackerConfig recommended();  // the benchmarked default, for the default SensorProfile
   // The benchmarked tracker for a measured sensor (an invalid profile: the default's).
   static TrackerConfig recommended(const SensorProfile& sensor);
@@ -90,6 +103,7 @@ class Tracker {
   Vec2 estimate(uint32_t now_us, Vec2& velocity);
   uint32_t extrapolation_us(uint32_t now_us);
   Vec2 faded_direction(Vec2 velocity) const;
+  void learn_velocity_noise();
 
   TrackerConfig config_;
   OneEuroFilter filter_x_;
@@ -110,21 +124,19 @@ class Tracker {
   bool lifting_ = false;
   uint32_t untouched_since_us_ = 0;
   bool stale_reported_ = false;  // StaleSample counted once per gap
-  // A constant-velocity Kalman filter for both axes: position, velocity
-  // (px/s) per axis, and one covariance, because both axes start alike and
-  // see the same intervals and noise, so their covariances are equal.
-  struct KalmanPair {
-    Vec2 p, v;                            // px, px/s
-    float P00 = 0.0f, P01 = 0.0f, P11 = 0.0f;
-    void start(Vec2 z, float r);
-    void predict(float dt_s, float q);
-    void update(Vec2 z, float r);
-  } direction_,  // the direction (or only) filter
-      position_;   // SplitKalman's position filter
+  FingerKalman direction_;  // the direction (or only) filter
+  FingerKalman position_;   // SplitKalman's position filter
   // From the configuration, so that a report costs no squares or divisions of it.
-  float direction_q_ = 0.0f, direction_r_ = 0.0f;  // accel_noise^2, measurement_noise^2
-  float position_q_ = 0.0f, position_r_ = 0.0f;
-  float inverse_fade_span_ = 0.0f;  // 1 / (moving_speed - rest_speed), 0 without a fade
+  ReportNoise noise_;           // the direction filter's: white and wander
+  ReportNoise position_noise_;  // the position filter's: white only (below)
+  float direction_q_ = 0.0f, position_q_ = 0.0f;  // accel_noise^2
+  // Direction confidence: z^2 = |v|^2 / (2 resting + excess) per axis pair.
+  float resting_velocity_variance_ = 0.0f;  // per axis, px^2/s^2
+  float steady_velocity_variance_ = 0.0f;   // the direction filter's settled P11
+  float inverse_velocity_noise_ = 0.0f;     // 1 / (resting + the filter's excess P11)
+  float fade_low_ = 0.0f, inverse_fade_span_ = 0.0f;  // rest_sigmas^2; 1 / (moving^2 - rest^2), 0: no fade
+  uint32_t latency_us_ = 0;
+  float inverse_maneuver_nis_ = 0.0f;
   bool filters_fresh_ = false;  // filters restarted from the last sample on next use
   uint32_t last_tick_us_ = 0;
   bool have_tick_ = false;

@@ -1,5 +1,7 @@
 #include "support/models/trace_classes.hpp"
 
+#include <cmath>
+
 namespace ff::tracegen {
 
 namespace {
@@ -75,6 +77,19 @@ const TraceClass* find_trace_class(const std::string& name) {
   for (const TraceClass& c : trace_classes())
     if (name == c.name) return &c;
   return nullptr;
+}
+
+SensorProfile nominal_profile(const TraceOptions& o) {
+  const SensorOptions& s = o.sensor;
+  SensorProfile p;
+  p.white_noise_px = static_cast<float>(std::sqrt(s.noise_px * s.noise_px + s.quantum_px * s.quantum_px / 12.0));
+  p.correlated_noise_px = static_cast<float>(s.correlated_noise_px);
+  p.correlation_time_ms = s.correlated_noise_px > 0.0 ? static_cast<float>(s.correlated_noise_tau_s * 1e3) : 0.0f;
+  p.tremor_px = static_cast<float>(o.tremor.amplitude_px);
+  p.report_rate_hz = static_cast<float>(s.rate_hz);
+  p.jitter_us = static_cast<float>(std::sqrt(2.0 * s.jitter_us * s.jitter_us + s.period_jitter_us * s.period_jitter_us));
+  p.latency_us = static_cast<uint32_t>(std::lround(s.latency_us + 0.5 * s.latency_spread_us));
+  return p;
 }
 
 }  // namespace ff::tracegen

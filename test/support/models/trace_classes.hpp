@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "frictionfield/core/sensor_profile.hpp"
 #include "support/models/sensor_model.hpp"
 
 namespace ff::tracegen {
@@ -21,5 +22,11 @@ struct TraceClass {
 const std::vector<TraceClass>& trace_classes();
 // nullptr for an unknown name.
 const TraceClass* find_trace_class(const std::string& name);
+
+// The profile a perfect calibration would measure on traces with these
+// options: the white noise with the quantisation's (q^2/12), the wander, the
+// tremor, the rate, the interval's jitter (stamp jitter counts twice, period
+// jitter once) and the mean latency. The drift (tau of seconds) is left out.
+SensorProfile nominal_profile(const TraceOptions& options);
 
 }  // namespace ff::tracegen

@@ -1,0 +1,89 @@
+#pragma once
+// The tracker's Kalman filter: the finger at constant velocity, driven by
+// white acceleration, seen through the sensor's white noise and its wander
+// (a third state, zero without one). Both axes share one covariance: they
+// start alike and see the same intervals and noise. The tracker and the
+// steady-state analysis (velocity_noise.cpp) run this same code.
+#include "frictionfield/core/geometry.hpp"
+#include "frictionfield/core/report_noise.hpp"
+
+namespace ff {
+
+struct FingerKalman {
+  Vec2 p, v, e;  // finger px, finger px/s, the report's wander px
+  float P00 = 0.0f, P01 = 0.0f, P02 = 0.0f, P11 = 0.0f, P12 = 0.0f, P22 = 0.0f;
+
+  // One report z, nothing known of the speed (1 sigma initial_speed_px_s).
+  void start(Vec2 z, const ReportNoise& n, float initial_speed_px_s) {
+    p = z;
+    v = {};
+    e = {};
+    P00 = n.white_variance + n.wander_variance;  // z = p + e + white
+    P01 = 0.0f;
+    P02 = -n.wander_variance;
+    P11 = initial_speed_px_s * initial_speed_px_s;
+    P12 = 0.0f;
+    P22 = n.wander_variance;
+  }
+
+  // dt_s later, q the acceleration's spectral density (px^2/s^3).
+  inline __attribute__((always_inline)) void predict(float dt, float q, const ReportNoise& n) {
+    const float phi = n.correlation(dt);
+    p.x += v.x * dt;
+    p.y += v.y * dt;
+    e.x *= phi;
+    e.y *= phi;
+    const float dt2 = dt * dt;
+    P00 += dt * (2.0f * P01 + dt * P11) + q * dt2 * dt * (1.0f / 3.0f);
+    P02 = phi * (P02 + dt * P12);
+    P01 += dt * P11 + q * dt2 * 0.5f;
+    P11 += q * dt;
+    P12 *= phi;
+    P22 = phi * phi * P22 + n.wander_variance * (1.0f - phi * phi);
+  }
+
+  // 1 / the innovation's variance (z = p + e + white): the one division per report.
+  inline __attribute__((always_inline)) float inverse_innovation(const ReportNoise& n) const {
+    return 1.0f / (P00 + 2.0f * P02 + P22 + n.white_variance);
+  }
+
+  Vec2 innovation(Vec2 z) const { return z - p - e; }
+
+  // Scales the covariance: a filter told it knows less catches up faster.
+  inline __attribute__((always_inline)) void widen(float w) {
+    P00 *= w;
+    P01 *= w;
+    P02 *= w;
+    P11 *= w;
+    P12 *= w;
+    P22 *= w;
+  }
+
+  struct Gains {
+    float position, velocity, wander;  // k0, k1 (1/s), k2
+  };
+  Gains gains(float inverse_s) const {
+    return {(P00 + P02) * inverse_s, (P01 + P12) * inverse_s, (P02 + P22) * inverse_s};  // P H^T / S, H = [1 0 1]
+  }
+
+  inline __attribute__((always_inline)) void update(Vec2 z, float inverse_s) {
+    const float h0 = P00 + P02, h1 = P01 + P12, h2 = P02 + P22;
+    const Gains k = gains(inverse_s);
+    const float k0 = k.position, k1 = k.velocity, k2 = k.wander;
+    const Vec2 r = innovation(z);
+    p.x += k0 * r.x;
+    p.y += k0 * r.y;
+    v.x += k1 * r.x;
+    v.y += k1 * r.y;
+    e.x += k2 * r.x;
+    e.y += k2 * r.y;
+    P00 -= k0 * h0;
+    P01 -= k0 * h1;
+    P02 -= k0 * h2;
+    P11 -= k1 * h1;
+    P12 -= k1 * h2;
+    P22 -= k2 * h2;
+  }
+};
+
+}  // namespace ff

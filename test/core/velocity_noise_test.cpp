@@ -1,0 +1,136 @@
+// The resting finger's velocity noise (velocity_noise.hpp) against a closed
+// form (white noise through an alpha-beta filter) and against simulations of
+// the real Tracker fed a resting finger's reports.
+#include "frictionfield/core/velocity_noise.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "frictionfield/core/tracker.hpp"
+#include "support/models/gauss_markov.hpp"
+#include "support/random.hpp"
+
+namespace ff {
+namespace {
+
+// The direction filter alone, no fade, no widening: its velocity is the one analysed.
+TrackerConfig plain_kalman(const SensorProfile& sensor) {
+  TrackerConfig c = TrackerConfig::recommended(sensor);
+  c.estimator = Estimator::Kalman;
+  c.maneuver_nis = 0.0f;
+  c.max_speed_px_s = 1e9f;  // no jump rejection on the noise
+  return c;
+}
+
+// Variance (per axis, px^2/s^2) of the tracker's velocity for a resting finger at (400, 240)
+// whose reports carry `noise(t_s)` (x, y), sampled once per report after 2 s of settling.
+template <typename Noise>
+double simulated_velocity_variance(const SensorProfile& sensor, double seconds, Noise noise) {
+  Tracker tracker(plain_kalman(sensor));
+  const double dt = 1.0 / static_cast<double>(sensor.report_rate_hz);
+  double sum = 0.0;
+  long n = 0;
+  for (long i = 0; i * dt < seconds; ++i) {
+    const double t = static_cast<double>(i) * dt;
+    const uint32_t t_us = 1000000u + static_cast<uint32_t>(std::lround(t * 1e6));
+    const auto [ex, ey] = noise(t);
+    tracker.on_sample({t_us, static_cast<float>(400.0 + ex), static_cast<float>(240.0 + ey), true});
+    const TrackState s = tracker.on_tick(t_us);
+    // The 2 kHz ticks until the next report (the tracker judges stamps by them).
+    for (uint32_t k = 1; k * kTickPeriodUs < static_cast<uint32_t>(dt * 1e6); ++k) tracker.on_tick(t_us + k * kTickPeriodUs);
+    if (t < 2.0) continue;
+    sum += static_cast<double>(s.velocity.x) * static_cast<double>(s.velocity.x) +
+           static_cast<double>(s.velocity.y) * static_cast<double>(s.velocity.y);
+    n += 2;
+  }
+  return sum / static_cast<double>(n);
+}
+
+float accel_q(const TrackerConfig& c) { return c.kalman.accel_noise_px_s2 * c.kalman.accel_noise_px_s2; }
+
+TEST(VelocityNoise, WhiteNoiseMatchesTheAlphaBetaClosedForm) {
+  SensorProfile sensor;
+  sensor.white_noise_px = 1.3f;
+  for (float rate : {100.0f, 200.0f, 1000.0f}) {
+    sensor.report_rate_hz = rate;
+    const SteadyStateFilter f = steady_state_filter(accel_q(plain_kalman(sensor)), ReportNoise::of(sensor), sensor);
+    // Kalata (1984): an alpha-beta filter turns white noise of variance s^2
+    // into velocity noise 2 beta^2 s^2 / (T^2 alpha (4 - 2 alpha - beta)).
+    const double T = 1.0 / static_cast<double>(rate), alpha = static_cast<double>(f.gains.position),
+                 beta = static_cast<double>(f.gains.velocity) * T, s2 = 1.3 * 1.3;
+    const double expected = 2.0 * beta * beta * s2 / (T * T * alpha * (4.0 - 2.0 * alpha - beta));
+    EXPECT_NEAR(static_cast<double>(resting_velocity_variance(f, sensor)), expected, 2e-3 * expected) << rate;
+  }
+}
+
+TEST(VelocityNoise, WanderMatchesASimulationOfTheTracker) {
+  for (float rate : {200.0f, 1000.0f}) {
+    SensorProfile sensor;
+    sensor.white_noise_px = 0.5f;
+    sensor.correlated_noise_px = 1.5f;
+    sensor.correlation_time_ms = 30.0f;
+    sensor.report_rate_hz = rate;
+    const TrackerConfig c = plain_kalman(sensor);
+    const double predicted = static_cast<double>(
+        resting_velocity_variance(steady_state_filter(accel_q(c), ReportNoise::of(sensor), sensor), sensor));
+    support::Random rng(7, support::Stream::Noise);
+    tracegen::GaussMarkov wx(1.5, 0.03), wy(1.5, 0.03);
+    const double simulated = simulated_velocity_variance(sensor, 400.0, [&](double t) {
+      return std::pair<double, double>{wx.at(t, rng) + 0.5 * rng.gaussian(), wy.at(t, rng) + 0.5 * rng.gaussian()};
+    });
+    EXPECT_NEAR(predicted, simulated, 0.1 * simulated) << rate;
+  }
+}
+
+TEST(VelocityNoise, TheWanderIsCorrelatedAsAGaussMarkovProcess) {
+  SensorProfile sensor;
+  sensor.correlated_noise_px = 2.0f;
+  sensor.correlation_time_ms = 30.0f;
+  const ReportNoise n = ReportNoise::of(sensor);
+  for (double dt : {0.001, 0.005, 0.01, 0.03}) {  // up to tau: within 2 % of exp(-dt / tau)
+    const double exact = std::exp(-dt / 0.03);
+    EXPECT_NEAR(static_cast<double>(n.correlation(static_cast<float>(dt))), exact, 0.02 * exact) << dt;
+  }
+  EXPECT_EQ(ReportNoise::of(SensorProfile{}).correlation(0.005f), 0.0f);  // no wander
+}
+
+TEST(VelocityNoise, FiveTimesTheReportsOfOneWanderTellLittleMore) {
+  // At 1 kHz the reports share most of their wander: the settled filter's
+  // velocity noise stays near its 200 Hz value (a filter taking each report
+  // as independent would see ~1/5 of the noise variance per report).
+  SensorProfile sensor;
+  sensor.white_noise_px = 0.5f;
+  sensor.correlated_noise_px = 2.0f;
+  sensor.correlation_time_ms = 30.0f;
+  SensorProfile fast = sensor;
+  fast.report_rate_hz = 1000.0f;
+  const float q = accel_q(plain_kalman(sensor));
+  const float v200 = resting_velocity_variance(steady_state_filter(q, ReportNoise::of(sensor), sensor), sensor);
+  const float v1k = resting_velocity_variance(steady_state_filter(q, ReportNoise::of(fast), fast), fast);
+  EXPECT_NEAR(static_cast<double>(v1k), static_cast<double>(v200), 0.25 * static_cast<double>(v200));
+}
+
+TEST(VelocityNoise, TremorMatchesASimulatedSinusoidAtTheWorstFrequency) {
+  SensorProfile sensor;
+  sensor.white_noise_px = 1.0f;
+  sensor.tremor_px = 1.5f;
+  const TrackerConfig c = plain_kalman(sensor);
+  const SteadyStateFilter f = steady_state_filter(accel_q(c), ReportNoise::of(sensor), sensor);
+  SensorProfile quiet = sensor;
+  quiet.tremor_px = 0.0f;
+  const double tremor_part = static_cast<double>(resting_velocity_variance(f, sensor) - resting_velocity_variance(f, quiet));
+  double worst = 0.0;
+  for (double hz = 8.0; hz <= 12.0; hz += 1.0) {
+    // The sinusoid alone (no noise draws): its velocity variance through the tracker.
+    const double v = simulated_velocity_variance(sensor, 30.0, [&](double t) {
+      return std::pair<double, double>{1.5 * std::sin(2.0 * M_PI * hz * t), 0.0};
+    });
+    worst = std::max(worst, 2.0 * v);  // one axis carried it: per-axis variance is twice the mean
+  }
+  EXPECT_NEAR(tremor_part, worst, 0.03 * worst);
+}
+
+}  // namespace
+}  // namespace ff
