@@ -16,6 +16,15 @@ namespace ff::bench {
 // starts and stops (20-70 px/s) are judged too.
 constexpr double kClassMovingSpeedPxS = 20.0;
 
+// Issue 14's goals on every class: heightmap error at most 0.45x the thesis
+// pipeline's (0.35x on white-200hz), lag at most 1 ms, frictionmap at most
+// 0.8x, chatter at rest at most 0.01 (RMS of A - 0.5).
+constexpr double kClassMaxHeightmapRatio = 0.45;
+constexpr double kClassMaxHeightmapRatioWhite = 0.35;
+constexpr double kClassMaxLagMs = 1.0;
+constexpr double kClassMaxFrictionmapRatio = 0.8;
+constexpr double kClassRestBound = 0.01;
+
 // standard_cases' six strokes and targets with the class's finger and sensor.
 std::vector<TrackCase> class_cases(const tracegen::TraceClass& trace_class, double duration_s);
 

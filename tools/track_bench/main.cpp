@@ -125,11 +125,16 @@ std::vector<LevelSet> prepare_levels(double duration_s) {
 // heightmap chatter at rest (RMS of A - 0.5, worst set) under `rest_bound`.
 // Every candidate is logged, and the trade-off between moving error and rest
 // chatter is printed at the end.
-Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_lag_ms, std::ostream& log) {
-  EvalOptions options;
+Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_lag_ms, double max_fm_ratio,
+           const EvalOptions& base, std::ostream& log) {
+  EvalOptions options = base;
   options.cost = false;
-  std::vector<double> thesis_fm;
-  for (const LevelSet& l : levels) thesis_fm.push_back(evaluate(TrackerConfig::thesis(), l.cases, options).frictionmap_rms);
+  std::vector<double> thesis_fm, thesis_hm;
+  for (const LevelSet& l : levels) {
+    const Metrics m = evaluate(TrackerConfig::thesis(), l.cases, options);
+    thesis_fm.push_back(m.frictionmap_rms);
+    thesis_hm.push_back(m.heightmap_rms);
+  }
 
   struct Scored {
     Tuned t;
@@ -142,14 +147,14 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     Scored s{t, 0.0, 0.0, 0.0, 0.0, {}, {}, false};
     for (size_t i = 0; i < levels.size(); ++i) {
       const Metrics m = evaluate(proposed_tracker(t, levels[i].sensor), levels[i].cases, options);
-      s.hm += m.heightmap_rms / static_cast<double>(levels.size());
-      s.hm_level.push_back(m.heightmap_rms);
+      s.hm += m.heightmap_rms / thesis_hm[i] / static_cast<double>(levels.size());
+      s.hm_level.push_back(m.heightmap_rms / thesis_hm[i]);
       s.rest_level.push_back(m.heightmap_rest_rms);
       s.lag = std::max(s.lag, std::fabs(m.lag_ms));
       s.rest = std::max(s.rest, m.heightmap_rest_rms);
       s.fm_ratio = std::max(s.fm_ratio, m.frictionmap_rms / thesis_fm[i]);
     }
-    s.fits = s.lag <= max_lag_ms && s.fm_ratio <= 1.0;
+    s.fits = s.lag <= max_lag_ms && s.fm_ratio <= max_fm_ratio;
     all.push_back(s);
     return s;
   };
@@ -165,10 +170,11 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     };
     char line[360];
     std::snprintf(line, sizeof line,
-                  "%s dir q=%-5.0f pos q=%-5.0f fade=%.1f-%.1f sigma  HM RMS %.4f (%s)  |lag| %.2f ms  "
+                  "%s dir q=%-5.0f pos q=%-5.0f fade=%.1f-%.1f sigma nis=%.0f  HM/thesis %.3f (%s)  |lag| %.2f ms  "
                   "FM/thesis %.3f  rest %.4f (%s)%s\n",
                   stage, static_cast<double>(s.t.direction_accel_px_s2), static_cast<double>(s.t.position_accel_px_s2),
-                  static_cast<double>(s.t.rest_sigmas), static_cast<double>(s.t.moving_sigmas), s.hm,
+                  static_cast<double>(s.t.rest_sigmas), static_cast<double>(s.t.moving_sigmas),
+                  static_cast<double>(s.t.maneuver_nis), s.hm,
                   per_level(s.hm_level).c_str(), s.lag, s.fm_ratio, s.rest, per_level(s.rest_level).c_str(),
                   s.fits ? "" : "  (lag or frictionmap constraint violated)");
     log << line;
@@ -183,21 +189,23 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
   Scored best = score(recommended_constants());
   print("start ", best);
   for (int round = 0; round < 2; ++round) {
-    // The direction filter and the fade together: a smoother filter allows a lower fade.
+    // The direction filter, the fade and the widening together: a smoother
+    // filter allows a lower fade, a readier widening a smoother filter.
     const Tuned centre = best.t;
-    for (float qf : {0.5f, 0.7f, 1.0f, 1.4f, 2.0f}) {
-      for (float lo : {2.0f, 2.5f, 3.0f, 3.5f, 4.0f}) {
-        for (float width : {1.5f, 3.0f, 4.5f}) {
-          const Scored s = score({centre.direction_accel_px_s2 * qf, centre.position_accel_px_s2, lo, lo + width,
-                                  centre.maneuver_nis});
-          print("dir   ", s);
-          if (better(s, best)) best = s;
+    for (float qf : {0.7f, 1.0f, 1.4f}) {
+      for (float lo : {2.0f, 2.5f, 3.0f}) {
+        for (float width : {2.0f, 3.0f}) {
+          for (float nis : {6.0f, 9.0f, 16.0f}) {
+            const Scored s = score({centre.direction_accel_px_s2 * qf, centre.position_accel_px_s2, lo, lo + width, nis});
+            print("dir   ", s);
+            if (better(s, best)) best = s;
+          }
         }
       }
     }
     // The position filter: lag against the frictionmap.
     const Tuned direction = best.t;
-    for (float qf : {0.5f, 0.7f, 1.4f, 2.0f}) {
+    for (float qf : {0.6f, 1.5f, 2.2f}) {
       const Scored s = score({direction.direction_accel_px_s2, direction.position_accel_px_s2 * qf,
                               direction.rest_sigmas, direction.moving_sigmas, direction.maneuver_nis});
       print("pos   ", s);
@@ -323,11 +331,25 @@ int main(int argc, char** argv) {
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   if (classes || !class_names.empty()) {
-    if (!trace_paths.empty() || run_tune) {
-      std::fprintf(stderr, "ff-track-bench: --classes works on generated traces; it takes neither --trace nor --tune\n");
+    if (!trace_paths.empty()) {
+      std::fprintf(stderr, "ff-track-bench: --classes works on generated traces; it takes no --trace\n");
       return 2;
     }
     if (app.count("--moving-above") == 0) options.moving_speed_px_s = kClassMovingSpeedPxS;
+    if (run_tune) {
+      std::vector<LevelSet> levels;
+      for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
+        if (!class_names.empty() && std::find(class_names.begin(), class_names.end(), trace_class.name) == class_names.end())
+          continue;
+        LevelSet level{trace_class.name, 0.0, {}, {}};
+        for (const TrackCase& c : class_cases(trace_class, duration_s)) level.cases.push_back(prepare_case(c));
+        level.sensor = tracegen::nominal_profile(level.cases.front().spec.options);
+        levels.push_back(std::move(level));
+      }
+      const bool bounds_given = app.count("--max-lag") + app.count("--rest-bound") > 0;
+      tuned = tune(levels, bounds_given ? rest_bound : kClassRestBound, bounds_given ? max_lag_ms : kClassMaxLagMs,
+                   kClassMaxFrictionmapRatio, options, std::cerr);
+    }
     const std::string table = run_classes(class_names, duration_s, options, tuned, dump_path);
     std::cout << table;
     if (!doc_path.empty()) {
@@ -355,7 +377,7 @@ int main(int argc, char** argv) {
     }
     levels.push_back(std::move(level));
   }
-  if (run_tune) tuned = tune(levels, rest_bound, max_lag_ms, std::cerr);
+  if (run_tune) tuned = tune(levels, rest_bound, max_lag_ms, 1.0, options, std::cerr);
 
   std::vector<ReportRow> rows;
   const bool with_tuned = run_tune || app.count("--direction-q") + app.count("--position-q") +

@@ -1,0 +1,98 @@
+// Issue 14's goals, per trace class, on what ships: recommended(profile) with
+// the profile a calibration of the class's sensor would give (its generator
+// parameters: nominal_profile). The goals the tracker meets are checked as
+// stated; the ones it does not yet meet (heightmap <= 0.45x the thesis
+// pipeline's, 0.35x on white-200hz; chatter at rest <= 0.01) are checked
+// against today's measured values plus a small margin, so that a change that
+// loses ground fails, and docs/tracking.md says how far each is from the goal.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "class_report.hpp"
+#include "support/models/trace_classes.hpp"
+#include "tracking_evaluation.hpp"
+
+namespace ff::bench {
+namespace {
+
+constexpr double kDurationS = 10.0;  // 6 traces per class: ~1 min of finger per class
+
+struct ClassResult {
+  Metrics thesis, shipping, uncalibrated;
+};
+
+const ClassResult& result(const std::string& name) {
+  static std::map<std::string, ClassResult> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  const tracegen::TraceClass* trace_class = tracegen::find_trace_class(name);
+  EXPECT_NE(trace_class, nullptr) << name;
+  std::vector<PreparedCase> cases;
+  for (const TrackCase& c : class_cases(*trace_class, kDurationS)) cases.push_back(prepare_case(c));
+  EvalOptions options;
+  options.cost = false;
+  options.moving_speed_px_s = kClassMovingSpeedPxS;
+  const SensorProfile sensor = tracegen::nominal_profile(cases.front().spec.options);
+  ClassResult r{evaluate(TrackerConfig::thesis(), cases, options),
+                evaluate(TrackerConfig::recommended(sensor), cases, options),
+                evaluate(TrackerConfig::recommended(), cases, options)};
+  return cache.emplace(name, r).first->second;
+}
+
+struct Bounds {
+  const char* trace_class;
+  double heightmap_ratio;  // measured on 10 s traces + 0.05 (the goal: 0.45, white-200hz 0.35)
+  double rest_rms;         // the goal (0.01) where met, else measured + 0.01
+};
+
+class ClassGoals : public ::testing::TestWithParam<Bounds> {};
+
+TEST_P(ClassGoals, ShippingTrackerPerClass) {
+  const Bounds b = GetParam();
+  const ClassResult& r = result(b.trace_class);
+  ASSERT_GT(r.shipping.moving_ticks, 10000u);
+  ASSERT_GT(r.shipping.rest_ticks, 500u);
+  // Met on every class: the goals as the issue states them.
+  EXPECT_LE(std::fabs(r.shipping.lag_ms), kClassMaxLagMs);
+  EXPECT_LE(r.shipping.frictionmap_rms, kClassMaxFrictionmapRatio * r.thesis.frictionmap_rms);
+  // Not yet met everywhere: no worse than today.
+  EXPECT_LE(r.shipping.heightmap_rms, b.heightmap_ratio * r.thesis.heightmap_rms);
+  EXPECT_LE(r.shipping.heightmap_rest_rms, b.rest_rms);
+}
+
+INSTANTIATE_TEST_SUITE_P(Classes, ClassGoals,
+                         // Measured (10 s traces): heightmap 0.49 / 0.47 / 0.56 / 0.49 / 0.62 / 0.60 /
+                         // 0.65 / 0.73x, chatter 0.001 / 0.023 / 0.000 / 0.001 / 0.004 / 0.024 / 0.025 / 0.034.
+                         ::testing::Values(Bounds{"white-200hz", 0.54, kClassRestBound},
+                                           Bounds{"slow-fingers", 0.52, 0.035},
+                                           Bounds{"tremor", 0.61, kClassRestBound},
+                                           Bounds{"latency", 0.54, kClassRestBound},
+                                           Bounds{"correlated-noise", 0.67, kClassRestBound},
+                                           Bounds{"realistic-100hz", 0.65, 0.035},
+                                           Bounds{"realistic-200hz", 0.70, 0.035},
+                                           Bounds{"realistic-1khz", 0.78, 0.045}),
+                         [](const ::testing::TestParamInfo<Bounds>& info) {
+                           std::string n = info.param.trace_class;
+                           for (char& c : n)
+                             if (c == '-') c = '_';
+                           return n;
+                         });
+
+// What calibration buys: where the sensor differs from the default profile,
+// recommended(profile) beats recommended() where it matters.
+TEST(ClassGoals, TheProfileRemovesTheLatencyAndTheWandersChatter) {
+  const ClassResult& latency = result("latency");
+  EXPECT_GT(latency.uncalibrated.lag_ms, 1.5);  // 1-3 ms late stamps pass through
+  EXPECT_LT(latency.shipping.lag_ms, 0.5);
+  const ClassResult& wander = result("correlated-noise");
+  EXPECT_LT(wander.shipping.heightmap_rest_rms, 0.5 * wander.uncalibrated.heightmap_rest_rms);
+  const ClassResult& fast = result("realistic-1khz");
+  EXPECT_LT(fast.shipping.heightmap_rest_rms, 0.5 * fast.uncalibrated.heightmap_rest_rms);
+  EXPECT_LT(fast.shipping.lag_ms, 0.5 * fast.uncalibrated.lag_ms);
+}
+
+}  // namespace
+}  // namespace ff::bench
