@@ -6,6 +6,9 @@ start_ffsim() {
   sim=$1 log=$2.sim.log
   shift 2
   [ -x "$sim" ] || { echo "no $sim: skipped"; exit 77; }
+  # Emptied here: the background job's own redirection may come after the first
+  # grep below, which would then read the last run's ready line and port.
+  : >"$log"
   "$sim" --port 0 --finger-port 0 --quiet "$@" >"$log" 2>&1 &
   sim_pid=$!
   # On the way out: stop ff-sim, and show its log if the script failed.
