@@ -1,6 +1,7 @@
 // libFuzzer target: the message decoder and the HID reassembler. Whatever
 // the bytes: no crash; a decoded message re-encodes and decodes to the same
-// frame; a decoded condition prepares (or is refused) without harm.
+// frame; a decoded condition prepares (or is refused) without harm; a
+// decoded sensor profile the device accepts makes a tracker that tracks.
 // Seeds: valid frames of every message type, written by the encoder itself at
 // build time (protocol_seeds.cpp). protocol_fixed_fuzz.cpp runs the same
 // checks on frames whose length and CRC are made right first.
@@ -11,7 +12,9 @@
 #include <memory>
 #include <vector>
 
+#include "frictionfield/core/geometry.hpp"
 #include "frictionfield/core/scene_plan.hpp"
+#include "frictionfield/core/tracker.hpp"
 #include "frictionfield/protocol/codec.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
 
@@ -32,6 +35,17 @@ int protocol_one_input(const uint8_t* data, size_t size) {
       static auto plan = std::make_unique<ff::ScenePlan>();
       static std::vector<uint32_t> table(ff::kTableSlotBytes / 4);
       (void)plan->prepare(m.condition.to_condition().scene, table.data(), table.size() * 4);
+    }
+    if (m.type == MessageType::SetSensorProfile && ff::is_valid(m.sensor_profile)) {
+      // Every profile the device accepts makes a tracker that answers a report with a finite position.
+      static ff::Tracker tracker;
+      tracker.configure(ff::TrackerConfig::recommended(m.sensor_profile));
+      tracker.on_sample({1000, 400.0f, 240.0f, true});
+      const ff::TrackState& s = tracker.on_tick(1500);
+      if (!s.present || !ff::is_finite(s.position.x) || !ff::is_finite(s.position.y)) {
+        std::fprintf(stderr, "protocol_fuzz: a valid sensor profile does not track\n");
+        std::abort();
+      }
     }
   }
   // The same bytes as a stream of HID reports.

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     std::snprintf(name, sizeof name, "type_%02x", t);
     write_seed(dir, name, *m);
   }
-  // Fuller payloads: every condition kind, a general scene, samples, ticks.
+  // Fuller payloads: every condition kind, a general scene, samples, ticks, sensor profiles.
   for (int k = 0; k < 4; ++k) {
     *m = Message{};
     m->type = MessageType::SetCondition;
@@ -81,6 +81,13 @@ int main(int argc, char** argv) {
     m->ticks.ticks[i] = {500u * i, 0.25f * static_cast<float>(i), static_cast<uint16_t>(1000u * i), true};
   }
   write_seed(dir, "ticks_3", *m);
+  // A measured sensor profile, and one the device refuses (finite, but a wander without its time).
+  *m = Message{};
+  m->type = MessageType::SetSensorProfile;
+  m->sensor_profile = {1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u};
+  write_seed(dir, "sensor_profile", *m);
+  m->sensor_profile.correlation_time_ms = 0.0f;
+  write_seed(dir, "sensor_profile_refused", *m);
   if (written == 0) {
     std::fprintf(stderr, "ff-fuzz-protocol-seeds: the encoder produced no frame\n");
     return 1;

@@ -337,6 +337,21 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       }
       break;
     }
+    case MessageType::SetSensorProfile:
+      // Checked and derived here, in the loop; the tick configures its
+      // tracker from it at its next start (HapticPipeline). Kept until reset
+      // or power-off: nothing is written to flash.
+      if (pipeline_.set_sensor_profile(in_.sensor_profile)) {
+        ++counters_.sensor_profiles_set;
+      } else {
+        out_.ack.status = protocol::AckStatus::Refused;
+        ++counters_.sensor_profiles_refused;
+      }
+      break;
+    case MessageType::QuerySensorProfile:  // what the tracker uses from the next tick on
+      out_.type = MessageType::SensorProfile;
+      out_.sensor_profile = pipeline_.tracker_config().sensor;
+      break;
     case MessageType::QueryStatus: {
       out_.type = MessageType::Status;
       protocol::StatusMessage& st = out_.status;

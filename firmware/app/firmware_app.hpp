@@ -5,8 +5,8 @@
 //
 // Threading: loop() runs in the main loop, tick() in the IntervalTimer
 // interrupt (priority above USB), which preempts the loop but never the
-// other way round. They share the pipeline (its own SPSC mailbox and atomic
-// scene swap), the heartbeat, the mouse position, the tick ring, the cycle
+// other way round. They share the pipeline (its own SPSC mailbox, atomic
+// scene swap and tracker configuration handover), the heartbeat, the mouse position, the tick ring, the cycle
 // statistics (a sequence counter, cycle_histogram.hpp) and a few counters:
 // every word has one writer, and the tick's words are 32-bit atomics the
 // loop only reads.
@@ -72,6 +72,8 @@ struct FirmwareCounters {
   uint32_t protocol_errors = 0;     // malformed or unknown messages (answered with Error)
   uint32_t conditions_set = 0;
   uint32_t conditions_refused = 0;
+  uint32_t sensor_profiles_set = 0;
+  uint32_t sensor_profiles_refused = 0;  // outside SensorProfileLimits (also the pipeline's Fault::BadSensorProfile)
   uint32_t watchdog_trips = 0;      // the loop stalled: the tick rested the plate
   uint32_t tick_stalls = 0;         // the tick stopped: the loop rested the plate
   uint32_t stream_overruns = 0;     // streamed records dropped: the host did not read in time (reports: loop, ticks: tick)

@@ -19,6 +19,7 @@ const char* to_string(Fault f) {
     case Fault::BadTickTime: return "bad_tick_time";
     case Fault::SampleTimeImplausible: return "sample_time_implausible";
     case Fault::TimeBaseReset: return "time_base_reset";
+    case Fault::BadSensorProfile: return "bad_sensor_profile";
     case Fault::kCount: break;
   }
   return "?";

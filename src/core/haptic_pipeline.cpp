@@ -4,7 +4,7 @@
 
 namespace ff {
 
-HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : tracker_(tracker) {
+HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : tracker_(tracker), tracker_slots_{tracker, tracker} {
   // Boot: neutral scene, plate resting until a finger and a condition arrive.
   Condition boot;
   slots_[0].plan.prepare(boot.scene, slots_[0].table, sizeof(slots_[0].table));
@@ -31,6 +31,19 @@ PrepareStatus HapticPipeline::set_condition(const Condition& condition) {
   return PrepareStatus::Ok;
 }
 
+bool HapticPipeline::set_sensor_profile(const SensorProfile& profile) {
+  if (!is_valid(profile)) {
+    main_faults_.add(Fault::BadSensorProfile);
+    return false;
+  }
+  // The tick reads only the slot tracker_published_ names, and it runs to
+  // completion between two instructions of the loop: the other slot is free.
+  const uint32_t next = tracker_published_.load(std::memory_order_relaxed) + 1u;
+  tracker_slots_[next & 1u] = TrackerConfig::recommended(profile);
+  tracker_published_.store(next, std::memory_order_release);
+  return true;
+}
+
 bool HapticPipeline::post_sample(const SensorSample& s) {
   if (mailbox_.post(s)) return true;
   main_faults_.add(Fault::MailboxOverflow);
@@ -39,6 +52,13 @@ bool HapticPipeline::post_sample(const SensorSample& s) {
 
 FF_FASTRUN TickOutput HapticPipeline::tick(uint32_t now_us) {
   ++ticks_;
+  // A new tracker configuration first, so that this tick's report is the
+  // first the new tracker sees (never a configuration changed mid-tick).
+  const uint32_t published = tracker_published_.load(std::memory_order_acquire);
+  if (published != tracker_applied_) {
+    tracker_.configure(tracker_slots_[published & 1u]);
+    tracker_applied_ = published;
+  }
   const Slot& slot = slots_[active_.load(std::memory_order_acquire)];
   const Needs needs = slot.plan.needs();
   const bool track_motion = needs != Needs::Nothing;

@@ -245,6 +245,30 @@ bool get_condition(WireReader& r, ConditionMessage& c) {
   return r.ok();
 }
 
+// --- sensor profiles -----------------------------------------------------------
+
+void put_profile(WireWriter& w, const SensorProfile& p) {
+  w.f32(p.white_noise_px);
+  w.f32(p.correlated_noise_px);
+  w.f32(p.correlation_time_ms);
+  w.f32(p.tremor_px);
+  w.f32(p.report_rate_hz);
+  w.f32(p.jitter_us);
+  w.u32(p.latency_us);
+}
+
+// Any finite values: whether the tracker can use them is the device's to
+// judge (is_valid), answered with Ack refused, as a scene's ranges are.
+void get_profile(WireReader& r, SensorProfile& p) {
+  p.white_noise_px = r.f32();
+  p.correlated_noise_px = r.f32();
+  p.correlation_time_ms = r.f32();
+  p.tremor_px = r.f32();
+  p.report_rate_hz = r.f32();
+  p.jitter_us = r.f32();
+  p.latency_us = r.u32();
+}
+
 // --- payloads ----------------------------------------------------------------
 
 void put_payload(WireWriter& w, const Message& m) {
@@ -253,10 +277,15 @@ void put_payload(WireWriter& w, const Message& m) {
     case MessageType::Condition:
       put_condition(w, m.condition);
       break;
+    case MessageType::SetSensorProfile:
+    case MessageType::SensorProfile:
+      put_profile(w, m.sensor_profile);
+      break;
     case MessageType::QueryStatus:
     case MessageType::StopStream:
     case MessageType::RebootToBootloader:
     case MessageType::QueryCondition:
+    case MessageType::QuerySensorProfile:
       break;
     case MessageType::StartStream:
       w.u8(m.stream.tick_decimation);
@@ -334,9 +363,10 @@ bool known_type(uint8_t t) {
   switch (static_cast<MessageType>(t)) {
     case MessageType::SetCondition: case MessageType::QueryStatus: case MessageType::StartStream:
     case MessageType::StopStream: case MessageType::SetCarrier: case MessageType::StartSweep:
-    case MessageType::RebootToBootloader: case MessageType::QueryCondition: case MessageType::Ack:
-    case MessageType::Status: case MessageType::Force: case MessageType::Samples: case MessageType::Ticks:
-    case MessageType::Condition: case MessageType::Error:
+    case MessageType::RebootToBootloader: case MessageType::QueryCondition: case MessageType::SetSensorProfile:
+    case MessageType::QuerySensorProfile: case MessageType::Ack: case MessageType::Status: case MessageType::Force:
+    case MessageType::Samples: case MessageType::Ticks: case MessageType::Condition: case MessageType::SensorProfile:
+    case MessageType::Error:
       return true;
   }
   return false;
@@ -347,10 +377,15 @@ bool get_payload(WireReader& r, Message& m) {
     case MessageType::SetCondition:
     case MessageType::Condition:
       return get_condition(r, m.condition);
+    case MessageType::SetSensorProfile:
+    case MessageType::SensorProfile:
+      get_profile(r, m.sensor_profile);
+      return true;
     case MessageType::QueryStatus:
     case MessageType::StopStream:
     case MessageType::RebootToBootloader:
     case MessageType::QueryCondition:
+    case MessageType::QuerySensorProfile:
       return true;
     case MessageType::StartStream:
       m.stream.tick_decimation = r.u8();

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
+#include <vector>
 
 #include "frictionfield/core/scenes.hpp"
 
@@ -182,6 +184,128 @@ TEST(HapticPipeline, BadStrengthIsCountedAndRepaired) {
   std::vector<TickOutput> out;
   stroke(*p, 0, 200, &out);
   EXPECT_FLOAT_EQ(out.back().amplitude, 0.5f);
+}
+
+bool same(const SensorProfile& a, const SensorProfile& b) {
+  return a.white_noise_px == b.white_noise_px && a.correlated_noise_px == b.correlated_noise_px &&
+         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px &&
+         a.report_rate_hz == b.report_rate_hz && a.jitter_us == b.jitter_us && a.latency_us == b.latency_us;
+}
+
+SensorProfile measured() { return {1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u}; }
+
+TEST(HapticPipeline, ASensorProfileReachesTheTrackerAtTheStartOfTheNextTick) {
+  auto p = std::make_unique<HapticPipeline>();
+  EXPECT_TRUE(same(p->tracker().config().sensor, SensorProfile{}));  // start-up: the default profile
+  stroke(*p, 0, 100);  // a finger is tracked
+  ASSERT_TRUE(p->tracker().state().present);
+  ASSERT_EQ(p->faults()[Fault::TouchDown], 1u);
+
+  ASSERT_TRUE(p->set_sensor_profile(measured()));
+  // Handed over, not applied: the loop never touches the tick's tracker.
+  EXPECT_TRUE(same(p->tracker_config().sensor, measured()));
+  EXPECT_TRUE(same(p->tracker().config().sensor, SensorProfile{}));
+  EXPECT_TRUE(p->tracker().state().present);
+
+  // The next tick takes a report: configured first, so that report is the
+  // new tracker's first (a touch-down) and the finger is tracked at once.
+  const uint32_t next = 100 * kTickPeriodUs;
+  ASSERT_EQ(next % 5000, 0u);
+  std::vector<TickOutput> out;
+  stroke(*p, next, 1, &out);
+  EXPECT_TRUE(same(p->tracker().config().sensor, measured()));
+  EXPECT_TRUE(out[0].present);
+  EXPECT_EQ(p->faults()[Fault::TouchDown], 2u);
+  // Configured once: later ticks keep the finger (no further touch-down).
+  stroke(*p, next + kTickPeriodUs, 40, &out);
+  EXPECT_TRUE(out.back().present);
+  EXPECT_EQ(p->faults()[Fault::TouchDown], 2u);
+}
+
+TEST(HapticPipeline, WithoutAReportAtTheChangeTheFingerIsFoundAgainAtTheNext) {
+  auto p = std::make_unique<HapticPipeline>();
+  stroke(*p, 0, 100);
+  ASSERT_TRUE(p->set_sensor_profile(measured()));
+  // Ticks 50.0 .. 54.5 ms: no report until 55 ms. The new tracker has none yet: idle.
+  std::vector<TickOutput> out;
+  stroke(*p, 100 * kTickPeriodUs + kTickPeriodUs, 9, &out);
+  for (const TickOutput& t : out) {
+    EXPECT_FALSE(t.present) << t.t_us;
+    EXPECT_EQ(t.dac, 0);  // the plate rests
+  }
+  stroke(*p, 110 * kTickPeriodUs, 1, &out);  // 55 ms: the next report
+  EXPECT_TRUE(out.back().present);
+}
+
+TEST(HapticPipeline, TheLoopWritesTheSlotTheTickIsNotReading) {
+  auto p = std::make_unique<HapticPipeline>();
+  SensorProfile a = measured(), b = measured();
+  b.white_noise_px = 2.0f;
+  ASSERT_TRUE(p->set_sensor_profile(a));
+  const TrackerConfig* named = &p->tracker_config();  // what a tick would read now
+  ASSERT_TRUE(p->set_sensor_profile(b));
+  // A tick landing anywhere inside that call read `named`: it still holds a, whole.
+  EXPECT_TRUE(same(named->sensor, a));
+  EXPECT_NE(&p->tracker_config(), named);
+  // Two profiles between ticks: the tick takes the last.
+  p->tick(0);
+  EXPECT_TRUE(same(p->tracker().config().sensor, b));
+}
+
+TEST(HapticPipeline, AnInvalidSensorProfileIsRefusedCountedAndChangesNothing) {
+  // Each one value past SensorProfileLimits (by hand from the header), the rest the default.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<SensorProfile> bad;
+  auto with = [&](auto set) {
+    SensorProfile s;
+    set(s);
+    bad.push_back(s);
+  };
+  with([&](SensorProfile& s) { s.white_noise_px = nan; });
+  with([&](SensorProfile& s) { s.white_noise_px = -1.0f; });
+  with([&](SensorProfile& s) { s.white_noise_px = 0.0f; });           // white noise must be above 0
+  with([&](SensorProfile& s) { s.white_noise_px = 50.5f; });          // max 50 px
+  with([&](SensorProfile& s) { s.correlated_noise_px = -0.1f; });
+  with([&](SensorProfile& s) { s.correlated_noise_px = 2.0f; });      // a wander with tau 0
+  with([&](SensorProfile& s) { s.correlation_time_ms = 10001.0f; });  // max 10 s
+  with([&](SensorProfile& s) { s.tremor_px = inf; });
+  with([&](SensorProfile& s) { s.report_rate_hz = 9.9f; });           // min 10 Hz
+  with([&](SensorProfile& s) { s.report_rate_hz = 5001.0f; });        // max 5 kHz
+  with([&](SensorProfile& s) { s.jitter_us = -1.0f; });
+  with([&](SensorProfile& s) { s.jitter_us = 50001.0f; });            // max 50 ms
+  with([&](SensorProfile& s) { s.latency_us = 50001u; });             // max 50 ms
+
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_TRUE(p->set_sensor_profile(measured()));
+  stroke(*p, 0, 100);
+  ASSERT_TRUE(p->tracker().state().present);
+  uint32_t expected = 0;
+  for (const SensorProfile& s : bad) {
+    EXPECT_FALSE(p->set_sensor_profile(s)) << &s - bad.data();
+    EXPECT_EQ(p->faults()[Fault::BadSensorProfile], ++expected);
+    EXPECT_TRUE(same(p->tracker_config().sensor, measured()));
+  }
+  std::vector<TickOutput> out;
+  stroke(*p, 100 * kTickPeriodUs, 20, &out);
+  EXPECT_TRUE(same(p->tracker().config().sensor, measured()));
+  for (const TickOutput& t : out) EXPECT_TRUE(t.present) << t.t_us;  // never reset: the finger stays
+  EXPECT_EQ(p->faults()[Fault::TouchDown], 1u);
+
+  // The edges themselves are in range.
+  SensorProfile edge;
+  edge.white_noise_px = 50.0f;
+  edge.correlated_noise_px = 50.0f;
+  edge.correlation_time_ms = 10000.0f;
+  edge.report_rate_hz = 10.0f;
+  edge.jitter_us = 50000.0f;
+  edge.latency_us = 50000u;
+  EXPECT_TRUE(p->set_sensor_profile(edge));
+  edge.report_rate_hz = 5000.0f;
+  edge.correlated_noise_px = 0.0f;
+  edge.correlation_time_ms = 0.0f;  // no wander needs no time
+  EXPECT_TRUE(p->set_sensor_profile(edge));
+  EXPECT_EQ(p->faults()[Fault::BadSensorProfile], expected);
 }
 
 }  // namespace

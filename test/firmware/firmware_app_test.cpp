@@ -658,5 +658,98 @@ TEST(FirmwareApp, RebootRestsThePlateFirst) {
   ASSERT_EQ(d.board.hid_of(MessageType::Ack).size(), 1u);  // acknowledged before the reset
 }
 
+bool same(const SensorProfile& a, const SensorProfile& b) {
+  return a.white_noise_px == b.white_noise_px && a.correlated_noise_px == b.correlated_noise_px &&
+         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px &&
+         a.report_rate_hz == b.report_rate_hz && a.jitter_us == b.jitter_us && a.latency_us == b.latency_us;
+}
+
+Message sensor_profile(const SensorProfile& p, uint8_t sequence) {
+  Message m = command(MessageType::SetSensorProfile, sequence);
+  m.sensor_profile = p;
+  return m;
+}
+
+const SensorProfile kMeasured{1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u};
+
+TEST(FirmwareApp, ASensorProfileReachesTheTrackerAtTheNextTickNotInTheLoop) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_udp(condition(protocol::ConditionKind::Heightmap));
+  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, SensorProfile{}));  // start-up: the default
+  d.run_until(1200000);
+  ASSERT_EQ(d.dac_at(1200000), kHeightmapOnPathMovingRight);
+
+  // The loop pass at 1.2001 s takes the message and acknowledges it; the
+  // tracker is the tick's, untouched until the tick at 1.2005 s.
+  d.board.send_udp(sensor_profile(kMeasured, 11));
+  d.step();
+  ASSERT_EQ(d.now, 1200100u);
+  const auto acks = d.board.udp_of(MessageType::Ack);
+  ASSERT_EQ(acks.back().sequence, 11);
+  EXPECT_EQ(acks.back().ack.command, MessageType::SetSensorProfile);
+  EXPECT_EQ(acks.back().ack.status, protocol::AckStatus::Ok);
+  d.run_until(1200400);
+  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, SensorProfile{}));
+  d.step();  // 1.2005 s: the tick
+  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, kMeasured));
+
+  // The new tracker starts afresh: the plate rests until the finger's next
+  // report (stamped 1.205 s), then renders the scene again.
+  d.run_until(1300000);
+  for (uint32_t t = 1200500; t <= 1204500; t += 500) ASSERT_EQ(d.dac_at(t), 0) << t;
+  EXPECT_EQ(d.dac_at(1300000), kHeightmapOnPathMovingRight);
+  EXPECT_EQ(d.pipeline->faults()[Fault::TouchDown], 2u);
+
+  // The host reads it back.
+  d.board.send_udp(command(MessageType::QuerySensorProfile, 12));
+  d.run_until(1301000);
+  const auto replies = d.board.udp_of(MessageType::SensorProfile);
+  ASSERT_EQ(replies.size(), 1u);
+  EXPECT_EQ(replies[0].sequence, 12);
+  EXPECT_TRUE(same(replies[0].sensor_profile, kMeasured));
+  EXPECT_EQ(d.counters().sensor_profiles_set, 1u);
+  EXPECT_EQ(d.board.undecodable, 0);
+}
+
+TEST(FirmwareApp, ARefusedSensorProfileIsCountedAndTheTrackerKeepsItsFinger) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.board.send_hid(condition(protocol::ConditionKind::Heightmap));
+  d.board.send_hid(sensor_profile(kMeasured, 2));
+  d.run_until(1200000);
+  SensorProfile wander_without_time = kMeasured;
+  wander_without_time.correlation_time_ms = 0.0f;
+  SensorProfile slow = kMeasured;
+  slow.report_rate_hz = 5.0f;  // below 10 Hz
+  d.board.send_hid(sensor_profile(wander_without_time, 3));
+  d.board.send_hid(sensor_profile(slow, 4));
+  d.run_until(1250000);
+  d.board.send_hid(command(MessageType::QueryStatus, 5));
+  d.board.send_hid(command(MessageType::QuerySensorProfile, 6));
+  d.run_until(1300000);
+  const auto acks = d.board.hid_of(MessageType::Ack);
+  ASSERT_EQ(acks.size(), 4u);  // condition, profile, two refused
+  EXPECT_EQ(acks[1].ack.status, protocol::AckStatus::Ok);
+  for (size_t i : {2u, 3u}) {
+    EXPECT_EQ(acks[i].sequence, i + 1);
+    EXPECT_EQ(acks[i].ack.command, MessageType::SetSensorProfile);
+    EXPECT_EQ(acks[i].ack.status, protocol::AckStatus::Refused);
+  }
+  EXPECT_EQ(d.counters().sensor_profiles_refused, 2u);
+  EXPECT_EQ(d.counters().sensor_profiles_set, 1u);
+  EXPECT_EQ(d.counters().protocol_errors, 0u);  // well-formed, only refused
+  const auto status = d.board.hid_of(MessageType::Status);
+  ASSERT_EQ(status.size(), 1u);
+  EXPECT_EQ(status[0].status.faults[Fault::BadSensorProfile], 2u);
+  const auto active = d.board.hid_of(MessageType::SensorProfile);
+  ASSERT_EQ(active.size(), 1u);
+  EXPECT_TRUE(same(active[0].sensor_profile, kMeasured));
+  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, kMeasured));
+  // Not reconfigured: the finger tracked throughout, the scene rendered on.
+  EXPECT_EQ(d.pipeline->faults()[Fault::TouchDown], 1u);
+  for (uint32_t t = 1200000; t <= 1300000; t += 500) ASSERT_EQ(d.dac_at(t), kHeightmapOnPathMovingRight) << t;
+}
+
 }  // namespace
 }  // namespace ff::firmware

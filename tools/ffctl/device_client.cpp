@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "frictionfield/host/scene_file.hpp"
+#include "frictionfield/host/sensor_profile_options.hpp"
 
 namespace ff::ffctl {
 
@@ -57,7 +58,12 @@ bool DeviceClient::request(Message command, Message& reply, std::string& error, 
     if (reply.type == MessageType::Error) {
       return error = std::string("the device refused the message: ") + protocol::to_string(reply.error.code), false;
     }
-    if (reply.type == MessageType::Ack || reply.type == MessageType::Status) return true;
+    switch (reply.type) {
+      case MessageType::Ack: case MessageType::Status: case MessageType::Condition: case MessageType::SensorProfile:
+        return true;
+      default:
+        break;  // streamed traffic that happens to carry the sequence
+    }
   }
 }
 
@@ -67,6 +73,15 @@ bool command(DeviceClient& client, const Message& m, std::string& error) {
   if (reply.type == MessageType::Ack && reply.ack.status != protocol::AckStatus::Ok) {
     return error = "the device refused the command", false;
   }
+  return true;
+}
+
+bool query_sensor_profile(DeviceClient& client, SensorProfile& profile, std::string& error) {
+  Message q, reply;
+  q.type = MessageType::QuerySensorProfile;
+  if (!client.request(q, reply, error)) return false;
+  if (reply.type != MessageType::SensorProfile) return error = "the device answered QuerySensorProfile with another message", false;
+  profile = reply.sensor_profile;
   return true;
 }
 
@@ -193,6 +208,22 @@ std::string describe(const protocol::ConditionMessage& c) {
   return buf;
 }
 
+std::string describe(const SensorProfile& p) {
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "white noise %.3g px, wander %.3g px over %.3g ms, tremor %.3g px, %.4g reports/s +- %.3g us, "
+                "latency %u us",
+                static_cast<double>(p.white_noise_px), static_cast<double>(p.correlated_noise_px),
+                static_cast<double>(p.correlation_time_ms), static_cast<double>(p.tremor_px),
+                static_cast<double>(p.report_rate_hz), static_cast<double>(p.jitter_us),
+                static_cast<unsigned>(p.latency_us));
+  return buf;
+}
+
+TrackerConfig tracker_config_of(const Recording& r) {
+  return r.has_sensor_profile ? TrackerConfig::recommended(r.sensor_profile) : TrackerConfig::recommended();
+}
+
 namespace {
 
 std::string stem_of(const std::string& trace_path) {
@@ -200,21 +231,14 @@ std::string stem_of(const std::string& trace_path) {
   return dot == std::string::npos ? trace_path : trace_path.substr(0, dot);
 }
 
-// The condition as the SetCondition frame that sets it: exact, and the codec checks it on the way back.
-bool write_condition(const std::string& path, const protocol::ConditionMessage& c, std::string& error) {
-  Message m;
-  m.type = MessageType::SetCondition;
-  m.condition = c;
+// `m` as a hex frame line after `# ` comment lines: exact, and the codec checks it on the way back.
+bool write_frame_file(const std::string& path, const Message& m, const std::vector<std::string>& comments,
+                      std::string& error) {
   uint8_t frame[protocol::kMaxFrame];
   const size_t n = protocol::encode(m, frame, sizeof frame);
   std::ofstream out(path);
   if (!out || n == 0) return error = "cannot write " + path, false;
-  out << "# The condition the device rendered while ffctl recorded (ffctl verify reads it).\n";
-  out << "# " << describe(c) << "\n";
-  if (c.kind == protocol::ConditionKind::General) {
-    std::istringstream scene(host::format_scene_text(c.scene));
-    for (std::string line; std::getline(scene, line);) out << "#   " << line << "\n";
-  }
+  for (const std::string& line : comments) out << "# " << line << "\n";
   out << "frame ";
   char hex[3];
   for (size_t i = 0; i < n; ++i) {
@@ -225,7 +249,8 @@ bool write_condition(const std::string& path, const protocol::ConditionMessage& 
   return static_cast<bool>(out) || (error = "writing " + path + " failed", false);
 }
 
-bool read_condition(const std::string& path, protocol::ConditionMessage& c, std::string& error) {
+// The frame line of a file write_frame_file() wrote, which must hold a message of `type`.
+bool read_frame_file(const std::string& path, MessageType type, const char* what, Message& m, std::string& error) {
   std::ifstream in(path);
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("frame ", 0) != 0) continue;
@@ -235,15 +260,54 @@ bool read_condition(const std::string& path, protocol::ConditionMessage& c, std:
       if (std::sscanf(line.c_str() + i, "%2x", &byte) != 1) return error = path + ": bad hex in the frame line", false;
       frame.push_back(static_cast<uint8_t>(byte));
     }
-    Message m;
     const protocol::DecodeStatus st = protocol::decode(frame.data(), frame.size(), m);
-    if (st != protocol::DecodeStatus::Ok || m.type != MessageType::SetCondition) {
-      return error = path + ": not a condition frame (" + protocol::to_string(st) + ")", false;
+    if (st != protocol::DecodeStatus::Ok || m.type != type) {
+      return error = path + ": not a " + what + " frame (" + protocol::to_string(st) + ")", false;
     }
-    c = m.condition;
     return true;
   }
   return error = path + ": no frame line", false;
+}
+
+// The condition as the SetCondition frame that sets it.
+bool write_condition(const std::string& path, const protocol::ConditionMessage& c, std::string& error) {
+  Message m;
+  m.type = MessageType::SetCondition;
+  m.condition = c;
+  std::vector<std::string> comments = {"The condition the device rendered while ffctl recorded (ffctl verify reads it).",
+                                       describe(c)};
+  if (c.kind == protocol::ConditionKind::General) {
+    std::istringstream scene(host::format_scene_text(c.scene));
+    for (std::string line; std::getline(scene, line);) comments.push_back("  " + line);
+  }
+  return write_frame_file(path, m, comments, error);
+}
+
+bool read_condition(const std::string& path, protocol::ConditionMessage& c, std::string& error) {
+  Message m;
+  if (!read_frame_file(path, MessageType::SetCondition, "condition", m, error)) return false;
+  c = m.condition;
+  return true;
+}
+
+// The profile as the SetSensorProfile frame that sets it.
+bool write_sensor_profile(const std::string& path, const SensorProfile& p, std::string& error) {
+  Message m;
+  m.type = MessageType::SetSensorProfile;
+  m.sensor_profile = p;
+  return write_frame_file(path, m,
+                          {"The sensor profile the device's tracker used while ffctl recorded (ffctl verify replays "
+                           "with it).",
+                           describe(p), "ffctl sensor-profile " + host::sensor_profile_flags(p)},
+                          error);
+}
+
+bool read_sensor_profile(const std::string& path, SensorProfile& p, std::string& error) {
+  Message m;
+  if (!read_frame_file(path, MessageType::SetSensorProfile, "sensor profile", m, error)) return false;
+  if (!is_valid(m.sensor_profile)) return error = path + ": the profile is outside SensorProfileLimits", false;
+  p = m.sensor_profile;
+  return true;
 }
 
 // The device column of a trace ffctl wrote: taken_us per data row (-1: unknown).
@@ -282,6 +346,7 @@ bool read_taken_column(std::istream& in, const std::string& path, int skipped, s
 std::string ticks_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".ticks.csv"; }
 std::string force_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".force.csv"; }
 std::string condition_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".condition"; }
+std::string sensor_profile_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".sensor-profile"; }
 
 bool check_output_path(const std::string& trace_path, std::string& error) {
   if (trace_path.empty()) return error = "-o: no file name", false;
@@ -324,9 +389,11 @@ bool RecordingWriter::open(const std::string& path, const std::vector<std::strin
   std::fputs("t_us,amplitude,dac,present\n", ticks_);
   std::fputs("t_us,force_mN,over_force\n", force_);
   if (!flush()) return error = "writing " + path + " failed", false;
-  if (r.has_condition) return write_condition(condition_path_for(path), r.condition, error);
-  std::remove(condition_path_for(path).c_str());  // a stale one would mislead verify
-  return true;
+  // A stale one would mislead verify.
+  if (!r.has_condition) std::remove(condition_path_for(path).c_str());
+  if (!r.has_sensor_profile) std::remove(sensor_profile_path_for(path).c_str());
+  return (!r.has_condition || write_condition(condition_path_for(path), r.condition, error)) &&
+         (!r.has_sensor_profile || write_sensor_profile(sensor_profile_path_for(path), r.sensor_profile, error));
 }
 
 void RecordingWriter::sample(const DeviceSample& s) {
@@ -435,7 +502,10 @@ bool read_recording(const std::string& path, Recording& r, std::string& error) {
   }
   const std::string cpath = condition_path_for(path);
   r.has_condition = std::ifstream(cpath).good();
-  return !r.has_condition || read_condition(cpath, r.condition, error);
+  if (r.has_condition && !read_condition(cpath, r.condition, error)) return false;
+  const std::string ppath = sensor_profile_path_for(path);
+  r.has_sensor_profile = std::ifstream(ppath).good();
+  return !r.has_sensor_profile || read_sensor_profile(ppath, r.sensor_profile, error);
 }
 
 // --- verification ------------------------------------------------------------

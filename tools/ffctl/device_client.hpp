@@ -17,8 +17,9 @@ class DeviceClient {
  public:
   explicit DeviceClient(Transport& transport) : transport_(transport) {}
 
-  // Sends `command` and waits up to `timeout_ms` for its reply (Ack, Status
-  // or Error with the same sequence number), skipping streamed traffic.
+  // Sends `command` and waits up to `timeout_ms` for its reply (Ack, Status,
+  // Condition, SensorProfile or Error with the same sequence number),
+  // skipping streamed traffic.
   // false with a readable `error` (an Error reply, a timeout, a disconnect).
   bool request(protocol::Message command, protocol::Message& reply, std::string& error, int timeout_ms = 2000);
   // The next well-formed message of any kind; malformed frames are counted and skipped.
@@ -47,7 +48,8 @@ bool command(DeviceClient& client, const protocol::Message& m, std::string& erro
 bool reboot_device(Transport& transport, std::string& error, bool& by_transport, int timeout_ms = 2000);
 
 // A recording: the sensor reports and the ticks the device rendered (64-bit
-// device microseconds, unwrapped), and the condition, if known.
+// device microseconds, unwrapped), and the condition and the tracker's sensor
+// profile, if known.
 struct DeviceSample {
   host::TraceRow row;
   bool taken_known = false;
@@ -73,7 +75,15 @@ struct Recording {
   std::vector<DeviceForce> forces;
   bool has_condition = false;
   protocol::ConditionMessage condition;
+  bool has_sensor_profile = false;  // false: a firmware before sensor profiles, i.e. the default
+  SensorProfile sensor_profile;
 };
+
+// The tracker the device ran while it recorded `r`: the recommended one for its sensor profile.
+TrackerConfig tracker_config_of(const Recording& r);
+
+// The profile the device's tracker uses (QuerySensorProfile); false with `error` if the device did not say.
+bool query_sensor_profile(DeviceClient& client, SensorProfile& profile, std::string& error);
 
 // Where record() puts what arrives, message by message.
 class RecordSink {
@@ -127,7 +137,7 @@ inline bool record(DeviceClient& client, double seconds, Recording& out, std::st
 // -1 unknown); NAME.ticks.csv: the device's ticks (t_us,amplitude,dac,present);
 // NAME.force.csv: the load cells (t_us,force_mN,over_force); NAME.condition:
 // the condition (in words as a comment, and as a protocol frame in hex), when
-// known. Each CSV starts with `# ` metadata lines (the `metadata` given, one
+// known; NAME.sensor-profile: the tracker's sensor profile, the same way. Each CSV starts with `# ` metadata lines (the `metadata` given, one
 // per line), then its header. flush() writes whole rows only, so a recorder
 // killed at any moment leaves valid files up to its last flush.
 class RecordingWriter final : public RecordSink {
@@ -136,7 +146,7 @@ class RecordingWriter final : public RecordSink {
   ~RecordingWriter() override;
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;
-  // Also writes NAME.condition now when `r` has one (removes a stale one otherwise).
+  // Also writes NAME.condition and NAME.sensor-profile now when `r` has them (removes stale ones otherwise).
   bool open(const std::string& trace_path, const std::vector<std::string>& metadata, const Recording& r,
             std::string& error);
   void sample(const DeviceSample& s) override;
@@ -162,8 +172,11 @@ bool read_recording(const std::string& trace_path, Recording& r, std::string& er
 std::string ticks_path_for(const std::string& trace_path);
 std::string force_path_for(const std::string& trace_path);
 std::string condition_path_for(const std::string& trace_path);
+std::string sensor_profile_path_for(const std::string& trace_path);
 // "heightmap, target top, strength 0.66, ..." for humans.
 std::string describe(const protocol::ConditionMessage& c);
+// "white noise 1 px, wander 0 px over 0 ms, ..." for humans.
+std::string describe(const SensorProfile& p);
 
 struct Mismatch {
   uint64_t t_us = 0;

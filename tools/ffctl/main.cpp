@@ -15,6 +15,7 @@
 
 #include "device_client.hpp"
 #include "frictionfield/host/scene_spec.hpp"
+#include "frictionfield/host/sensor_profile_options.hpp"
 #include "halfkay.hpp"
 #include "hid_transport.hpp"
 #include "scene_command.hpp"
@@ -208,6 +209,7 @@ bool read_file(const std::string& path, std::string& text) {
 int main(int argc, char** argv) {
   CLI::App app{"ffctl " FF_VERSION ": talk to a frictionfield device (Teensy 3.6) over USB (USB type USB_HID) or UDP.\n"
                "  ffctl list | status | monitor | scene --scene heightmap --target top --strength 0.66\n"
+               "  ffctl sensor-profile --white-noise-px 1.2 ... (ff-track-bench --calibrate prints them) | --show\n"
                "  ffctl record -o trace.csv [--seconds 30] [scene words] | verify trace.csv\n"
                "  ffctl carrier 34900 | sweep 25000 70000 30000 | reboot | reset | flash [--wait] firmware.hex"};
   app.require_subcommand(1);
@@ -240,6 +242,18 @@ int main(int argc, char** argv) {
   ff::host::SceneSpec scene_spec;
   auto* scene = app.add_subcommand("scene", "set the rendered condition: the same scene words as ff-replay");
   ff::host::add_scene_options(*scene, scene_spec);
+  ff::SensorProfile profile;
+  bool profile_show = false, profile_default = false;
+  auto* sensor_profile = app.add_subcommand(
+      "sensor-profile", "tell the device's tracker what its touch sensor is like (noise, report rate, latency) and "
+                        "print what it uses now; kept until the device is reset or powered off");
+  ff::host::add_sensor_profile_options(*sensor_profile, profile);
+  auto* show_flag = sensor_profile->add_flag("--show", profile_show, "only print the profile the device uses");
+  auto* default_flag = sensor_profile->add_flag("--default", profile_default, "send the default profile (as at power-on)");
+  sensor_profile->footer(
+      "ff-track-bench --calibrate measures a sensor and prints the flags for it (docs/tracking.md#calibration);\n"
+      "flags left out take the default profile's values. The tracker starts afresh with the new profile: a finger\n"
+      "on the screen is found again at its next report. Exit 1 if the device refuses the profile.");
   std::string record_out;
   double seconds = 0.0;
   bool progress_line = false;
@@ -250,7 +264,8 @@ int main(int argc, char** argv) {
   auto* seconds_option = rec->add_option("--seconds", seconds, "how long to record (default: until Ctrl-C)");
   rec->add_flag("--progress", progress_line, "the live line on stderr even when it is not a terminal");
   ff::host::add_scene_options(*rec, record_spec);
-  rec->footer("With scene words the condition is set first and kept in NAME.condition for `ffctl verify`.");
+  rec->footer("With scene words the condition is set first and kept in NAME.condition for `ffctl verify`;\n"
+              "the tracker's sensor profile (ffctl sensor-profile) is kept in NAME.sensor-profile.");
   std::string verify_in;
   double min_coverage_pct = 100.0 * ff::ffctl::kDefaultMinCoverage;
   ff::host::SceneSpec verify_spec;
@@ -262,7 +277,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   ff::host::add_scene_options(*ver, verify_spec);
-  ver->footer("Without scene words: the condition `ffctl record` kept in NAME.condition.");
+  ver->footer("Without scene words: the condition `ffctl record` kept in NAME.condition. The native tracker\n"
+              "uses the sensor profile kept in NAME.sensor-profile (without one: the default profile).");
   double carrier_hz = 0.0;
   auto* carrier = app.add_subcommand("carrier", "set the AD9834 carrier frequency");
   carrier->add_option("hz", carrier_hz, "frequency in Hz (34900: the plate's mode (0;12))")->required();
@@ -310,6 +326,26 @@ int main(int argc, char** argv) {
         return usage(error);
       }
     }
+    if (*sensor_profile) {
+      size_t values = 0;
+      for (const CLI::Option* o : sensor_profile->get_options()) {
+        if (o != show_flag && o != default_flag && o->get_name() != "--help") values += o->count();
+      }
+      if (profile_show + profile_default + (values > 0) > 1) {
+        return usage("sensor-profile: give the profile's flags, --default or --show, one of them");
+      }
+      if (!profile_show && !profile_default && values == 0) {
+        return usage("sensor-profile: which profile? the flags ff-track-bench --calibrate prints, --default, or "
+                     "--show to see the device's (ffctl sensor-profile --help)");
+      }
+      if (!ff::is_valid(profile)) {  // each flag was checked against its range, but not against the others
+        if (profile.correlated_noise_px > 0.0f && profile.correlation_time_ms == 0.0f) {
+          return usage("sensor-profile: --correlated-noise-px " + CLI::detail::to_string(profile.correlated_noise_px) +
+                       " needs a --correlation-time-ms above 0");
+        }
+        return usage("sensor-profile: not a profile the tracker can use (a value is not a number, or out of range)");
+      }
+    }
     if (*carrier && !(carrier_hz > 0.0 && std::isfinite(carrier_hz))) return usage("carrier: the frequency must be more than 0 Hz");
     if (*sweep && !(sweep_start > 0.0 && sweep_end > 0.0 && std::isfinite(sweep_start) && std::isfinite(sweep_end) && sweep_ms > 0)) {
       return usage("sweep: START and END must be more than 0 Hz and MS more than 0");
@@ -339,7 +375,13 @@ int main(int argc, char** argv) {
         return usage("no " + ff::ffctl::condition_path_for(verify_in) +
                      ": give the condition the device rendered, e.g. --scene heightmap --target top --strength 0.66");
       }
-      const auto v = ff::ffctl::verify(r, c);
+      if (r.has_sensor_profile) {
+        std::printf("sensor profile (%s): %s\n", ff::ffctl::sensor_profile_path_for(verify_in).c_str(),
+                    ff::ffctl::describe(r.sensor_profile).c_str());
+      } else {
+        std::printf("sensor profile: the default (no %s)\n", ff::ffctl::sensor_profile_path_for(verify_in).c_str());
+      }
+      const auto v = ff::ffctl::verify(r, c, ff::ffctl::tracker_config_of(r));
       if (!v.prepared) return usage("the condition does not prepare natively");
       print_verify(v);
       const double min_coverage = min_coverage_pct / 100.0;
@@ -428,7 +470,29 @@ int main(int argc, char** argv) {
       q.type = MessageType::QueryStatus;
       if (!client.request(q, reply, error)) return fail(error);
       print_status(reply.status);
+      ff::SensorProfile active;
+      if (ff::ffctl::query_sensor_profile(client, active, error)) {
+        std::printf("sensor profile: %s\n", ff::ffctl::describe(active).c_str());
+      } else {
+        std::printf("sensor profile: unknown (%s)\n", error.c_str());
+      }
       return kExitOk;
+    }
+    if (*sensor_profile) {
+      bool refused = false;
+      if (!profile_show) {
+        Message m;
+        m.type = MessageType::SetSensorProfile;
+        m.sensor_profile = profile;
+        if (!client.request(m, reply, error)) return fail(error);
+        refused = reply.ack.status != ff::protocol::AckStatus::Ok;
+      }
+      ff::SensorProfile active;
+      if (!ff::ffctl::query_sensor_profile(client, active, error)) return fail(error);
+      if (refused) std::printf("the device refused the profile (outside its limits); it keeps the one it had\n");
+      std::printf("the device's tracker uses: %s\n", ff::ffctl::describe(active).c_str());
+      std::printf("  ffctl sensor-profile %s\n", ff::host::sensor_profile_flags(active).c_str());
+      return refused ? kExitFailed : kExitOk;
     }
     if (*monitor) {
       std::signal(SIGINT, on_interrupt);
@@ -499,6 +563,12 @@ int main(int argc, char** argv) {
       std::snprintf(fw, sizeof fw, "firmware %u.%u protocol %u", reply.status.firmware_version >> 8,
                     reply.status.firmware_version & 0xFF, ff::protocol::kVersion);
       metadata.push_back(fw);
+      if (ff::ffctl::query_sensor_profile(client, r.sensor_profile, error)) {
+        r.has_sensor_profile = true;
+        metadata.push_back("sensor-profile " + ff::host::sensor_profile_flags(r.sensor_profile));
+      } else {
+        metadata.push_back("sensor-profile unknown (" + error + "): verify assumes the default");
+      }
       ff::ffctl::RecordingWriter writer;
       if (!writer.open(record_out, metadata, r, error)) return usage(error);
       const bool live = progress_line || ::isatty(STDERR_FILENO) != 0;
@@ -519,9 +589,10 @@ int main(int argc, char** argv) {
       if (live) std::fprintf(stderr, "\n");
       std::string werr;
       if (!writer.close(werr)) return fail(werr);
-      std::fprintf(stderr, "wrote %s, %s, %s%s\n", record_out.c_str(), ff::ffctl::ticks_path_for(record_out).c_str(),
+      std::fprintf(stderr, "wrote %s, %s, %s%s%s\n", record_out.c_str(), ff::ffctl::ticks_path_for(record_out).c_str(),
                    ff::ffctl::force_path_for(record_out).c_str(),
-                   r.has_condition ? (" and " + ff::ffctl::condition_path_for(record_out)).c_str() : "");
+                   r.has_condition ? (", " + ff::ffctl::condition_path_for(record_out)).c_str() : "",
+                   r.has_sensor_profile ? (", " + ff::ffctl::sensor_profile_path_for(record_out)).c_str() : "");
       if (client.malformed_replies() > 0) {
         std::fprintf(stderr, "%u malformed frames were skipped\n", client.malformed_replies());
       }

@@ -21,6 +21,7 @@ enum class Fault : uint8_t {
   BadTickTime,           // tick time stood still, ran back or leapt: state repeated until it settles
   SampleTimeImplausible, // report stamped in the future or long past by the tick clock: dropped
   TimeBaseReset,         // the tick clock moved (confirmed leap or step back): finger found again
+  BadSensorProfile,      // a sensor profile outside SensorProfileLimits: refused, the tracker unchanged
   kCount
 };
 

@@ -3,10 +3,11 @@
 // scene, amplitude, DAC code out. The firmware's interrupt and the replay
 // call the same tick().
 //
-// Threading: set_condition() and post_sample() belong to the main loop (one
-// producer); tick() to the interrupt (one consumer). A new condition is
-// prepared in the slot the tick is not reading and published with one atomic
-// store, so no tick sees half a scene. That assumes the tick runs to
+// Threading: set_condition(), set_sensor_profile() and post_sample() belong
+// to the main loop (one producer); tick() to the interrupt (one consumer). A
+// new condition is prepared in the slot the tick is not reading and published
+// with one atomic store, so no tick sees half a scene; a new tracker
+// configuration likewise, which the tick hands to the tracker at its start. That assumes the tick runs to
 // completion while the main loop is suspended, as an interrupt on the one-core
 // MK66 does: with the two on separate threads, a tick still reading the old
 // slot could see the next set_condition() rewrite it. ff-sim keeps the
@@ -42,6 +43,16 @@ class HapticPipeline {
   void set_clock(uint32_t (*micros)()) { micros_ = micros; }
   // Time the last set_condition() took (0 without a clock).
   uint32_t last_prepare_us() const { return last_prepare_us_; }
+  // The tracker for the sensor `profile` describes (TrackerConfig::recommended),
+  // from the start of the next tick on: the tick configures the tracker
+  // before it takes a report, which resets it, so a finger on the screen is
+  // found again at its next report. An invalid profile (is_valid) is counted
+  // (Fault::BadSensorProfile) and changes nothing: false.
+  bool set_sensor_profile(const SensorProfile& profile);
+  // The tracker configuration the next tick uses: the last one handed over.
+  const TrackerConfig& tracker_config() const {
+    return tracker_slots_[tracker_published_.load(std::memory_order_relaxed) & 1u];
+  }
   bool post_sample(const SensorSample& s);  // false: mailbox full (counted)
   // The index the next posted sample gets, and how many samples ticks have taken (both wrap):
   // sample k was taken by the first tick after which samples_taken() passed k.
@@ -70,7 +81,14 @@ class HapticPipeline {
   Slot slots_[2];
   std::atomic<uint8_t> active_{0};
   SampleMailbox mailbox_;
-  Tracker tracker_;
+  Tracker tracker_;  // the tick's
+  // The tracker's configuration, handed over like the scene: the main loop
+  // writes the slot the last publication does not name, then counts up;
+  // the tick configures the tracker from the named slot when the count
+  // moved since it last looked.
+  TrackerConfig tracker_slots_[2];
+  std::atomic<uint32_t> tracker_published_{0};  // main loop writes
+  uint32_t tracker_applied_ = 0;                // tick only
   FaultCounters main_faults_;  // counted on the main-loop side only
   uint32_t (*micros_)() = nullptr;
   uint32_t last_prepare_us_ = 0;

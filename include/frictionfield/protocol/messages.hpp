@@ -8,6 +8,7 @@
 #include "frictionfield/core/fault_counters.hpp"
 #include "frictionfield/core/path_curve.hpp"
 #include "frictionfield/core/scene.hpp"
+#include "frictionfield/core/sensor_profile.hpp"
 #include "frictionfield/core/sensor_sample.hpp"
 
 namespace ff::protocol {
@@ -27,6 +28,8 @@ enum class MessageType : uint8_t {
   StartSweep = 0x06,     // frequency sweep (resonance search)
   RebootToBootloader = 0x07,
   QueryCondition = 0x08, // what the device renders now (ffctl record keeps it for verify)
+  SetSensorProfile = 0x09,    // the tracker's sensor (ffctl sensor-profile): until reset or power-off
+  QuerySensorProfile = 0x0A,  // which profile the tracker uses
   // device -> host
   Ack = 0x81,            // a command was carried out (or refused: status)
   Status = 0x82,
@@ -34,6 +37,7 @@ enum class MessageType : uint8_t {
   Samples = 0x84,        // raw sensor reports
   Ticks = 0x85,          // rendered ticks (every `decimation`-th)
   Condition = 0x86,      // reply to QueryCondition: the SetCondition payload
+  SensorProfile = 0x87,  // reply to QuerySensorProfile: the SetSensorProfile payload
   Error = 0xE0,          // a malformed or unknown message was received
 };
 
@@ -144,6 +148,7 @@ struct Message {
   MessageType type = MessageType::QueryStatus;
   uint8_t sequence = 0;  // echoed in replies
   ConditionMessage condition;  // SetCondition and Condition
+  ff::SensorProfile sensor_profile;  // SetSensorProfile and SensorProfile (any finite values: the device judges)
   AckMessage ack;
   StatusMessage status;
   ForceMessage force;

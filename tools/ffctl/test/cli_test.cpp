@@ -340,6 +340,56 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   EXPECT_NE(r.out.find("FAIL"), std::string::npos) << r.out;
 }
 
+TEST(FfctlCli, SensorProfileIsSentReadBackShownAndKeptByARecording) {
+  UdpDevice device(strokes);
+  const std::string flags =
+      "--white-noise-px 1.5 --correlated-noise-px 0.5 --correlation-time-ms 250 --tremor-px 0.25 "
+      "--report-rate-hz 180 --jitter-us 400 --latency-us 3000";
+  const std::string words =
+      "white noise 1.5 px, wander 0.5 px over 250 ms, tremor 0.25 px, 180 reports/s +- 400 us, latency 3000 us";
+  CliRun r = ffctl(udp(device) + "sensor-profile --show");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("white noise 1 px, wander 0 px over 0 ms, tremor 0 px, 200 reports/s +- 150 us, latency 0 us"),
+            std::string::npos) << r.out;  // the default profile since power-on
+  r = ffctl(udp(device) + "sensor-profile " + flags);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("the device's tracker uses: " + words), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ffctl sensor-profile " + flags), std::string::npos) << r.out;  // what --calibrate prints
+  r = ffctl(udp(device) + "status");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("sensor profile: " + words), std::string::npos) << r.out;
+
+  // Bad usage, before the device is touched: the profile stays.
+  for (const char* bad : {"sensor-profile", "sensor-profile --show --default", "sensor-profile --show --tremor-px 1",
+                          "sensor-profile --correlated-noise-px 2", "sensor-profile --report-rate-hz 5",
+                          "sensor-profile --latency-us 50001", "sensor-profile --white-noise-px nan"}) {
+    r = ffctl(udp(device) + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.out << r.err;
+  }
+  r = ffctl(udp(device) + "sensor-profile --show");
+  EXPECT_NE(r.out.find(words), std::string::npos) << r.out;
+
+  // A recording keeps it; verify replays with it.
+  const std::string path = ::testing::TempDir() + "udp_profile_rec.csv";
+  r = ffctl(udp(device) + "record -o " + path + " --seconds 1 --scene heightmap --target top --strength 0.66");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(slurp(path).find("# sensor-profile " + flags + "\n"), std::string::npos);
+  Recording rec;
+  std::string error;
+  ASSERT_TRUE(read_recording(path, rec, error)) << error;
+  ASSERT_TRUE(rec.has_sensor_profile);
+  EXPECT_EQ(rec.sensor_profile.report_rate_hz, 180.0f);
+  EXPECT_EQ(rec.sensor_profile.latency_us, 3000u);
+  EXPECT_EQ(tracker_config_of(rec).sensor.jitter_us, 400.0f);
+  r = ffctl("verify " + path + " --min-coverage 0");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("sensor profile (" + sensor_profile_path_for(path) + "): " + words), std::string::npos) << r.out;
+
+  r = ffctl(udp(device) + "sensor-profile --default");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("white noise 1 px, wander 0 px over 0 ms"), std::string::npos) << r.out;
+}
+
 TEST(FfctlCli, VerifyFailsAnotherSceneWhenTheFingerNeverLifts) {
   UdpDevice device(circling);
   const std::string path = ::testing::TempDir() + "udp_never_lifts.csv";

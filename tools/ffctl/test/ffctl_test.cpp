@@ -210,6 +210,82 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   EXPECT_EQ(tampered.runs[0].max_dac_difference, 0x400);
 }
 
+TEST(Ffctl, ASensorProfileIsAcknowledgedOrRefusedAndReadBack) {
+  SimulatedDevice device;
+  DeviceClient client(device);
+  SensorProfile active;
+  std::string error;
+  ASSERT_TRUE(query_sensor_profile(client, active, error)) << error;
+  EXPECT_EQ(active.report_rate_hz, SensorProfile{}.report_rate_hz);  // the default since power-on
+  Message m, reply;
+  m.type = MessageType::SetSensorProfile;
+  m.sensor_profile = {2.0f, 0.0f, 0.0f, 0.5f, 120.0f, 300.0f, 8000u};
+  ASSERT_TRUE(client.request(m, reply, error)) << error;
+  EXPECT_EQ(reply.type, MessageType::Ack);
+  EXPECT_EQ(reply.ack.status, protocol::AckStatus::Ok);
+  ASSERT_TRUE(query_sensor_profile(client, active, error)) << error;
+  EXPECT_EQ(active.white_noise_px, 2.0f);
+  EXPECT_EQ(active.report_rate_hz, 120.0f);
+  EXPECT_EQ(active.latency_us, 8000u);
+  // Outside the limits (a wander without its time): refused, the old one stays.
+  m.sensor_profile.correlated_noise_px = 1.0f;
+  ASSERT_TRUE(client.request(m, reply, error)) << error;
+  EXPECT_EQ(reply.ack.status, protocol::AckStatus::Refused);
+  EXPECT_FALSE(command(client, m, error));
+  ASSERT_TRUE(query_sensor_profile(client, active, error)) << error;
+  EXPECT_EQ(active.correlated_noise_px, 0.0f);
+  EXPECT_EQ(active.latency_us, 8000u);
+}
+
+TEST(Ffctl, ARecordingKeepsItsSensorProfileBesideItAndDropsAStaleOne) {
+  Recording r;
+  r.ticks.push_back({500, 0.0f, 0, false});
+  r.has_sensor_profile = true;
+  r.sensor_profile = {1.25f, 0.75f, 125.0f, 0.5f, 250.0f, 80.0f, 4500u};
+  const std::string path = ::testing::TempDir() + "ffctl_profile_rec.csv";
+  std::string error;
+  ASSERT_TRUE(write_recording(path, r, error)) << error;
+  Recording back;
+  ASSERT_TRUE(read_recording(path, back, error)) << error;
+  ASSERT_TRUE(back.has_sensor_profile);
+  EXPECT_EQ(back.sensor_profile.correlated_noise_px, 0.75f);
+  EXPECT_EQ(back.sensor_profile.correlation_time_ms, 125.0f);
+  EXPECT_EQ(back.sensor_profile.latency_us, 4500u);
+  EXPECT_EQ(tracker_config_of(back).sensor.white_noise_px, 1.25f);  // verify's tracker is for that sensor
+  // The file says it in words and as the flags for ffctl sensor-profile.
+  std::ifstream in(sensor_profile_path_for(path));
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("# ffctl sensor-profile --white-noise-px 1.25 --correlated-noise-px 0.75 "
+                            "--correlation-time-ms 125 --tremor-px 0.5 --report-rate-hz 250 --jitter-us 80 "
+                            "--latency-us 4500\n"),
+            std::string::npos)
+      << text.str();
+
+  // Recorded again without one (a firmware before profiles): the old file goes, verify assumes the default.
+  r.has_sensor_profile = false;
+  ASSERT_TRUE(write_recording(path, r, error)) << error;
+  Recording again;
+  ASSERT_TRUE(read_recording(path, again, error)) << error;
+  EXPECT_FALSE(again.has_sensor_profile);
+  EXPECT_EQ(tracker_config_of(again).sensor.white_noise_px, SensorProfile{}.white_noise_px);
+
+  // A profile file whose frame the device would refuse is bad input.
+  Message bad;
+  bad.type = MessageType::SetSensorProfile;
+  bad.sensor_profile.report_rate_hz = 1.0f;
+  uint8_t frame[protocol::kMaxFrame];
+  const size_t n = protocol::encode(bad, frame, sizeof frame);
+  std::ofstream out(sensor_profile_path_for(path));
+  out << "frame ";
+  for (size_t i = 0; i < n; ++i) out << "0123456789abcdef"[frame[i] >> 4] << "0123456789abcdef"[frame[i] & 15];
+  out << "\n";
+  out.close();
+  Recording refused;
+  EXPECT_FALSE(read_recording(path, refused, error));
+  EXPECT_NE(error.find("outside SensorProfileLimits"), std::string::npos) << error;
+}
+
 TEST(Ffctl, RecordingEndsWhenProgressSaysSo) {
   SimulatedDevice device;
   DeviceClient client(device);

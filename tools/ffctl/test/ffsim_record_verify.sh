@@ -6,17 +6,8 @@
 # Usage: ffsim_record_verify.sh FF_SIM FFCTL TRACE WORK_PREFIX
 set -u
 sim=$1 ffctl=$2 trace=$3 work=$4
-[ -x "$sim" ] || { echo "no $sim: skipped"; exit 77; }
-port=$((20000 + $$ % 20000))
-"$sim" --port "$port" --finger-port $((port + 1)) --trace "$trace" --quiet >"$work.sim.log" 2>&1 &
-sim_pid=$!
-trap 'kill "$sim_pid" 2>/dev/null' EXIT
-i=0
-until grep -q "ff-sim ready" "$work.sim.log"; do
-  i=$((i + 1))
-  [ "$i" -gt 100 ] && { echo "ff-sim did not say ready within 10 s:"; cat "$work.sim.log"; exit 1; }
-  sleep 0.1
-done
+. "$(dirname "$0")/ffsim_start.sh"
+start_ffsim "$sim" "$work" --trace "$trace"
 # 12 s: the trace's finger runs from 10 s to 20 s of its own clock.
 "$ffctl" --udp "127.0.0.1:$port" record -o "$work.csv" --seconds 12 --scene heightmap --target top --strength 0.66 ||
   { echo "record failed"; exit 1; }
