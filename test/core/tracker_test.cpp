@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -100,6 +101,71 @@ TEST(Tracker, KalmanPredictsToTheTickOnAConstantVelocity) {
   const Vec2 d = states.back().direction;
   EXPECT_NEAR(static_cast<double>(d.x), 2 / std::sqrt(5.0), 1e-4);
   EXPECT_NEAR(static_cast<double>(d.y), 1 / std::sqrt(5.0), 1e-4);
+}
+
+TEST(Tracker, TheSensorsLatencyIsTakenOutOfTheStamps) {
+  // Each report is stamped 2 ms after the scan that saw the finger there:
+  // told so, the tracker is on the finger; not told, it trails by v * 2 ms.
+  SensorProfile late;
+  late.latency_us = 2000;
+  std::vector<SensorSample> reports = line(0, {100, 100}, {300, 0}, 200);
+  for (SensorSample& r : reports) r.t_us += late.latency_us;
+  const double t = 1989 * 500e-6;
+  TrackerRun told(TrackerConfig::recommended(late));
+  EXPECT_NEAR(static_cast<double>(told.replay(reports, 0, 1990).back().position.x), 100 + 300 * t, 0.05);
+  TrackerRun not_told(TrackerConfig::recommended());
+  EXPECT_NEAR(static_cast<double>(not_told.replay(reports, 0, 1990).back().position.x), 100 + 300 * (t - 0.002), 0.05);
+}
+
+TEST(Tracker, AFingerThatStopsDeadDoesNotPointBackwards) {
+  // 1000 px/s (200 mm/s), then still: the smooth direction filter
+  // overshoots (its velocity swings negative) unless the improbable reports
+  // widen it.
+  std::vector<SensorSample> reports = line(0, {100, 200}, {1000, 0}, 100);
+  const SensorSample stop = reports.back();
+  for (int i = 1; i <= 100; ++i) reports.push_back({stop.t_us + 5000u * static_cast<uint32_t>(i), stop.x, stop.y, true});
+  auto most_backwards = [&](const TrackerConfig& c) {
+    TrackerRun run(c);
+    const auto states = run.replay(reports, 0, 2 * 995);
+    float worst = 0.0f;
+    for (size_t k = 995; k < states.size(); ++k) worst = std::min(worst, states[k].direction.x);
+    return static_cast<double>(worst);
+  };
+  EXPECT_EQ(most_backwards(TrackerConfig::recommended()), 0.0);
+  TrackerConfig no_widening = TrackerConfig::recommended();
+  no_widening.maneuver_nis = 0.0f;
+  EXPECT_LT(most_backwards(no_widening), -0.9);  // what the widening prevents
+}
+
+TEST(Tracker, AnInvalidProfileFallsBackToTheDefault) {
+  SensorProfile bad;
+  bad.white_noise_px = std::nanf("");
+  bad.latency_us = 3000;
+  EXPECT_EQ(TrackerConfig::recommended(bad).sensor.latency_us, 0u);
+  TrackerConfig c = TrackerConfig::recommended();
+  c.sensor = bad;
+  Tracker t(c);
+  EXPECT_EQ(t.config().sensor.latency_us, 0u);
+  EXPECT_EQ(t.config().sensor.white_noise_px, SensorProfile{}.white_noise_px);
+}
+
+TEST(SensorProfile, ValidWithinItsLimits) {
+  EXPECT_TRUE(is_valid(SensorProfile{}));
+  SensorProfile p;
+  p.correlated_noise_px = 1.0f;  // a wander needs its time constant
+  EXPECT_FALSE(is_valid(p));
+  p.correlation_time_ms = 30.0f;
+  EXPECT_TRUE(is_valid(p));
+  for (auto breaks : std::vector<void (*)(SensorProfile&)>{
+           [](SensorProfile& s) { s.white_noise_px = 0.0f; }, [](SensorProfile& s) { s.white_noise_px = -1.0f; },
+           [](SensorProfile& s) { s.white_noise_px = 50.5f; }, [](SensorProfile& s) { s.report_rate_hz = 9.0f; },
+           [](SensorProfile& s) { s.report_rate_hz = 5001.0f; }, [](SensorProfile& s) { s.tremor_px = std::nanf(""); },
+           [](SensorProfile& s) { s.jitter_us = 50001.0f; }, [](SensorProfile& s) { s.latency_us = 50001; },
+           [](SensorProfile& s) { s.correlation_time_ms = 10001.0f; }}) {
+    SensorProfile q;
+    breaks(q);
+    EXPECT_FALSE(is_valid(q));
+  }
 }
 
 TEST(Tracker, RestingFingerHasNoDirection) {

@@ -12,6 +12,7 @@ namespace ff {
 struct FingerKalman {
   Vec2 p, v, e;  // finger px, finger px/s, the report's wander px
   float P00 = 0.0f, P01 = 0.0f, P02 = 0.0f, P11 = 0.0f, P12 = 0.0f, P22 = 0.0f;
+  bool wander = false;  // without one its terms stay 0: skipped (the position filter, a white sensor)
 
   // One report z, nothing known of the speed (1 sigma initial_speed_px_s).
   void start(Vec2 z, const ReportNoise& n, float initial_speed_px_s) {
@@ -24,22 +25,25 @@ struct FingerKalman {
     P11 = initial_speed_px_s * initial_speed_px_s;
     P12 = 0.0f;
     P22 = n.wander_variance;
+    wander = n.wander_variance > 0.0f;
   }
 
   // dt_s later, q the acceleration's spectral density (px^2/s^3).
   inline __attribute__((always_inline)) void predict(float dt, float q, const ReportNoise& n) {
-    const float phi = n.correlation(dt);
     p.x += v.x * dt;
     p.y += v.y * dt;
-    e.x *= phi;
-    e.y *= phi;
     const float dt2 = dt * dt;
     P00 += dt * (2.0f * P01 + dt * P11) + q * dt2 * dt * (1.0f / 3.0f);
-    P02 = phi * (P02 + dt * P12);
+    if (wander) {
+      const float phi = n.correlation(dt);
+      e.x *= phi;
+      e.y *= phi;
+      P02 = phi * (P02 + dt * P12);
+      P12 *= phi;
+      P22 = phi * phi * P22 + n.wander_variance * (1.0f - phi * phi);
+    }
     P01 += dt * P11 + q * dt2 * 0.5f;
     P11 += q * dt;
-    P12 *= phi;
-    P22 = phi * phi * P22 + n.wander_variance * (1.0f - phi * phi);
   }
 
   // 1 / the innovation's variance (z = p + e + white): the one division per report.
@@ -75,14 +79,16 @@ struct FingerKalman {
     p.y += k0 * r.y;
     v.x += k1 * r.x;
     v.y += k1 * r.y;
-    e.x += k2 * r.x;
-    e.y += k2 * r.y;
     P00 -= k0 * h0;
     P01 -= k0 * h1;
-    P02 -= k0 * h2;
     P11 -= k1 * h1;
-    P12 -= k1 * h2;
-    P22 -= k2 * h2;
+    if (wander) {
+      e.x += k2 * r.x;
+      e.y += k2 * r.y;
+      P02 -= k0 * h2;
+      P12 -= k1 * h2;
+      P22 -= k2 * h2;
+    }
   }
 };
 

@@ -42,13 +42,15 @@ class TrackBenchClasses(unittest.TestCase):
         res = run(BENCH, "--classes", "--duration", "2")
         self.assertEqual(res.returncode, 0, res.stderr)
         rows = table_rows(res.stdout)
-        self.assertEqual(len(rows), 2 * len(CLASSES), res.stdout)
+        self.assertEqual(len(rows), 3 * len(CLASSES), res.stdout)
         for name in CLASSES:
-            thesis, recommended = rows[(name, "thesis")], rows[(name, "recommended()")]
+            thesis = rows[(name, "thesis")]
             # The baseline's ratios to itself are 1; the others are value / baseline.
             self.assertEqual(thesis[6], "1.00×")
-            self.assertAlmostEqual(ratio(recommended[6]), float(recommended[5]) / float(thesis[5]), delta=0.02)
-            self.assertEqual(thesis[11], recommended[11])  # the same traces for both
+            for tracker in ("recommended()", "recommended(profile)"):
+                row = rows[(name, tracker)]
+                self.assertAlmostEqual(ratio(row[6]), float(row[5]) / float(thesis[5]), delta=0.02)
+                self.assertEqual(thesis[11], row[11])  # the same traces for all
         self.assertIn("moves above 4 mm/s", res.stdout)
         self.assertIn("Generated traces, not a sensor", res.stdout)
 
@@ -59,9 +61,10 @@ class TrackBenchClasses(unittest.TestCase):
         self.assertEqual(classes.returncode, 0, classes.stderr)
         self.assertEqual(standard.returncode, 0, standard.stderr)
         rows = table_rows(classes.stdout)
-        self.assertEqual(len(rows), 2)
+        self.assertEqual(len(rows), 3)
+        # The standard table tells recommended() each level's noise: the class's profile row.
         for tracker, standard_name in (("thesis", "thesis (ticks + 1-euro, filtered derivative)"),
-                                       ("recommended()", "recommended()")):
+                                       ("recommended(profile)", "recommended()")):
             line = next(l for l in standard.stdout.splitlines() if l.startswith("| %s | low |" % standard_name))
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
             mine = rows[("white-200hz", tracker)]
@@ -87,9 +90,16 @@ class TrackBenchClasses(unittest.TestCase):
 
     def test_bad_usage_exits_2(self):
         self.assertEqual(run(BENCH, "--class", "no-such-class").returncode, 2)
-        res = run(BENCH, "--classes", "--tune")
+        res = run(BENCH, "--classes", "--trace", __file__)
         self.assertEqual(res.returncode, 2)
         self.assertIn("--classes", res.stderr)
+
+    def test_tune_on_a_class_logs_every_candidate_and_adds_the_best_as_the_profile_row(self):
+        res = run(BENCH, "--class", "white-200hz", "--tune", "--duration", "2")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertGreater(res.stderr.count("HM/thesis"), 50)
+        self.assertIn("best ", res.stderr)
+        self.assertEqual(len(table_rows(res.stdout)), 3)
 
 
 def read_trace(text):

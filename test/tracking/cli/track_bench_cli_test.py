@@ -79,7 +79,7 @@ class TrackBenchTrace(unittest.TestCase):
         res = run(BENCH, "--trace", self.without_truth(), "--tune", "--target", "top")
         self.assertEqual(res.returncode, 0, res.stderr)
         self.assertIn("best  ", res.stderr)
-        self.assertEqual(len([l for l in res.stdout.splitlines() if l.startswith("| kalman tuned")]), 1)
+        self.assertEqual(len([l for l in res.stdout.splitlines() if l.startswith("| tuned (")]), 1)
 
     def test_bad_files_exit_2_with_one_line(self):
         missing = run(BENCH, "--trace", os.path.join(self.tmp, "nope.csv"))
