@@ -144,7 +144,8 @@ ClassResult run_cases(const char* name, uint64_t base, int cases, Case (*make)(R
       b = run_pipeline(c.config, c.clean, c.clean_ticks);
       if (failure.empty()) {
         std::string last;
-        const bool fades = c.config.tracker.moving_sigmas > 0.0f;
+        const Estimator e = c.config.tracker.estimator;  // the fade is the Kalman estimators'
+        const bool fades = c.config.tracker.moving_sigmas > 0.0f && (e == Estimator::Kalman || e == Estimator::SplitKalman);
         const int64_t rec = recovery_ticks(a.ticks, b.ticks, c.episode_end, 0.5, kRecoveryAmplitudeTolerance, &last, fades);
         if (rec < 0 || rec > recovery_bound) {
           failure = (rec < 0 ? "did not recover: output still differs from the clean run at the end"

@@ -43,7 +43,8 @@ struct TrackerConfig {
   // the velocity's noise, from rest_sigmas to moving_sigmas standard
   // deviations of what a resting finger shows (velocity_noise.hpp) plus the
   // filter's excess uncertainty (after a touch-down, during a gap), so that a
-  // resting finger renders 0.5 instead of chattering. Both 0: no fade.
+  // resting finger renders 0.5 instead of chattering. Both 0: no fade. The
+  // Kalman estimators only: the 1-euro estimators' velocity has no such model.
   float rest_sigmas = 3.0f;
   float moving_sigmas = 6.0f;
   bool compensate_latency = true;      // date reports sensor.latency_us before their stamp
