@@ -218,9 +218,14 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
 
   // Timing.
   const double median_interval = median_of(intervals);
+  // Symmetric about the median, so that cutting the tails of a wide jitter
+  // does not move the mean.
+  const double longest = options.max_interval_factor * median_interval;
+  const double shortest = (2.0 - options.max_interval_factor) * median_interval;
+  auto normal = [&](double dt) { return dt >= shortest && dt <= longest; };
   double sum = 0.0, sum2 = 0.0;
   for (double dt : intervals) {
-    if (dt > options.max_interval_factor * median_interval) {
+    if (!normal(dt)) {
       ++cal.dropped_intervals;
       continue;
     }
@@ -229,7 +234,7 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   }
   const double mean_interval = sum / static_cast<double>(cal.intervals);
   for (double dt : intervals)
-    if (dt <= options.max_interval_factor * median_interval) sum2 += (dt - mean_interval) * (dt - mean_interval);
+    if (normal(dt)) sum2 += (dt - mean_interval) * (dt - mean_interval);
   cal.median_interval_us = median_interval * 1e6;
   cal.profile.report_rate_hz = static_cast<float>(1.0 / mean_interval);
   cal.profile.jitter_us =

@@ -3,8 +3,9 @@
 // (ff-track-bench --calibrate, docs/tracking.md#calibration).
 //
 // Timing: the report rate from the mean interval and the jitter as the
-// interval's 1 sigma, both without intervals longer than 1.5 x the median
-// (a missed report is not jitter).
+// interval's 1 sigma, both without intervals outside 0.5-1.5 x the median
+// (a missed report, a late stamp and the short interval after it are not
+// jitter).
 // Noise, per axis, then averaged over x and y: the residual after a centred
 // moving mean over 1 s (which takes out where the finger rests and any slow
 // drift), its autocovariance C(lag) in lag bins one median interval wide, and
@@ -28,7 +29,7 @@
 namespace ff::bench {
 
 struct CalibrationOptions {
-  double max_interval_factor = 1.5;  // intervals longer than this x the median are missed reports
+  double max_interval_factor = 1.5;  // intervals outside (2 - this .. this) x the median are left out
   double detrend_window_s = 1.0;     // centred moving mean taken out of each axis
   double max_lag_s = 0.2;            // the autocovariance is fitted up to this lag
   double max_tau_s = 0.1;            // longest correlation time tried (longer looks like `slow`)
@@ -53,7 +54,7 @@ struct Calibration {
   size_t runs = 0;                  // pieces between lifts and gaps
   double duration_s = 0.0;          // summed over the runs
   size_t intervals = 0;             // used for rate and jitter
-  size_t dropped_intervals = 0;     // longer than max_interval_factor x the median
+  size_t dropped_intervals = 0;     // outside 0.5-1.5 x the median (max_interval_factor)
   double median_interval_us = 0.0;
   double range_px = 0.0;            // largest range of the 1 s moving mean, x or y
   double total_noise_px = 0.0;      // sqrt C(0)
