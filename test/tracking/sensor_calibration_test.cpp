@@ -111,24 +111,20 @@ TEST(SensorCalibration, TremorAtAKnownFrequency) {
   EXPECT_EQ(c.profile.correlated_noise_px, 0.0f);
 }
 
-TEST(SensorCalibration, OneKilohertz) {
+// 1 px white noise at another rate: the rate, the jitter (a stamp jitter s gives s sqrt 2) and the noise.
+void expect_white_at(double rate_hz, double stamp_jitter_us) {
   TraceOptions o = resting(10.0);
-  o.sensor.rate_hz = 1000.0;
-  o.sensor.jitter_us = 50.0;  // well inside the 30 % clip
+  o.sensor.rate_hz = rate_hz;
+  o.sensor.jitter_us = stamp_jitter_us;
   const Calibration c = calibrate(o);
   expect_white_only(c, 1.0);
-  expect_within(c.profile.report_rate_hz, 1000.0, 0.01, "rate");
-  expect_within(c.profile.jitter_us, 50.0 * kSqrt2, 0.10, "jitter");
+  expect_within(c.profile.report_rate_hz, rate_hz, 0.01, "rate");
+  expect_within(c.profile.jitter_us, stamp_jitter_us * kSqrt2, 0.10, "jitter");
 }
 
-TEST(SensorCalibration, OneHundredHertz) {
-  TraceOptions o = resting(10.0);
-  o.sensor.rate_hz = 100.0;
-  const Calibration c = calibrate(o);
-  expect_white_only(c, 1.0);
-  expect_within(c.profile.report_rate_hz, 100.0, 0.01, "rate");
-  expect_within(c.profile.jitter_us, 150.0 * kSqrt2, 0.10, "jitter");
-}
+TEST(SensorCalibration, OneKilohertz) { expect_white_at(1000.0, 50.0); }  // 50 us: well inside the 30 % clip
+
+TEST(SensorCalibration, OneHundredHertz) { expect_white_at(100.0, 150.0); }
 
 TEST(SensorCalibration, PeriodJitterIsTheIntervalSigma) {
   TraceOptions o = resting(10.0);
