@@ -151,6 +151,23 @@ TEST(SensorCalibration, SensorFaultsAreSkippedLikeTheTraceReaderDoes) {
   expect_white_only(calibrate(o), 1.0);
 }
 
+TEST(SensorCalibration, RestsAtSeveralPlacesAreRunsOfTheirOwn) {
+  // Two rests 200 px apart with a lift between: each run loses its own mean.
+  std::vector<host::TraceRow> rows = rows_of(resting(5.0, 1));
+  const uint64_t later = rows.back().t_us + 300'000;
+  for (host::TraceRow r : rows_of(resting(5.0, 2))) {
+    r.t_us += later - 10'000'000;
+    r.x += 200.0f;
+    rows.push_back(r);
+  }
+  Calibration c;
+  std::string error;
+  ASSERT_TRUE(calibrate_from_rest(rows, CalibrationOptions{}, 0, c, error)) << error;
+  EXPECT_EQ(c.runs, 2u);
+  EXPECT_LT(c.range_px, 1.0);
+  expect_white_only(c, 1.0);
+}
+
 TEST(SensorCalibration, EveryEffectAt200Hz) {
   // realistic-200hz: 1 px tremor, 1.5 px / 30 ms wander, 0.5 px white and quantum, 2 px drift (tau 10 s),
   // 150 us stamp jitter and 2 % = 100 us period jitter.
@@ -172,6 +189,13 @@ TEST(SensorCalibration, RefusesTooShortAMovingFingerAndNothing) {
   moving.motion.rest_only = false;
   EXPECT_NE(refusal(rows_of(moving)).find("not resting"), std::string::npos);
   EXPECT_NE(refusal({}).find("only 0 usable"), std::string::npos);
+  std::vector<host::TraceRow> fast;  // 200 reports 100 us apart: 10 kHz
+  for (uint64_t i = 0; i < 20000; ++i) fast.push_back({i * 100, 400.0f, 240.0f + 0.1f * static_cast<float>(i % 3), true});
+  EXPECT_NE(refusal(fast).find("not a sensor"), std::string::npos);
+  TraceOptions noisy = resting(10.0);
+  noisy.sensor.noise_px = 60.0;  // beyond SensorProfileLimits::kMaxNoisePx; at 1 kHz its 1 s mean still rests
+  noisy.sensor.rate_hz = 1000.0;
+  EXPECT_NE(refusal(rows_of(noisy)).find("outside the profile's limits"), std::string::npos);
 }
 
 }  // namespace

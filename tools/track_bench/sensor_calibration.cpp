@@ -236,6 +236,13 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   for (double dt : intervals)
     if (normal(dt)) sum2 += (dt - mean_interval) * (dt - mean_interval);
   cal.median_interval_us = median_interval * 1e6;
+  const double median_rate_hz = 1.0 / median_interval;
+  if (median_rate_hz > double{SensorProfileLimits::kMaxRateHz} || median_rate_hz < double{SensorProfileLimits::kMinRateHz}) {
+    std::snprintf(line, sizeof line, "reports every %.0f us: not a sensor at %.0f-%.0f Hz", median_interval * 1e6,
+                  double{SensorProfileLimits::kMinRateHz}, double{SensorProfileLimits::kMaxRateHz});
+    error = line;
+    return false;
+  }
   cal.profile.report_rate_hz = static_cast<float>(1.0 / mean_interval);
   cal.profile.jitter_us =
       static_cast<float>(cal.intervals > 1 ? std::sqrt(sum2 / static_cast<double>(cal.intervals - 1)) * 1e6 : 0.0);
@@ -305,6 +312,12 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   cal.profile.correlated_noise_px = static_cast<float>(std::sqrt(fit.corr2));
   cal.profile.correlation_time_ms = static_cast<float>(fit.corr2 > 0.0 ? fit.tau_s * 1e3 : 0.0);
   cal.profile.tremor_px = static_cast<float>(std::sqrt(2.0 * fit.tremor2_half));
+  if (!is_valid(cal.profile)) {
+    std::snprintf(line, sizeof line, "the estimate (noise %.1f px, jitter %.0f us) is outside the profile's limits",
+                  cal.total_noise_px, double{cal.profile.jitter_us});
+    error = line;
+    return false;
+  }
   out = cal;
   return true;
 }
