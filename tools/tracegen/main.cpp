@@ -45,7 +45,8 @@ constexpr const char* kFooter =
     "  ff-tracegen --all-faults --events --wrap -o faults.csv     # every fault, clock wrapping\n"
     "  ff-tracegen --duration 3600 --lifts 200 --rests 300 -o hour.csv   # an hour-long session\n"
     "  ff-tracegen --class realistic-1khz --seed 4 -o real.csv    # every effect, 1 kHz\n"
-    "  ff-tracegen --correlated-noise-px 1.5 --correlated-tau-ms 30 --noise-px 0.5 -o wander.csv";
+    "  ff-tracegen --correlated-noise-px 1.5 --correlated-tau-ms 30 --noise-px 0.5 -o wander.csv\n"
+    "  ff-tracegen --rest-only --class correlated-noise --duration 10 -o rest.csv   # to calibrate";
 
 struct Cli {
   std::string output = "-";
@@ -177,6 +178,10 @@ int main(int argc, char** argv) {
   app.add_option("--reversals", o.motion.reversal_fraction, "Share of strokes that turn straight back (no dwell) "
                                                             "for 15-40 % of their length")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
+  app.add_flag("--rest-only", o.motion.rest_only, "No strokes: the finger rests at the middle of the screen for "
+                                                  "--duration (with tremor if asked), a calibration recording "
+                                                  "for ff-track-bench --calibrate")
+      ->group(motion);
   app.add_option("--tremor-px", o.tremor.amplitude_px, "Tremor amplitude, peak per axis (px; physiological "
                                                        "0.5-2.5 px = 0.1-0.5 mm); in the reports, not in x_true")
       ->capture_default_str()->check(CLI::Range(0.0, 50.0))->group(motion);

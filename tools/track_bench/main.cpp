@@ -13,9 +13,11 @@
 
 #include "frictionfield/host/cli_conventions.hpp"
 #include "frictionfield/host/sensor_profile_options.hpp"
+#include "frictionfield/host/trace_csv.hpp"
 #include "bench_report.hpp"
 #include "class_report.hpp"
 #include "proposed_config.hpp"
+#include "sensor_calibration.hpp"
 #include "tracking_evaluation.hpp"
 
 namespace {
@@ -40,7 +42,10 @@ constexpr const char* kDescription =
     "  host cost of HapticPipeline::tick() on the heightmap (ns per tick, this machine).\n"
     "With --classes: the same metrics per class of finger and sensor (white noise at 200 Hz, slow\n"
     "fingers, tremor, stamp latency, correlated noise, everything at 100 Hz / 200 Hz / 1 kHz), for the\n"
-    "thesis pipeline and recommended(), with recommended()'s ratio to the thesis pipeline.";
+    "thesis pipeline and recommended(), with recommended()'s ratio to the thesis pipeline.\n"
+    "With --calibrate: a SensorProfile estimated from a recording of a resting finger, and the line\n"
+    "that sends it to the device (docs/tracking.md#calibration); of the sensor-profile flags it takes\n"
+    "only --latency-us (a recording cannot show the latency).";
 
 struct NamedConfig {
   NamedConfig(std::string n, const TrackerConfig& c) : name(std::move(n)), config(c) {}
@@ -258,6 +263,146 @@ std::string run_classes(const std::vector<std::string>& names, double duration_s
   return table.str();
 }
 
+// Each configuration on each level: the report table. With `tell_sensor`,
+// every tracker is told the level's sensor; without, each keeps its own.
+std::string judge(const std::vector<NamedConfig>& configs, const std::vector<LevelSet>& levels,
+                  const EvalOptions& options, const std::string& description, bool tell_sensor) {
+  std::vector<ReportRow> rows;
+  for (const NamedConfig& nc : configs) {
+    for (const LevelSet& level : levels) {
+      std::fprintf(stderr, "ff-track-bench: %s, %s noise\n", nc.name.c_str(), level.label.c_str());
+      TrackerConfig config = nc.config;
+      if (tell_sensor) config.sensor = level.sensor;  // as calibrated: the thesis pipeline ignores it
+      rows.push_back({nc.name, level.label, evaluate(config, level.cases, options)});
+    }
+  }
+  std::ostringstream table;
+  write_report(table, rows, description, options.moving_speed_px_s);
+  return table.str();
+}
+
+std::string recorded_set_description(const LevelSet& level) {
+  size_t with_truth = 0;
+  for (const PreparedCase& c : level.cases) with_truth += c.truth_from_columns ? 1 : 0;
+  return std::to_string(level.cases.size()) + " trace file(s), " + std::to_string(with_truth) +
+         " judged against their x_true, y_true columns, " + std::to_string(level.cases.size() - with_truth) +
+         " against the offline smoother (not ground truth)";
+}
+
+// The estimates as a table, then the lines that use them.
+void print_calibration(std::ostream& out, const std::string& path, const Calibration& c,
+                       const CalibrationOptions& o) {
+  const SensorProfile& p = c.profile;
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "Sensor profile from %s: %zu touch reports in %zu run(s), %.2f s; %zu of %zu intervals outside "
+                "%.1f-%.1f x the median (%.0f us) left out of rate and jitter (missed or late reports).\n\n",
+                path.c_str(), c.reports, c.runs, c.duration_s, c.dropped_intervals, c.intervals + c.dropped_intervals,
+                2.0 - o.max_interval_factor, o.max_interval_factor, c.median_interval_us);
+  out << line;
+  out << "| quantity | estimate | unit | how |\n|---|--:|---|---|\n";
+  auto row = [&](const char* what, double value, int decimals, const char* unit, const std::string& how) {
+    std::snprintf(line, sizeof line, "| %s | %.*f | %s | %s |\n", what, decimals, value, unit, how.c_str());
+    out << line;
+  };
+  row("white noise (with quantisation), 1 sigma per axis", p.white_noise_px, 2, "px", "C(0) minus the terms below");
+  char how[200];
+  std::snprintf(how, sizeof how, "exponential term of the autocovariance fit%s",
+                p.correlated_noise_px > 0.0f ? "" : " (not significant: 0)");
+  row("correlated noise, 1 sigma per axis", p.correlated_noise_px, 2, "px", how);
+  row("correlation time", p.correlation_time_ms, 1, "ms", "its time constant");
+  if (c.tremor_hz > 0.0)
+    std::snprintf(how, sizeof how, "cosine term at the spectral peak, %.2f Hz (%.0f x its neighbourhood)", c.tremor_hz,
+                  c.tremor_peak_ratio);
+  else
+    std::snprintf(how, sizeof how, "no peak in %.0f-%.0f Hz (strongest %.1f x its neighbourhood; needs > %.0f): 0",
+                  o.tremor_min_hz, o.tremor_max_hz, c.tremor_peak_ratio, o.tremor_peak_ratio);
+  row("tremor, peak per axis", p.tremor_px, 2, "px", how);
+  row("report rate", p.report_rate_hz, 1, "Hz", "1 / mean interval");
+  row("jitter, 1 sigma of the report interval", p.jitter_us, 0, "us", "standard deviation of the intervals");
+  row("latency", static_cast<double>(p.latency_us), 0, "us",
+      "not measurable from a recording: as given by --latency-us");
+  std::snprintf(line, sizeof line,
+                "\nFit: total noise %.2f px (sqrt C(0)), slow part %.3f px^2, residual RMS %.4f px^2 over %zu lag bins "
+                "up to %.0f ms; correlated term improves the fit %.0f x (needs > %.0f); the finger's %.0f s mean moved "
+                "%.1f px (at most %.0f).\n\n",
+                c.total_noise_px, c.slow_px2, c.fit_rms_px2, c.lag_bins, o.max_lag_s * 1e3, c.correlated_improvement,
+                o.correlated_improvement, o.detrend_window_s, c.range_px, o.max_range_px);
+  out << line;
+  out << "To send it to the device:\n  ffctl sensor-profile " << host::sensor_profile_flags(p) << "\n";
+  out << "For ff-replay and ff-track-bench:\n  " << host::sensor_profile_flags(p) << "\n";
+}
+
+// The flags line with a '#' header, written to NAME.partial and renamed, so
+// that a failed write never leaves a half file under the real name.
+bool write_profile_file(const std::string& path, const std::string& input, const SensorProfile& profile,
+                        std::string& error) {
+  const std::string partial = path + ".partial";
+  {
+    std::ofstream out(partial);
+    host::write_metadata(out, {{"tool", std::string("ff-track-bench --calibrate ") + host::project_version()},
+                               {"input", input},
+                               {"date", host::utc_timestamp()},
+                               {"what", "a SensorProfile estimated from a resting finger (docs/tracking.md#calibration); "
+                                        "latency_us is not measurable from a recording: as given by --latency-us"}});
+    out << host::sensor_profile_flags(profile) << "\n";
+    out.close();
+    if (!out) {
+      std::remove(partial.c_str());
+      error = "cannot write " + path;
+      return false;
+    }
+  }
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
+    std::remove(partial.c_str());
+    error = "cannot write " + path;
+    return false;
+  }
+  return true;
+}
+
+// --calibrate REST.csv [STROKES.csv]: 0, or 2 with one line for a recording that gives no profile.
+int run_calibration(const std::vector<std::string>& paths, const SensorProfile& given, const std::string& profile_out,
+                    const TraceFileOptions& trace_options, const EvalOptions& options) {
+  std::vector<host::TraceRow> rows;
+  host::TraceError read_error;
+  if (!host::read_sensor_trace_file(paths[0], rows, read_error)) {
+    std::fprintf(stderr, "ff-track-bench: %s\n", read_error.to_string(paths[0]).c_str());
+    return 2;
+  }
+  const CalibrationOptions calibration_options;
+  Calibration calibration;
+  std::string error;
+  if (!calibrate_from_rest(rows, calibration_options, given.latency_us, calibration, error)) {
+    std::fprintf(stderr, "ff-track-bench: %s: %s\n", paths[0].c_str(), error.c_str());
+    return 2;
+  }
+  print_calibration(std::cout, paths[0], calibration, calibration_options);
+  std::cout.flush();
+  if (!profile_out.empty()) {
+    if (!write_profile_file(profile_out, paths[0], calibration.profile, error)) {
+      std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
+      return 1;
+    }
+    std::fprintf(stderr, "ff-track-bench: profile written to %s\n", profile_out.c_str());
+  }
+  if (paths.size() < 2) return 0;
+  std::vector<LevelSet> levels(1);
+  if (!load_trace_level({paths[1]}, trace_options, calibration.profile, levels.front(), error)) {
+    std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
+    return 2;
+  }
+  const std::vector<NamedConfig> configs = {
+      {"thesis (ticks + 1-euro, filtered derivative)", TrackerConfig::thesis()},
+      {"recommended()", TrackerConfig::recommended()},
+      {"recommended(calibrated profile)", TrackerConfig::recommended(calibration.profile)},
+  };
+  std::cout << "\nOn " << paths[1] << ": the thesis pipeline, recommended() for the default profile and for the "
+                                      "calibrated one.\n\n"
+            << judge(configs, levels, options, recorded_set_description(levels.front()), false);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -325,10 +470,39 @@ int main(int argc, char** argv) {
       ->group(per_class);
   app.add_option("--class", class_names, "Only these classes (implies --classes)")
       ->check(CLI::IsMember(known_classes))->group(per_class);
+  std::vector<std::string> calibrate_paths;
+  std::string profile_out;
+  auto* calibration = "Calibration (docs/tracking.md#calibration)";
+  app.add_option("--calibrate", calibrate_paths,
+                 "REST.csv [STROKES.csv]: estimate the sensor profile from a recording of a finger resting still "
+                 "(t_us,x,y,touch; >= 1 s and 100 reports, 10 s recommended) and print it with the ffctl "
+                 "sensor-profile line that sends it to the device; latency comes from --latency-us. With STROKES.csv, "
+                 "judge the thesis pipeline, recommended() and recommended(calibrated profile) on it as --trace does")
+      ->expected(1, 2)->check(CLI::ExistingFile)->group(calibration);
+  app.add_option("--profile-out", profile_out, "With --calibrate: also write the profile's flags (with a '#' header: "
+                                               "tool, version, input, date) to this file")
+      ->group(calibration);
   std::string dump_path;
   app.add_option("--dump-ticks", dump_path, "Write every tick of the first low-noise trace for the tuned configuration "
                                             "(truth, estimate, amplitudes) to this CSV, for plots");
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
+
+  trace_options.target = target_word == "top" ? Target::Top : (target_word == "bottom" ? Target::Bottom : Target::Middle);
+  if (!calibrate_paths.empty()) {
+    if (classes || !class_names.empty() || !trace_paths.empty() || run_tune || !doc_path.empty()) {
+      std::fprintf(stderr, "ff-track-bench: --calibrate takes none of --classes, --class, --trace, --tune, --write-doc\n");
+      return 2;
+    }
+    if (!profile_out.empty() && host::same_file(calibrate_paths[0], profile_out)) {
+      std::fprintf(stderr, "ff-track-bench: --profile-out %s would overwrite the recording\n", profile_out.c_str());
+      return 2;
+    }
+    return run_calibration(calibrate_paths, trace_sensor, profile_out, trace_options, options);
+  }
+  if (!profile_out.empty()) {
+    std::fprintf(stderr, "ff-track-bench: --profile-out needs --calibrate\n");
+    return 2;
+  }
 
   if (classes || !class_names.empty()) {
     if (!trace_paths.empty()) {
@@ -368,7 +542,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ff-track-bench: generating 2 x 6 traces of %.0f s...\n", duration_s);
     levels = prepare_levels(duration_s);
   } else {
-    trace_options.target = target_word == "top" ? Target::Top : (target_word == "bottom" ? Target::Bottom : Target::Middle);
     LevelSet level;
     std::string error;
     if (!load_trace_level(trace_paths, trace_options, trace_sensor, level, error)) {
@@ -379,36 +552,21 @@ int main(int argc, char** argv) {
   }
   if (run_tune) tuned = tune(levels, rest_bound, max_lag_ms, 1.0, options, std::cerr);
 
-  std::vector<ReportRow> rows;
   const bool with_tuned = run_tune || app.count("--direction-q") + app.count("--position-q") +
                                            app.count("--rest-sigmas") + app.count("--moving-sigmas") +
                                            app.count("--maneuver-nis") > 0;
-  for (const NamedConfig& nc : standard_configs(tuned, with_tuned)) {
-    for (const LevelSet& level : levels) {
-      std::fprintf(stderr, "ff-track-bench: %s, %s noise\n", nc.name.c_str(), level.label.c_str());
-      TrackerConfig config = nc.config;
-      config.sensor = level.sensor;  // as calibrated: the thesis pipeline ignores it
-      rows.push_back({nc.name, level.label, evaluate(config, level.cases, options)});
-    }
-  }
   if (!dump_path.empty()) {
     std::ofstream dump(dump_path);
     dump_ticks(dump, proposed_tracker(tuned, levels.front().sensor), levels.front().cases.front());
   }
-  std::ostringstream table;
-  std::string description = generated_set_description(duration_s);
-  if (!trace_paths.empty()) {
-    size_t with_truth = 0;
-    for (const PreparedCase& c : levels.front().cases) with_truth += c.truth_from_columns ? 1 : 0;
-    description = std::to_string(trace_paths.size()) + " trace file(s), " + std::to_string(with_truth) +
-                  " judged against their x_true, y_true columns, " + std::to_string(trace_paths.size() - with_truth) +
-                  " against the offline smoother (not ground truth)";
-  }
-  write_report(table, rows, description, options.moving_speed_px_s);
-  std::cout << table.str();
+  const std::string table =
+      judge(standard_configs(tuned, with_tuned), levels, options,
+            trace_paths.empty() ? generated_set_description(duration_s) : recorded_set_description(levels.front()),
+            true);
+  std::cout << table;
   if (!doc_path.empty()) {
     std::string error;
-    if (!replace_marked_section(doc_path, table.str(), error)) {
+    if (!replace_marked_section(doc_path, table, error)) {
       std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
       return 1;
     }

@@ -101,22 +101,12 @@ ReferencePath ReferencePath::from_truth(const std::vector<host::TraceRow>& rows,
   return path;
 }
 
-ReferencePath ReferencePath::smoothed(const std::vector<host::TraceRow>& rows, uint64_t t0_us,
-                                      const SmootherOptions& options) {
-  ReferencePath path;
-  std::vector<double> t, x, y;
+std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint64_t t0_us, double max_gap_s) {
+  std::vector<ReportRun> runs;
+  ReportRun run;
   auto close = [&] {
-    if (t.size() >= 2) {
-      std::vector<double> px, vx, py, vy;
-      smooth_axis(t, x, options, px, vx);
-      smooth_axis(t, y, options, py, vy);
-      std::vector<PathNode> segment(t.size());
-      for (size_t k = 0; k < t.size(); ++k) segment[k] = {t[k], px[k], py[k], vx[k], vy[k]};
-      path.segments_.push_back(std::move(segment));
-    }
-    t.clear();
-    x.clear();
-    y.clear();
+    if (!run.t.empty()) runs.push_back(std::move(run));
+    run = ReportRun{};
   };
   for (const host::TraceRow& row : rows) {
     const double ts = seconds_since(row.t_us, t0_us);
@@ -125,13 +115,28 @@ ReferencePath ReferencePath::smoothed(const std::vector<host::TraceRow>& rows, u
       continue;
     }
     const double rx = static_cast<double>(row.x), ry = static_cast<double>(row.y);
-    if (!on_screen(rx, ry) || (!t.empty() && !(ts > t.back()))) continue;  // sensor faults: skipped
-    if (!t.empty() && ts - t.back() > options.max_gap_s) close();
-    t.push_back(ts);
-    x.push_back(rx);
-    y.push_back(ry);
+    if (!on_screen(rx, ry) || (!run.t.empty() && !(ts > run.t.back()))) continue;  // sensor faults: skipped
+    if (!run.t.empty() && ts - run.t.back() > max_gap_s) close();
+    run.t.push_back(ts);
+    run.x.push_back(rx);
+    run.y.push_back(ry);
   }
   close();
+  return runs;
+}
+
+ReferencePath ReferencePath::smoothed(const std::vector<host::TraceRow>& rows, uint64_t t0_us,
+                                      const SmootherOptions& options) {
+  ReferencePath path;
+  for (const ReportRun& run : touch_runs(rows, t0_us, options.max_gap_s)) {
+    if (run.t.size() < 2) continue;
+    std::vector<double> px, vx, py, vy;
+    smooth_axis(run.t, run.x, options, px, vx);
+    smooth_axis(run.t, run.y, options, py, vy);
+    std::vector<PathNode> segment(run.t.size());
+    for (size_t k = 0; k < run.t.size(); ++k) segment[k] = {run.t[k], px[k], py[k], vx[k], vy[k]};
+    path.segments_.push_back(std::move(segment));
+  }
   return path;
 }
 

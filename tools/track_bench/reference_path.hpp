@@ -48,6 +48,15 @@ class ReferencePath {
   std::vector<std::vector<PathNode>> segments_;  // each sorted by time, >= 2 nodes
 };
 
+// The touch reports of a recording as runs: touch reports on the screen
+// (finite, inside 0..kScreenMax), time strictly increasing (duplicates and
+// out-of-order stamps skipped), split at each lift (touch = 0) and at each gap
+// longer than max_gap_s. Times in s since t0_us.
+struct ReportRun {
+  std::vector<double> t, x, y;
+};
+std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint64_t t0_us, double max_gap_s);
+
 // One axis of a constant-velocity RTS smoother (exposed for its test):
 // positions z at times t (s, increasing) -> smoothed position and velocity.
 void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,

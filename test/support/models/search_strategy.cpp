@@ -242,6 +242,13 @@ bool parse_path_choice(const std::string& text, PathChoice& out) {
   return false;
 }
 
-Motion plan_motion(const MotionOptions& options, uint64_t seed) { return Planner(options, seed).run(); }
+Motion plan_motion(const MotionOptions& options, uint64_t seed) {
+  if (options.rest_only) {
+    Motion rest(Point{400.0, 240.0});
+    rest.hold(options.duration_s, true);
+    return rest;
+  }
+  return Planner(options, seed).run();
+}
 
 }  // namespace ff::tracegen

@@ -55,6 +55,10 @@ struct MotionOptions {
   // Sharp reversals: this share of strokes turns straight back (no dwell)
   // for 15-40 % of its length at the same peak speed.
   double reversal_fraction = 0.0;
+
+  // A calibration recording (ff-track-bench --calibrate): the finger rests
+  // at the middle of the screen for the whole duration, nothing else.
+  bool rest_only = false;
 };
 
 // The motion is at least options.duration_s long (it ends after the stroke

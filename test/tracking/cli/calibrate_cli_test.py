@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""ff-track-bench --calibrate as a lab runs it: a resting finger from
+ff-tracegen --rest-only, the printed ffctl line, --profile-out, a strokes
+file, and bad input (exit 2 with one line). Expected values are the
+generator's parameters, not earlier output.
+
+usage: calibrate_cli_test.py path/to/ff-track-bench path/to/ff-tracegen
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BENCH = TRACEGEN = None
+FLAGS = ["--white-noise-px", "--correlated-noise-px", "--correlation-time-ms", "--tremor-px",
+         "--report-rate-hz", "--jitter-us", "--latency-us"]
+
+
+def run(*args):
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True)
+
+
+def parse_flags(text):
+    words = text.split()
+    values = dict(zip(words[0::2], (float(w) for w in words[1::2])))
+    assert list(values) == FLAGS, words
+    return values
+
+
+class Calibrate(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls._tmp = tempfile.TemporaryDirectory()
+        cls.tmp = cls._tmp.name
+        # 1 px white + 0.5 px quantum, 1.5 px tremor at 10 Hz, 200 Hz with 150 us stamp jitter.
+        cls.rest = os.path.join(cls.tmp, "rest.csv")
+        res = run(TRACEGEN, "--rest-only", "--class", "tremor", "--tremor-hz", 10, "--tremor-hz-max", 10,
+                  "--duration", 10, "--seed", 7, "-q", "-o", cls.rest)
+        assert res.returncode == 0, res.stderr
+        cls.strokes = os.path.join(cls.tmp, "strokes.csv")
+        res = run(TRACEGEN, "--class", "tremor", "--duration", 6, "--seed", 7, "-q", "-o", cls.strokes)
+        assert res.returncode == 0, res.stderr
+
+    @classmethod
+    def tearDownClass(cls):
+        cls._tmp.cleanup()
+
+    def calibrate(self, *extra):
+        res = run(BENCH, "--calibrate", self.rest, *extra)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        return res
+
+    def test_rest_only_is_one_finger_resting_at_the_middle(self):
+        with open(self.rest) as f:
+            rows = [r for r in csv.DictReader(f) if r["touch"] == "1"]
+        self.assertEqual(len(rows), 2001)
+        self.assertEqual({(r["x_true"], r["y_true"]) for r in rows}, {("400", "240")})
+
+    def test_the_printed_ffctl_line_holds_the_generators_parameters(self):
+        out = self.calibrate("--latency-us", 1500).stdout
+        ffctl = [line.strip() for line in out.splitlines() if line.strip().startswith("ffctl sensor-profile ")]
+        self.assertEqual(len(ffctl), 1, out)
+        p = parse_flags(ffctl[0][len("ffctl sensor-profile "):])
+        self.assertAlmostEqual(p["--white-noise-px"], math.sqrt(1 + 0.5 ** 2 / 12), delta=0.1)
+        self.assertAlmostEqual(p["--tremor-px"], 1.5, delta=0.15)
+        self.assertEqual(p["--correlated-noise-px"], 0)
+        self.assertAlmostEqual(p["--report-rate-hz"], 200, delta=2)
+        self.assertAlmostEqual(p["--jitter-us"], 150 * math.sqrt(2), delta=21)
+        self.assertEqual(p["--latency-us"], 1500)
+        self.assertIn("not measurable from a recording", out)
+        # The same flags for ff-replay and ff-track-bench, on the line after its heading.
+        lines = out.splitlines()
+        same = lines[lines.index("For ff-replay and ff-track-bench:") + 1].strip()
+        self.assertEqual(same, ffctl[0][len("ffctl sensor-profile "):])
+        for unit in ("| px |", "| ms |", "| Hz |", "| us |"):
+            self.assertIn(unit, out)
+
+    def test_profile_out_has_the_flags_and_a_header(self):
+        path = os.path.join(self.tmp, "profile.txt")
+        out = self.calibrate("--profile-out", path).stdout
+        with open(path) as f:
+            lines = f.read().splitlines()
+        header = [line for line in lines if line.startswith("#")]
+        body = [line for line in lines if not line.startswith("#")]
+        self.assertTrue(any(line.startswith("# tool: ff-track-bench") for line in header), header)
+        self.assertIn("# input: " + self.rest, header)
+        self.assertTrue(any(line.startswith("# date: 20") for line in header), header)
+        self.assertEqual(len(body), 1)
+        self.assertIn("ffctl sensor-profile " + body[0], out)
+        self.assertFalse(os.path.exists(path + ".partial"))
+
+    def test_the_flags_are_accepted_by_ff_track_bench(self):
+        flags = parse_flags(run(BENCH, "--calibrate", self.rest).stdout.splitlines()[-1])
+        args = [w for k, v in flags.items() for w in (k, "%g" % v)]
+        res = run(BENCH, "--trace", self.strokes, *args)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("| recommended() |", res.stdout)
+
+    def test_with_strokes_three_trackers_are_judged(self):
+        out = self.calibrate(self.strokes).stdout
+        for tracker in ("thesis (ticks + 1-euro, filtered derivative)", "recommended()",
+                        "recommended(calibrated profile)"):
+            self.assertEqual(sum(line.startswith("| " + tracker + " |") for line in out.splitlines()), 1, tracker)
+        self.assertIn("1 judged against their x_true, y_true columns", out)
+
+    def test_bad_input_exits_2_with_one_line(self):
+        short = os.path.join(self.tmp, "short.csv")
+        self.assertEqual(run(TRACEGEN, "--rest-only", "--duration", 0.5, "-q", "-o", short).returncode, 0)
+        cases = [
+            ([short], "only 0.50 s of touch reports"),
+            ([self.strokes], "the finger is not resting"),
+            ([self.rest, "--profile-out", self.rest], "would overwrite the recording"),
+            ([self.rest, "--trace", self.strokes], "--calibrate takes none of"),
+        ]
+        for args, message in cases:
+            res = run(BENCH, "--calibrate", *args)
+            self.assertEqual(res.returncode, 2, (args, res.stderr))
+            self.assertIn(message, res.stderr)
+            self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
+            self.assertEqual(res.stdout, "")
+        # A missing file is a usage error: CLI11's line and its pointer to --help.
+        res = run(BENCH, "--calibrate", os.path.join(self.tmp, "nope.csv"))
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("nope.csv", res.stderr.splitlines()[0])
+
+
+if __name__ == "__main__":
+    BENCH, TRACEGEN = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    unittest.main(argv=sys.argv[:1], verbosity=1)

@@ -1,0 +1,202 @@
+// ff-track-bench --calibrate's estimator on generated resting fingers: each
+// estimate against the generator's own parameters (closed forms: a stamp
+// jitter s gives intervals of sigma s sqrt 2, a quantum q adds q^2 / 12 to the
+// white variance), never against the estimator's earlier output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "sensor_calibration.hpp"
+#include "support/models/sensor_model.hpp"
+#include "support/models/trace_classes.hpp"
+
+namespace ff::bench {
+namespace {
+
+using tracegen::TraceOptions;
+
+TraceOptions resting(double duration_s, uint64_t seed = 5) {
+  TraceOptions o;
+  o.seed = seed;
+  o.motion.rest_only = true;
+  o.motion.duration_s = duration_s;
+  return o;
+}
+
+TraceOptions resting_class(const char* name, double duration_s) {
+  TraceOptions o = resting(duration_s);
+  tracegen::find_trace_class(name)->apply(o);
+  o.motion.rest_only = true;
+  o.motion.duration_s = duration_s;
+  return o;
+}
+
+std::vector<host::TraceRow> rows_of(const TraceOptions& o) {
+  std::vector<host::TraceRow> rows;
+  for (const tracegen::TraceSample& s : tracegen::generate_trace(o).samples)
+    rows.push_back({s.t_us, static_cast<float>(s.x), static_cast<float>(s.y), s.touch});
+  return rows;
+}
+
+Calibration calibrate(const TraceOptions& o, uint32_t latency_us = 0) {
+  Calibration c;
+  std::string error;
+  EXPECT_TRUE(calibrate_from_rest(rows_of(o), CalibrationOptions{}, latency_us, c, error)) << error;
+  return c;
+}
+
+std::string refusal(const std::vector<host::TraceRow>& rows) {
+  Calibration c;
+  std::string error;
+  EXPECT_FALSE(calibrate_from_rest(rows, CalibrationOptions{}, 0, c, error));
+  return error;
+}
+
+void expect_within(double estimate, double truth, double relative, const char* what) {
+  EXPECT_NEAR(estimate, truth, relative * truth) << what;
+}
+
+// White noise only: correlated and tremor come out as nothing.
+void expect_white_only(const Calibration& c, double sigma_px) {
+  expect_within(c.profile.white_noise_px, sigma_px, 0.10, "white");
+  EXPECT_EQ(c.profile.correlated_noise_px, 0.0f);
+  EXPECT_EQ(c.profile.correlation_time_ms, 0.0f);
+  EXPECT_EQ(c.profile.tremor_px, 0.0f);
+  EXPECT_TRUE(is_valid(c.profile));
+}
+
+const double kSqrt2 = std::sqrt(2.0);
+
+TEST(SensorCalibration, WhiteNoiseOfOnePixelAt200Hz) {
+  const Calibration c = calibrate(resting(10.0));  // defaults: 200 Hz, 150 us stamp jitter, 1 px
+  expect_white_only(c, 1.0);
+  expect_within(c.profile.report_rate_hz, 200.0, 0.01, "rate");
+  expect_within(c.profile.jitter_us, 150.0 * kSqrt2, 0.10, "jitter: two independent stamp errors per interval");
+  EXPECT_EQ(c.reports, 2001u);
+  EXPECT_NEAR(c.duration_s, 10.0, 0.01);
+}
+
+TEST(SensorCalibration, WhiteNoiseOfTwoAndAHalfPixels) {
+  TraceOptions o = resting(10.0);
+  o.sensor.noise_px = 2.5;
+  expect_white_only(calibrate(o), 2.5);
+}
+
+TEST(SensorCalibration, QuantisationCountsAsWhiteNoise) {
+  // 0.25 px noise rounded to the zForce's 0.5 px: 0.25^2 + 0.5^2 / 12 -> 0.289 px, 15 % above the noise alone.
+  TraceOptions o = resting(20.0);
+  o.sensor.noise_px = 0.25;
+  o.sensor.quantum_px = tracegen::kZForceQuantumPx;
+  expect_white_only(calibrate(o), std::sqrt(0.25 * 0.25 + 0.5 * 0.5 / 12.0));
+}
+
+TEST(SensorCalibration, CorrelatedNoiseClassOnTwentySeconds) {
+  // 1.5 px Gauss-Markov (tau 30 ms) + 0.5 px white, 0.5 px quantum.
+  const Calibration c = calibrate(resting_class("correlated-noise", 20.0));
+  expect_within(c.profile.correlated_noise_px, 1.5, 0.20, "correlated");
+  expect_within(c.profile.correlation_time_ms, 30.0, 0.25, "tau");
+  expect_within(c.profile.white_noise_px, std::sqrt(0.5 * 0.5 + 0.5 * 0.5 / 12.0), 0.25, "white");
+  EXPECT_EQ(c.profile.tremor_px, 0.0f);
+}
+
+TEST(SensorCalibration, TremorAtAKnownFrequency) {
+  TraceOptions o = resting_class("tremor", 10.0);  // 1.5 px peak, 1 px white, 0.5 px quantum
+  o.tremor.min_hz = o.tremor.max_hz = 10.0;
+  const Calibration c = calibrate(o);
+  expect_within(c.profile.tremor_px, 1.5, 0.10, "tremor");
+  EXPECT_NEAR(c.tremor_hz, 10.0, 0.1);
+  expect_within(c.profile.white_noise_px, std::sqrt(1.0 + 0.5 * 0.5 / 12.0), 0.10, "white");
+  EXPECT_EQ(c.profile.correlated_noise_px, 0.0f);
+}
+
+// 1 px white noise at another rate: the rate, the jitter (a stamp jitter s gives s sqrt 2) and the noise.
+void expect_white_at(double rate_hz, double stamp_jitter_us) {
+  TraceOptions o = resting(10.0);
+  o.sensor.rate_hz = rate_hz;
+  o.sensor.jitter_us = stamp_jitter_us;
+  const Calibration c = calibrate(o);
+  expect_white_only(c, 1.0);
+  expect_within(c.profile.report_rate_hz, rate_hz, 0.01, "rate");
+  expect_within(c.profile.jitter_us, stamp_jitter_us * kSqrt2, 0.10, "jitter");
+}
+
+TEST(SensorCalibration, OneKilohertz) { expect_white_at(1000.0, 50.0); }  // 50 us: well inside the 30 % clip
+
+TEST(SensorCalibration, OneHundredHertz) { expect_white_at(100.0, 150.0); }
+
+TEST(SensorCalibration, PeriodJitterIsTheIntervalSigma) {
+  TraceOptions o = resting(10.0);
+  o.sensor.jitter_us = 0.0;
+  o.sensor.period_jitter_us = 100.0;
+  const Calibration c = calibrate(o);
+  expect_within(c.profile.jitter_us, 100.0, 0.10, "jitter");
+  expect_within(c.profile.report_rate_hz, 200.0, 0.01, "rate");
+}
+
+TEST(SensorCalibration, MissedReportsAreNotJitter) {
+  TraceOptions o = resting(10.0);
+  o.faults.missing = 6;  // gaps of 1-6 reports
+  const Calibration c = calibrate(o);
+  EXPECT_EQ(c.dropped_intervals, 6u);
+  expect_within(c.profile.report_rate_hz, 200.0, 0.01, "rate");
+  expect_within(c.profile.jitter_us, 150.0 * kSqrt2, 0.10, "jitter");
+}
+
+TEST(SensorCalibration, SensorFaultsAreSkippedLikeTheTraceReaderDoes) {
+  TraceOptions o = resting(10.0);
+  o.faults.non_finite = 3;
+  o.faults.off_screen = 3;
+  expect_white_only(calibrate(o), 1.0);
+}
+
+TEST(SensorCalibration, RestsAtSeveralPlacesAreRunsOfTheirOwn) {
+  // Two rests 200 px apart with a lift between: each run loses its own mean.
+  std::vector<host::TraceRow> rows = rows_of(resting(5.0, 1));
+  const uint64_t later = rows.back().t_us + 300'000;
+  for (host::TraceRow r : rows_of(resting(5.0, 2))) {
+    r.t_us += later - 10'000'000;
+    r.x += 200.0f;
+    rows.push_back(r);
+  }
+  Calibration c;
+  std::string error;
+  ASSERT_TRUE(calibrate_from_rest(rows, CalibrationOptions{}, 0, c, error)) << error;
+  EXPECT_EQ(c.runs, 2u);
+  EXPECT_LT(c.range_px, 1.0);
+  expect_white_only(c, 1.0);
+}
+
+TEST(SensorCalibration, EveryEffectAt200Hz) {
+  // realistic-200hz: 1 px tremor, 1.5 px / 30 ms wander, 0.5 px white and quantum, 2 px drift (tau 10 s),
+  // 150 us stamp jitter and 2 % = 100 us period jitter.
+  const Calibration c = calibrate(resting_class("realistic-200hz", 20.0), 2000);
+  expect_within(c.profile.tremor_px, 1.0, 0.15, "tremor");
+  expect_within(c.profile.correlated_noise_px, 1.5, 0.20, "correlated");
+  expect_within(c.profile.correlation_time_ms, 30.0, 0.35, "tau");  // 25-39 ms over 8 seeds
+  expect_within(c.profile.jitter_us, std::sqrt(2.0 * 150.0 * 150.0 + 100.0 * 100.0), 0.10, "jitter");
+  EXPECT_EQ(c.profile.latency_us, 2000u);  // as given: a recording cannot show it
+  EXPECT_TRUE(is_valid(c.profile));
+}
+
+TEST(SensorCalibration, RefusesTooShortAMovingFingerAndNothing) {
+  EXPECT_NE(refusal(rows_of(resting(0.5))).find("only 0.50 s"), std::string::npos);
+  std::vector<host::TraceRow> few = rows_of(resting(10.0));
+  few.resize(50);
+  EXPECT_NE(refusal(few).find("only 50 usable touch reports"), std::string::npos);
+  TraceOptions moving = resting(10.0);
+  moving.motion.rest_only = false;
+  EXPECT_NE(refusal(rows_of(moving)).find("not resting"), std::string::npos);
+  EXPECT_NE(refusal({}).find("only 0 usable"), std::string::npos);
+  std::vector<host::TraceRow> fast;  // 200 reports 100 us apart: 10 kHz
+  for (uint64_t i = 0; i < 20000; ++i) fast.push_back({i * 100, 400.0f, 240.0f + 0.1f * static_cast<float>(i % 3), true});
+  EXPECT_NE(refusal(fast).find("not a sensor"), std::string::npos);
+  TraceOptions noisy = resting(10.0);
+  noisy.sensor.noise_px = 60.0;  // beyond SensorProfileLimits::kMaxNoisePx; at 1 kHz its 1 s mean still rests
+  noisy.sensor.rate_hz = 1000.0;
+  EXPECT_NE(refusal(rows_of(noisy)).find("outside the profile's limits"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ff::bench
