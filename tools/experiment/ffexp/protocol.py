@@ -14,16 +14,21 @@ MAX_PAYLOAD = 1400
 
 SET_CONDITION, QUERY_STATUS, START_STREAM, STOP_STREAM = 0x01, 0x02, 0x03, 0x04
 QUERY_CONDITION = 0x08
-ACK, STATUS, FORCE, SAMPLES, TICKS, CONDITION, ERROR = 0x81, 0x82, 0x83, 0x84, 0x85, 0x86, 0xE0
-KNOWN_TYPES = {0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, ACK, STATUS, FORCE, SAMPLES, TICKS, CONDITION, ERROR}
+SET_SENSOR_PROFILE, QUERY_SENSOR_PROFILE = 0x09, 0x0A
+ACK, STATUS, FORCE, SAMPLES, TICKS, CONDITION, SENSOR_PROFILE, ERROR = 0x81, 0x82, 0x83, 0x84, 0x85, 0x86, 0x87, 0xE0
+KNOWN_TYPES = {0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, SET_SENSOR_PROFILE, QUERY_SENSOR_PROFILE,
+               ACK, STATUS, FORCE, SAMPLES, TICKS, CONDITION, SENSOR_PROFILE, ERROR}
 
 KINDS = {"heightmap": 0, "frictionmap": 1, "neutral": 2, "general": 3}
 TARGET_CODES = {"top": 0, "middle": 1, "bottom": 2}
 ERROR_NAMES = {1: "too short", 2: "bad magic", 3: "version", 4: "length", 5: "CRC", 6: "unknown type",
                7: "malformed", 8: "busy"}
-# ff::Fault order as far as the experiment reports them; others are kept by index.
-FAULT_NAMES = ["sensor-timeout", "sensor-error", "tracker-reset", "table-refused",
-               "dac-error", "adc-error", "over-force", "watchdog"]
+# The status message's fault counters, in ff::Fault's order with its to_string
+# names (src/core/fault_counters.cpp; test_exp_protocol checks them against it).
+FAULT_NAMES = ["non_finite_coordinate", "off_screen", "non_increasing_time", "jump_rejected",
+               "jump_confirmed", "stale_sample", "sensor_timeout", "lift_off", "touch_down",
+               "mailbox_overflow", "bad_strength", "bad_calibration", "bad_tick_time",
+               "sample_time_implausible", "time_base_reset", "bad_sensor_profile"]
 
 
 class ProtocolError(Exception):
@@ -217,6 +222,30 @@ def query_condition(seq):
 
 
 STATUS_FIXED = struct.Struct("<HBBfIIIIIIfBf7IB")  # docs/protocol.md Status
+SENSOR_PROFILE_FORMAT = struct.Struct("<6fI")        # docs/protocol.md Sensor profile
+
+
+@dataclass
+class SensorProfile:
+    """What the tracker knows of its sensor (ff::SensorProfile; ff-track-bench --calibrate)."""
+    white_noise_px: float = 1.0
+    correlated_noise_px: float = 0.0
+    correlation_time_ms: float = 0.0
+    tremor_px: float = 0.0
+    report_rate_hz: float = 200.0
+    jitter_us: float = 150.0
+    latency_us: int = 0
+
+
+def set_sensor_profile(seq, profile):
+    floats = b"".join(_f32(getattr(profile, n)) for n in ("white_noise_px", "correlated_noise_px",
+                                                          "correlation_time_ms", "tremor_px", "report_rate_hz",
+                                                          "jitter_us"))
+    return frame(SET_SENSOR_PROFILE, seq, floats + struct.pack("<I", int(profile.latency_us)))
+
+
+def query_sensor_profile(seq):
+    return frame(QUERY_SENSOR_PROFILE, seq)
 
 
 def decode(data):
@@ -248,6 +277,10 @@ def decode(data):
         if t == CONDITION:
             decode_condition(p)  # checks it
             return seq, ConditionEcho(p)
+        if t == SENSOR_PROFILE and len(p) == SENSOR_PROFILE_FORMAT.size:
+            v = SENSOR_PROFILE_FORMAT.unpack(p)
+            if all(math.isfinite(x) for x in v[:6]):
+                return seq, SensorProfile(*v)
         if t == SAMPLES:
             return seq, None  # not used by the experiment
     except struct.error:

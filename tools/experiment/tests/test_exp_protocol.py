@@ -56,3 +56,38 @@ def test_status_and_ticks_round_trip():
 def test_nan_refused():
     with pytest.raises(protocol.ProtocolError):
         protocol.Condition("heightmap", "top", float("nan")).payload()
+
+
+def test_fault_names_are_the_cores_in_its_order():
+    # The C++ source is the authority: the enum's order in fault_counters.hpp
+    # and each member's to_string name in fault_counters.cpp.
+    import re
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[3]
+    header = (root / "include/frictionfield/core/fault_counters.hpp").read_text()
+    enum = re.search(r"enum class Fault[^{]*\{(.*?)kCount", header, re.S).group(1)
+    members = re.findall(r"^\s*(\w+),", enum, re.M)
+    source = (root / "src/core/fault_counters.cpp").read_text()
+    names = dict(re.findall(r'case Fault::(\w+): return "(\w+)";', source))
+    assert protocol.FAULT_NAMES == [names[m] for m in members]
+
+
+def test_set_sensor_profile_is_the_docs_example():
+    doc = bytes.fromhex("46 46 02 09 03 1C 00 00 00 C0 3F 00 00 00 3F 00 00 7A 43 00 00 80 3E 00 00 48 43"
+                        " 00 00 16 43 B8 0B 00 00 96 A5")
+    p = protocol.SensorProfile(1.5, 0.5, 250.0, 0.25, 200.0, 150.0, 3000)
+    assert protocol.set_sensor_profile(3, p) == doc
+    assert protocol.query_sensor_profile(4) == protocol.frame(protocol.QUERY_SENSOR_PROFILE, 4)
+
+
+def test_a_sensor_profile_reply_decodes_and_a_non_finite_one_is_malformed():
+    p = protocol.SensorProfile(1.02, 1.5, 30.0, 1.0, 1000.0, 205.0, 2000)
+    _, _, payload = protocol.unframe(protocol.set_sensor_profile(7, p))
+    seq, m = protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 7, payload))
+    assert seq == 7 and m == protocol.SensorProfile(*struct.unpack("<6fI", payload))
+    assert abs(m.white_noise_px - 1.02) < 1e-6 and m.latency_us == 2000
+    bad = struct.pack("<6fI", float("nan"), 0, 0, 0, 200, 150, 0)
+    with pytest.raises(protocol.ProtocolError):
+        protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 8, bad))
+    with pytest.raises(protocol.ProtocolError):
+        protocol.set_sensor_profile(9, protocol.SensorProfile(white_noise_px=float("inf")))
