@@ -77,7 +77,9 @@ void Tracker::configure(const TrackerConfig& config) {
   direction_q_ = config.kalman.accel_noise_px_s2 * config.kalman.accel_noise_px_s2;
   position_q_ = config.position_kalman.accel_noise_px_s2 * config.position_kalman.accel_noise_px_s2;
   latency_us_ = config.compensate_latency ? sensor.latency_us : 0u;
-  inverse_maneuver_nis_ = config.maneuver_nis > 0.0f ? 1.0f / config.maneuver_nis : 0.0f;
+  inverse_maneuver_time_s_ = config.maneuver_threshold > 0.0f && config.maneuver_time_ms > 0.0f
+                                 ? 1e3f / config.maneuver_time_ms : 0.0f;
+  maneuvers_ = 0;
   const bool kalman = config.estimator == Estimator::Kalman || config.estimator == Estimator::SplitKalman;
   const float low = config.rest_sigmas * config.rest_sigmas, high = config.moving_sigmas * config.moving_sigmas;
   fade_low_ = low;
@@ -144,6 +146,8 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   filter_y_.reset();
   direction_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
   position_.start({s.x, s.y}, position_noise_, kInitialSpeedSigmaPxS);
+  recent_innovation_ = {};
+  recent_innovation_variance_ = 0.0f;
   learn_velocity_noise();
   filters_fresh_ = false;
 }
@@ -173,16 +177,23 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   const float dt_s = static_cast<float>(dt_us) * 1e-6f;
   const Vec2 z{s.x, s.y};
   direction_.predict(dt_s, direction_q_, noise_);
-  float inverse_s = direction_.inverse_innovation(noise_);
-  if (inverse_maneuver_nis_ > 0.0f) {
-    const Vec2 r = direction_.innovation(z);
-    const float widen = dot(r, r) * inverse_s * inverse_maneuver_nis_;
-    if (widen > 1.0f) {  // the finger changed its motion
+  float s_variance = direction_.innovation_variance(noise_);
+  if (inverse_maneuver_time_s_ > 0.0f) {
+    // The innovations are independent, of variance S each, while the model
+    // holds: so is their age-weighted sum, of variance sum(a^2k S).
+    const float a = decay(dt_s * inverse_maneuver_time_s_);
+    recent_innovation_ = a * recent_innovation_ + direction_.innovation(z);
+    recent_innovation_variance_ = a * a * recent_innovation_variance_ + s_variance;
+    const float sum_squared = dot(recent_innovation_, recent_innovation_);
+    const float bound = recent_innovation_variance_ * config_.maneuver_threshold;
+    if (sum_squared > bound) {  // the finger changed its motion (a division only then)
+      const float widen = sum_squared / bound;
       direction_.widen(widen < kMaxWidening ? widen : kMaxWidening);
-      inverse_s = direction_.inverse_innovation(noise_);
+      s_variance = direction_.innovation_variance(noise_);
+      ++maneuvers_;
     }
   }
-  direction_.update(z, inverse_s);
+  direction_.update(z, 1.0f / s_variance);
   learn_velocity_noise();
   if (config_.estimator == Estimator::SplitKalman) {
     position_.predict(dt_s, position_q_, position_noise_);

@@ -133,7 +133,7 @@ TEST(Tracker, AFingerThatStopsDeadDoesNotPointBackwards) {
   };
   EXPECT_EQ(most_backwards(TrackerConfig::recommended()), 0.0);
   TrackerConfig no_widening = TrackerConfig::recommended();
-  no_widening.maneuver_nis = 0.0f;
+  no_widening.maneuver_threshold = 0.0f;
   EXPECT_LT(most_backwards(no_widening), -0.9);  // what the widening prevents
 }
 

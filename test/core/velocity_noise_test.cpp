@@ -19,7 +19,7 @@ namespace {
 TrackerConfig plain_kalman(const SensorProfile& sensor) {
   TrackerConfig c = TrackerConfig::recommended(sensor);
   c.estimator = Estimator::Kalman;
-  c.maneuver_nis = 0.0f;
+  c.maneuver_threshold = 0.0f;
   c.max_speed_px_s = 1e9f;  // no jump rejection on the noise
   return c;
 }

@@ -175,11 +175,11 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     };
     char line[360];
     std::snprintf(line, sizeof line,
-                  "%s dir q=%-5.0f pos q=%-5.0f fade=%.1f-%.1f sigma nis=%.0f  HM/thesis %.3f (%s)  |lag| %.2f ms  "
+                  "%s dir q=%-5.0f pos q=%-5.0f fade=%.1f-%.1f sigma maneuver=%.0f/%.0fms  HM/thesis %.3f (%s)  |lag| %.2f ms  "
                   "FM/thesis %.3f  rest %.4f (%s)%s\n",
                   stage, static_cast<double>(s.t.direction_accel_px_s2), static_cast<double>(s.t.position_accel_px_s2),
                   static_cast<double>(s.t.rest_sigmas), static_cast<double>(s.t.moving_sigmas),
-                  static_cast<double>(s.t.maneuver_nis), s.hm,
+                  static_cast<double>(s.t.maneuver_threshold), static_cast<double>(s.t.maneuver_time_ms), s.hm,
                   per_level(s.hm_level).c_str(), s.lag, s.fm_ratio, s.rest, per_level(s.rest_level).c_str(),
                   s.fits ? "" : "  (lag or frictionmap constraint violated)");
     log << line;
@@ -199,9 +199,10 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     const Tuned centre = best.t;
     for (float qf : {0.7f, 1.0f, 1.4f}) {
       for (float lo : {2.0f, 2.5f, 3.0f}) {
-        for (float width : {2.0f, 3.0f}) {
-          for (float nis : {6.0f, 9.0f, 16.0f}) {
-            const Scored s = score({centre.direction_accel_px_s2 * qf, centre.position_accel_px_s2, lo, lo + width, nis});
+        for (float width : {2.0f, 2.5f, 3.0f}) {
+          for (float threshold : {9.0f, 12.0f, 16.0f}) {
+            const Scored s = score({centre.direction_accel_px_s2 * qf, centre.position_accel_px_s2, lo, lo + width,
+                                    threshold, centre.maneuver_time_ms});
             print("dir   ", s);
             if (better(s, best)) best = s;
           }
@@ -212,7 +213,8 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     const Tuned direction = best.t;
     for (float qf : {0.6f, 1.5f, 2.2f}) {
       const Scored s = score({direction.direction_accel_px_s2, direction.position_accel_px_s2 * qf,
-                              direction.rest_sigmas, direction.moving_sigmas, direction.maneuver_nis});
+                              direction.rest_sigmas, direction.moving_sigmas, direction.maneuver_threshold,
+                              direction.maneuver_time_ms});
       print("pos   ", s);
       if (better(s, best)) best = s;
     }
@@ -433,7 +435,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()->group(row);
   app.add_option("--rest-sigmas", tuned.rest_sigmas, "TrackerConfig::rest_sigmas")->capture_default_str()->group(row);
   app.add_option("--moving-sigmas", tuned.moving_sigmas, "TrackerConfig::moving_sigmas")->capture_default_str()->group(row);
-  app.add_option("--maneuver-nis", tuned.maneuver_nis, "TrackerConfig::maneuver_nis (0: never widen)")
+  app.add_option("--maneuver-threshold", tuned.maneuver_threshold,
+                 "TrackerConfig::maneuver_threshold (chi^2, 2 dof; 0: never widen)")
+      ->capture_default_str()->group(row);
+  app.add_option("--maneuver-time-ms", tuned.maneuver_time_ms, "TrackerConfig::maneuver_time_ms")
       ->capture_default_str()->group(row);
   std::vector<std::string> trace_paths;
   TraceFileOptions trace_options;
@@ -554,7 +559,7 @@ int main(int argc, char** argv) {
 
   const bool with_tuned = run_tune || app.count("--direction-q") + app.count("--position-q") +
                                            app.count("--rest-sigmas") + app.count("--moving-sigmas") +
-                                           app.count("--maneuver-nis") > 0;
+                                           app.count("--maneuver-threshold") + app.count("--maneuver-time-ms") > 0;
   if (!dump_path.empty()) {
     std::ofstream dump(dump_path);
     dump_ticks(dump, proposed_tracker(tuned, levels.front().sensor), levels.front().cases.front());

@@ -1,7 +1,7 @@
 #pragma once
 // The tracker constants ff-track-bench tunes (docs/tracking.md): the finger's
 // acceleration density for the direction and the position filter and the
-// direction confidence's fade; the sensor's side comes from its SensorProfile.
+// direction confidence's fade and the detection of changes of motion; the sensor's side comes from its SensorProfile.
 #include "frictionfield/core/tracker.hpp"
 
 namespace ff::bench {
@@ -11,14 +11,15 @@ struct ProposedConstants {
   float position_accel_px_s2;   // KalmanConfig of the position filter
   float rest_sigmas;
   float moving_sigmas;
-  float maneuver_nis;
+  float maneuver_threshold;
+  float maneuver_time_ms;
 };
 
 // recommended()'s own constants.
 inline ProposedConstants recommended_constants() {
   const TrackerConfig r = TrackerConfig::recommended();
   return {r.kalman.accel_noise_px_s2, r.position_kalman.accel_noise_px_s2, r.rest_sigmas, r.moving_sigmas,
-          r.maneuver_nis};
+          r.maneuver_threshold, r.maneuver_time_ms};
 }
 
 // recommended(sensor) with these constants.
@@ -28,7 +29,8 @@ inline TrackerConfig proposed_tracker(const ProposedConstants& c, const SensorPr
   t.position_kalman.accel_noise_px_s2 = c.position_accel_px_s2;
   t.rest_sigmas = c.rest_sigmas;
   t.moving_sigmas = c.moving_sigmas;
-  t.maneuver_nis = c.maneuver_nis;
+  t.maneuver_threshold = c.maneuver_threshold;
+  t.maneuver_time_ms = c.maneuver_time_ms;
   return t;
 }
 

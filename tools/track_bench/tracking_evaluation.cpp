@@ -223,20 +223,28 @@ bool load_trace_case(const std::string& path, const TraceFileOptions& options, P
 }
 
 void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCase& c) {
-  out << "t_us,x_true,y_true,vx_true,vy_true,touching,resting,present,x,y,vx,vy,dx,dy,hm,hm_ideal,fm,fm_ideal\n";
+  out << "t_us,x_true,y_true,vx_true,vy_true,touching,resting,present,x,y,vx,vy,dx,dy,hm,hm_ideal,fm,fm_ideal,hm_true_dir,hm_unit_dir\n";
   Tracker tracker(config);
   run_ticks(c, [&](const SensorSample& sample) { tracker.on_sample(sample); }, [&](const TickTruth& tick) {
     const TrackState s = tracker.on_tick(static_cast<uint32_t>(tick.t_us));
     const float hm = c.heightmap->amplitude(s.position, s.direction);
     const float fm = c.frictionmap->amplitude(s.position, {});
+    const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
+    Vec2 true_dir{};
+    if (speed > 0.0) true_dir = to_vec({tick.state.velocity.x / speed, tick.state.velocity.y / speed});
+    const float hm_true_dir = c.heightmap->amplitude(s.position, true_dir);
+    const float vl = length(s.velocity);
+    const Vec2 unit = vl > 0.0f ? (1.0f / vl) * s.velocity : Vec2{};
+    const float hm_unit_dir = c.heightmap->amplitude(to_vec(tick.state.position), unit);
     char line[512];
-    std::snprintf(line, sizeof line, "%llu,%.3f,%.3f,%.2f,%.2f,%d,%d,%d,%.3f,%.3f,%.2f,%.2f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+    std::snprintf(line, sizeof line, "%llu,%.3f,%.3f,%.2f,%.2f,%d,%d,%d,%.3f,%.3f,%.2f,%.2f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
                   static_cast<unsigned long long>(tick.t_us), tick.state.position.x, tick.state.position.y,
                   tick.state.velocity.x, tick.state.velocity.y, tick.state.touching ? 1 : 0, tick.state.resting ? 1 : 0,
                   s.present ? 1 : 0, static_cast<double>(s.position.x), static_cast<double>(s.position.y),
                   static_cast<double>(s.velocity.x), static_cast<double>(s.velocity.y), static_cast<double>(s.direction.x),
                   static_cast<double>(s.direction.y), static_cast<double>(hm), static_cast<double>(tick.heightmap_ideal),
-                  static_cast<double>(fm), static_cast<double>(tick.frictionmap_ideal));
+                  static_cast<double>(fm), static_cast<double>(tick.frictionmap_ideal), static_cast<double>(hm_true_dir),
+                  static_cast<double>(hm_unit_dir));
     out << line;
   });
 }

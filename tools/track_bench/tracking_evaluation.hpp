@@ -87,7 +87,10 @@ struct Metrics {
 };
 
 // Every tick of one case as CSV: t_us, truth (x, y, vx, vy, touching, resting),
-// estimate (present, x, y, vx, vy, dx, dy), amplitudes (heightmap, ideal, frictionmap, ideal).
+// estimate (present, x, y, vx, vy, dx, dy), amplitudes (heightmap, ideal, frictionmap, ideal),
+// and where the heightmap's error comes from: the heightmap with the true direction at the
+// estimated position (the position's share) and with the estimate's unit direction, unfaded,
+// at the true position (the direction's share without the fade).
 void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCase& c);
 
 // With `direction_from`, a second tracker with that configuration runs

@@ -46,9 +46,13 @@ struct FingerKalman {
     P11 += q * dt;
   }
 
-  // 1 / the innovation's variance (z = p + e + white): the one division per report.
+  // The innovation's variance per axis (z = p + e + white).
+  inline __attribute__((always_inline)) float innovation_variance(const ReportNoise& n) const {
+    return P00 + 2.0f * P02 + P22 + n.white_variance;
+  }
+  // Its inverse: the one division per report.
   inline __attribute__((always_inline)) float inverse_innovation(const ReportNoise& n) const {
-    return 1.0f / (P00 + 2.0f * P02 + P22 + n.white_variance);
+    return 1.0f / innovation_variance(n);
   }
 
   Vec2 innovation(Vec2 z) const { return z - p - e; }
@@ -66,13 +70,20 @@ struct FingerKalman {
   struct Gains {
     float position, velocity, wander;  // k0, k1 (1/s), k2
   };
-  Gains gains(float inverse_s) const {
-    return {(P00 + P02) * inverse_s, (P01 + P12) * inverse_s, (P02 + P22) * inverse_s};  // P H^T / S, H = [1 0 1]
+  // P H^T, H = [1 0 1]: the covariance of each state with the report.
+  struct CrossCovariance {
+    float h0, h1, h2;
+  };
+  CrossCovariance cross_covariance() const { return {P00 + P02, P01 + P12, P02 + P22}; }
+  static Gains gains(const CrossCovariance& h, float inverse_s) {
+    return {h.h0 * inverse_s, h.h1 * inverse_s, h.h2 * inverse_s};  // P H^T / S
   }
+  Gains gains(float inverse_s) const { return gains(cross_covariance(), inverse_s); }
 
   inline __attribute__((always_inline)) void update(Vec2 z, float inverse_s) {
-    const float h0 = P00 + P02, h1 = P01 + P12, h2 = P02 + P22;
-    const Gains k = gains(inverse_s);
+    const CrossCovariance h = cross_covariance();
+    const float h0 = h.h0, h1 = h.h1, h2 = h.h2;
+    const Gains k = gains(h, inverse_s);
     const float k0 = k.position, k1 = k.velocity, k2 = k.wander;
     const Vec2 r = innovation(z);
     p.x += k0 * r.x;

@@ -45,14 +45,20 @@ struct TrackerConfig {
   // filter's excess uncertainty (after a touch-down, during a gap), so that a
   // resting finger renders 0.5 instead of chattering. Both 0: no fade. The
   // Kalman estimators only: the 1-euro estimators' velocity has no such model.
-  float rest_sigmas = 3.0f;
-  float moving_sigmas = 6.0f;
+  float rest_sigmas = 2.5f;
+  float moving_sigmas = 5.0f;
   bool compensate_latency = true;      // date reports sensor.latency_us before their stamp
-  // A report this improbable for the direction filter (normalised innovation
-  // squared, chi^2 with 2 degrees of freedom) means the finger changed its
-  // motion: the filter's covariance is widened by nis / maneuver_nis so that
-  // it catches up instead of overshooting. 0: never.
-  float maneuver_nis = 9.0f;
+  // Changes of motion (starts, stops, reversals): the direction filter's
+  // recent innovations, each weighted by exp(-age / maneuver_time_ms), are
+  // summed; while the filter's model holds, that sum squared over its
+  // variance is chi^2 with 2 degrees of freedom (above maneuver_threshold by
+  // chance in exp(-threshold / 2) of reports: 0.09 % at 14). Above it the
+  // finger changed its motion: the filter's covariance is widened by the
+  // ratio so that it catches up instead of lagging or overshooting. A
+  // consistent bias shows over a few reports long before any one report is
+  // improbable. Threshold 0: never.
+  float maneuver_time_ms = 12.0f;
+  float maneuver_threshold = 14.0f;
 
   uint32_t max_extrapolation_us = 15000;  // then hold the position
   uint32_t stale_timeout_us = 250000;     // no sample this long: lift-off
@@ -92,6 +98,8 @@ class Tracker {
 
   const TrackState& state() const { return state_; }
   const FaultCounters& faults() const { return faults_; }
+  // Reports that widened the direction filter (changes of motion), since configure().
+  uint32_t maneuvers() const { return maneuvers_; }
   FaultCounters& faults() { return faults_; }
   const TrackerConfig& config() const { return config_; }
 
@@ -137,7 +145,11 @@ class Tracker {
   float inverse_velocity_noise_ = 0.0f;     // 1 / (resting + the filter's excess P11)
   float fade_low_ = 0.0f, inverse_fade_span_ = 0.0f;  // rest_sigmas^2; 1 / (moving^2 - rest^2), 0: no fade
   uint32_t latency_us_ = 0;
-  float inverse_maneuver_nis_ = 0.0f;
+  // The direction filter's recent innovations (px) and their variance while its model holds (px^2 per axis).
+  Vec2 recent_innovation_;
+  float recent_innovation_variance_ = 0.0f;
+  float inverse_maneuver_time_s_ = 0.0f;  // 0: never widen
+  uint32_t maneuvers_ = 0;
   bool filters_fresh_ = false;  // filters restarted from the last sample on next use
   uint32_t last_tick_us_ = 0;
   bool have_tick_ = false;
