@@ -69,4 +69,51 @@ void write_class_report(std::ostream& out, const std::vector<ClassRow>& rows, do
          "\"slow ticks\": share of those moving ticks at 20-70 px/s (4-14 mm/s). Generated traces, not a sensor.\n";
 }
 
+double start_floor_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s, double distance_px) {
+  double sum = 0.0;
+  size_t moving = 0;
+  for (const PreparedCase& c : cases) {
+    bool stood = false;  // the finger has stood still since the trace began
+    tracegen::Point from;
+    for (const TickTruth& t : c.ticks) {
+      if (!t.state.touching) {
+        stood = false;  // a new touch is a new start: from where it lands
+        continue;
+      }
+      const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
+      if (speed < kStandstillPxS || !stood) {
+        from = t.state.position;
+        stood = true;
+      }
+      if (t.state.resting || speed < moving_speed_px_s) continue;
+      ++moving;
+      const double moved = std::hypot(t.state.position.x - from.x, t.state.position.y - from.y);
+      if (moved < distance_px) {
+        const double e = static_cast<double>(t.heightmap_ideal) - 0.5;
+        sum += e * e;
+      }
+    }
+  }
+  return moving > 0 ? std::sqrt(sum / static_cast<double>(moving)) : 0.0;
+}
+
+void write_start_floor(std::ostream& out, const std::vector<StartFloorRow>& rows) {
+  out << "| class | thesis HM amp RMS |";
+  for (double d : kStartFloorDistancesPx) out << " floor, direction from " << fixed(d, 1) << " px |";
+  out << "\n|---|--:|";
+  for (size_t i = 0; i < std::size(kStartFloorDistancesPx); ++i) out << "--:|";
+  out << "\n";
+  for (const StartFloorRow& r : rows) {
+    out << "| " << r.trace_class << " | " << fixed(r.thesis_heightmap_rms, 3) << " |";
+    for (double f : r.floor_rms) out << " " << fixed(f, 3) << " (" << ratio(f, r.thesis_heightmap_rms) << ") |";
+    out << "\n";
+  }
+  out << "\nThe heightmap error of a tracker that knows the finger's position and direction exactly, except during "
+         "the first 0.5, 1 or 2 px of motion after every standstill (below "
+      << fixed(kStandstillPxS, 0)
+      << " px/s), where it renders 0.5: what no tracker avoids if it cannot tell the direction before the finger has "
+         "moved that far (1 px = 1 sigma of white-200hz's report noise). In parentheses: the ratio to the thesis "
+         "pipeline's error, to hold against the goals.\n";
+}
+
 }  // namespace ff::bench

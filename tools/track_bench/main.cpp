@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -241,6 +242,7 @@ std::string run_classes(const std::vector<std::string>& names, double duration_s
   EvalOptions options = base;
   options.cost = false;
   std::vector<ClassRow> rows;
+  std::vector<StartFloorRow> floors;
   for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
     if (!names.empty() && std::find(names.begin(), names.end(), trace_class.name) == names.end()) continue;
     std::fprintf(stderr, "ff-track-bench: class %s: generating 6 traces of %.0f s...\n", trace_class.name, duration_s);
@@ -259,9 +261,15 @@ std::string run_classes(const std::vector<std::string>& names, double duration_s
                                        {"recommended(profile)", proposed_tracker(candidate, sensor)}}) {
       rows.push_back({trace_class.name, name, evaluate(config, cases, options), slow});
     }
+    StartFloorRow floor{trace_class.name, rows[rows.size() - 3].metrics.heightmap_rms, {}};
+    for (size_t i = 0; i < std::size(kStartFloorDistancesPx); ++i)
+      floor.floor_rms[i] = start_floor_rms(cases, options.moving_speed_px_s, kStartFloorDistancesPx[i]);
+    floors.push_back(floor);
   }
   std::ostringstream table;
   write_class_report(table, rows, duration_s, options.moving_speed_px_s);
+  table << "\n";
+  write_start_floor(table, floors);
   return table.str();
 }
 
