@@ -46,11 +46,13 @@ class Device:
         self.last_heard = self.wall()
         self.counters = {}
         self.status = None
+        self.sensor_profile = None  # what the device's tracker knows of its touch sensor
 
     # -- what the study calls
     def open(self):
         self.status = self.query_status()
         self.counters = self.status.counters()
+        self.sensor_profile = self.query_sensor_profile()
         return self.status
 
     def close(self):
@@ -67,6 +69,9 @@ class Device:
         raise NotImplementedError
 
     def query_status(self):
+        raise NotImplementedError
+
+    def query_sensor_profile(self):
         raise NotImplementedError
 
     def finger(self, x, y, force_n):
@@ -148,6 +153,9 @@ class UdpDevice(Device):
             elif isinstance(msg, protocol.ConditionEcho):
                 if self.pending.get(seq) == protocol.CONDITION:
                     self.replies[seq] = msg
+            elif isinstance(msg, protocol.SensorProfile):
+                if self.pending.get(seq) == protocol.SENSOR_PROFILE:
+                    self.replies[seq] = msg
             elif isinstance(msg, protocol.Ack):
                 if self.pending.get(seq) == protocol.ACK:
                     self.replies[seq] = msg
@@ -193,6 +201,12 @@ class UdpDevice(Device):
         if isinstance(reply, protocol.Error):
             raise DeviceRefused(reply.text())
         return reply.payload
+
+    def query_sensor_profile(self):
+        reply = self._request(protocol.query_sensor_profile, "QuerySensorProfile", protocol.SENSOR_PROFILE)
+        if isinstance(reply, protocol.Error):
+            raise DeviceRefused(reply.text())
+        return reply
 
     def start_stream(self):
         """Amplitude samples for the bar and the simulated participant; an Ack is not awaited."""
@@ -281,6 +295,7 @@ class FakeDevice(Device):
         self.force_n = force_n
         self.fault_counts = [0] * 4
         self.finger_at = None
+        self.profile = protocol.SensorProfile()
 
     def query_status(self):
         if self.silent:
@@ -288,6 +303,11 @@ class FakeDevice(Device):
         self.last_heard = self.wall()
         return protocol.Status(0x0200, 2, 1, 1.0, 0, 0, 0, 0, 0, 0, self.force_n * 1000, False, False,
                                34900.0, list(self.fault_counts))
+
+    def query_sensor_profile(self):
+        if self.silent:
+            raise DeviceLost("fake device silent")
+        return self.profile
 
     def set_condition(self, condition):
         if self.silent:

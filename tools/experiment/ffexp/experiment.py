@@ -1,5 +1,6 @@
 """ff-experiment: runs the 180-trial study (docs/experiment.md)."""
 import argparse
+import dataclasses
 import datetime
 import hashlib
 import os
@@ -369,6 +370,10 @@ def run(argv, device_factory=None):
         print(f"ff-experiment: {e}", file=sys.stderr)
         return 1
     os.makedirs(folder, exist_ok=True)
+    profile = dataclasses.asdict(dev.sensor_profile)
+    if dev.sensor_profile == protocol.SensorProfile():
+        print("ff-experiment: the device's tracker uses the default sensor profile, not one measured on this "
+              "sensor (docs/tracking.md#calibration, ffctl sensor-profile)")
     if session is None:
         logs.write_session(folder, dict(
             participant=args.participant_number, age=args.age, gender=args.gender, handedness=args.handedness,
@@ -376,7 +381,8 @@ def run(argv, device_factory=None):
             program_version=VERSION, firmware_version=status.firmware, protocol_version=protocol.VERSION,
             device=dev.name, participant_kind=args.participant, speed=speed,
             started=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            scene_hashes=scene_hashes(), plan=[[t["rendering"], t["strength"], t["target"]] for t in plan]))
+            scene_hashes=scene_hashes(), plan=[[t["rendering"], t["strength"], t["target"]] for t in plan],
+            sensor_profile=profile))
     pygame.display.init()
     pygame.font.init()
     participant = None
@@ -386,6 +392,12 @@ def run(argv, device_factory=None):
     study = Study(args, dev, folder, plan, first, score, clock, Pacer(time_scale=speed), participant)
     if args.resume:
         study.log.event(clock(), first, "resume", f"firmware {status.firmware}")
+        if session is not None and session.get("sensor_profile") not in (None, profile):
+            # The device was told another sensor (or restarted with the default): the trials from here differ.
+            detail = " ".join(f"{k}={v:g}" for k, v in profile.items())
+            study.log.event(clock(), first, "sensor-profile-changed", detail)
+            print(f"ff-experiment: the device's sensor profile differs from the session's; logged: {detail}",
+                  file=sys.stderr)
     try:
         code = study.run()
     except devices.DeviceRefused as e:

@@ -237,11 +237,15 @@ class SensorProfile:
     latency_us: int = 0
 
 
-def set_sensor_profile(seq, profile):
+def _sensor_profile_payload(profile):
     floats = b"".join(_f32(getattr(profile, n)) for n in ("white_noise_px", "correlated_noise_px",
                                                           "correlation_time_ms", "tremor_px", "report_rate_hz",
                                                           "jitter_us"))
-    return frame(SET_SENSOR_PROFILE, seq, floats + struct.pack("<I", int(profile.latency_us)))
+    return floats + struct.pack("<I", int(profile.latency_us))
+
+
+def set_sensor_profile(seq, profile):
+    return frame(SET_SENSOR_PROFILE, seq, _sensor_profile_payload(profile))
 
 
 def query_sensor_profile(seq):
@@ -292,6 +296,11 @@ def decode(data):
 
 def ack(seq, command, ok=True, detail=0):
     return frame(ACK, seq, struct.pack("<BBB", command, 0 if ok else 1, detail))
+
+
+def sensor_profile(seq, profile):
+    """The device's answer to QuerySensorProfile."""
+    return frame(SENSOR_PROFILE, seq, _sensor_profile_payload(profile))
 
 
 def force(seq, t_us, force_mn, over_force=False):

@@ -59,6 +59,8 @@ def main():
                 sock.sendto(protocol.ack(sq, t), peer)
             elif t == protocol.QUERY_STATUS:
                 sock.sendto(protocol.status(sq, 0x0200, force_mn=finger[2] * 1000 if finger else 0.0, faults=[0, 0, 0]), peer)
+            elif t == protocol.QUERY_SENSOR_PROFILE:
+                sock.sendto(protocol.sensor_profile(sq, protocol.SensorProfile()), peer)
             elif t == protocol.START_STREAM:
                 streaming = True
                 sock.sendto(protocol.ack(sq, t), peer)

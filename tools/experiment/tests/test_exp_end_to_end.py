@@ -52,6 +52,7 @@ def test_logs_hold_the_whole_design(study):
     session = logs.read_session(folder)
     assert session["order"] == "fm-hm" and session["device"].startswith("sim:")
     assert session["firmware_version"] and session["protocol_version"] == 2
+    assert session["sensor_profile"]["report_rate_hz"] == 200.0  # asked of the firmware: its default
     trials = logs.read_trials(folder)
     plan = design.plan(1)
     assert [t["trial"] for t in trials] == list(range(1, 181))

@@ -171,3 +171,25 @@ def test_torn_rows_are_cut_before_appending(tmp_path):
     log.close()
     lines = open(os.path.join(folder, "frames.csv")).read().splitlines()
     assert lines[1:] == ["1,0.5,10,20,1,0.3,0", "2,0.6,12,22,1,0.3,0"]
+
+
+def test_the_devices_sensor_profile_is_in_the_session_and_a_change_is_logged(tmp_path, capsys):
+    from ffexp import protocol
+    assert run_fake(tmp_path, "--trials", "1", "--skip-familiarisation") == 0
+    assert "default sensor profile" in capsys.readouterr().out
+    session = json.loads((tmp_path / "P04" / "session.json").read_text())
+    assert session["sensor_profile"] == {"white_noise_px": 1.0, "correlated_noise_px": 0.0,
+                                         "correlation_time_ms": 0.0, "tremor_px": 0.0, "report_rate_hz": 200.0,
+                                         "jitter_us": 150.0, "latency_us": 0}
+    # resumed on a device told another sensor: logged, and said
+    def calibrated(spec, root, speed, clock):
+        d = device.FakeDevice(clock)
+        d.profile = protocol.SensorProfile(1.5, 1.0, 30.0, 1.0, 100.0, 200.0, 2000)
+        return d
+    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation", "--resume", factory=calibrated) == 0
+    out = capsys.readouterr()
+    assert "default sensor profile" not in out.out and "sensor profile differs" in out.err
+    changed = [e for e in logs.read_events(str(tmp_path / "P04")) if e["event"] == "sensor-profile-changed"]
+    assert len(changed) == 1 and "latency_us=2000" in changed[0]["detail"] and "white_noise_px=1.5" in changed[0]["detail"]
+    # the session's header keeps what the study started with
+    assert json.loads((tmp_path / "P04" / "session.json").read_text())["sensor_profile"]["latency_us"] == 0
