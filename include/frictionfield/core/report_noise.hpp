@@ -18,9 +18,6 @@ struct ReportNoise {
   float inverse_tau_s = 0.0f;    // 1 / tau
 
   static ReportNoise of(const SensorProfile& sensor);
-  // The white part alone, without the wander (the position filter follows the wander: see tracker.cpp).
-  ReportNoise white_only() const { return {white_variance, 0.0f, 0.0f}; }
-
   // The wander's correlation across dt_s: exp(-dt / tau) (decay()); 0 without a wander.
   float correlation(float dt_s) const {
     if (wander_variance <= 0.0f) return 0.0f;

@@ -38,7 +38,7 @@ struct TrackerConfig {
   SensorProfile sensor;                // the sensor: report noise and stamp latency
   OneEuroConfig one_euro;              // ThesisTicks and TimedExtrapolation
   KalmanConfig kalman;                 // Kalman; SplitKalman's direction filter
-  KalmanConfig position_kalman{450.0f};  // SplitKalman's position filter
+  KalmanConfig position_kalman{750.0f};  // SplitKalman's position filter
   // Direction confidence: the direction fades in as the speed stands out of
   // the velocity's noise, from rest_sigmas to moving_sigmas standard
   // deviations of what a resting finger shows (velocity_noise.hpp) plus the
@@ -136,8 +136,7 @@ class Tracker {
   FingerKalman direction_;  // the direction (or only) filter
   FingerKalman position_;   // SplitKalman's position filter
   // From the configuration, so that a report costs no squares or divisions of it.
-  ReportNoise noise_;           // the direction filter's: white and wander
-  ReportNoise position_noise_;  // the position filter's: white only (below)
+  ReportNoise noise_;           // both filters': white and wander
   float direction_q_ = 0.0f, position_q_ = 0.0f;  // accel_noise^2
   // Direction confidence: z^2 = |v|^2 / (2 resting + excess) per axis pair.
   float resting_velocity_variance_ = 0.0f;  // per axis, px^2/s^2
