@@ -27,7 +27,7 @@ const char* to_string(Fault f) {
 
 uint32_t FaultCounters::total() const {
   uint64_t sum = 0;
-  for (uint32_t c : count) sum += c;
+  for (int i = 0; i < static_cast<int>(Fault::kCount); ++i) sum += (*this)[static_cast<Fault>(i)];
   return sum > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(sum);
 }
 

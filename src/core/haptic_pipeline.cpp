@@ -91,9 +91,9 @@ FF_FASTRUN TickOutput HapticPipeline::tick(uint32_t now_us) {
 }
 
 FaultCounters HapticPipeline::faults() const {
-  FaultCounters all = tracker_.faults();
+  FaultCounters all = tracker_.faults().snapshot();  // the tick may be counting meanwhile
   for (int i = 0; i < static_cast<int>(Fault::kCount); ++i) {
-    const uint64_t sum = static_cast<uint64_t>(all.count[i]) + main_faults_.count[i];
+    const uint64_t sum = static_cast<uint64_t>(all.count[i]) + main_faults_[static_cast<Fault>(i)];
     all.count[i] = sum > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(sum);
   }
   return all;

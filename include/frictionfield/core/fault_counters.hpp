@@ -1,6 +1,9 @@
 #pragma once
 // Every kind of bad or unusual input the tick path has seen, counted. Each
-// counter saturates instead of wrapping.
+// counter saturates instead of wrapping. One context writes a set (the tick
+// the tracker's, the main loop its own) while the other may read it: every
+// access to a live set is a relaxed atomic word access (a plain LDR/STR on
+// the M4, so no cost), and a reader takes a snapshot().
 #include <cstdint>
 
 namespace ff {
@@ -30,11 +33,18 @@ const char* to_string(Fault f);
 struct FaultCounters {
   uint32_t count[static_cast<int>(Fault::kCount)] = {};
 
-  void add(Fault f) {
-    uint32_t& c = count[static_cast<int>(f)];
-    if (c != UINT32_MAX) ++c;
+  void add(Fault f) {  // the set's one writer
+    uint32_t* c = &count[static_cast<int>(f)];
+    const uint32_t n = __atomic_load_n(c, __ATOMIC_RELAXED);
+    if (n != UINT32_MAX) __atomic_store_n(c, n + 1, __ATOMIC_RELAXED);
   }
-  uint32_t operator[](Fault f) const { return count[static_cast<int>(f)]; }
+  uint32_t operator[](Fault f) const { return __atomic_load_n(&count[static_cast<int>(f)], __ATOMIC_RELAXED); }
+  // A copy that is safe to take while the writer runs (each counter whole).
+  FaultCounters snapshot() const {
+    FaultCounters s;
+    for (int i = 0; i < static_cast<int>(Fault::kCount); ++i) s.count[i] = __atomic_load_n(&count[i], __ATOMIC_RELAXED);
+    return s;
+  }
   uint32_t total() const;
 };
 
