@@ -58,7 +58,9 @@ def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
     env = dict(os.environ, FF_SIM=STANDIN)
     cmd = [sys.executable, TOOL, "--device", "sim", "--participant", "sim", "--speed", "8",
            "--participant-number", "5", "-o", str(tmp_path)]
-    p = subprocess.Popen(cmd + ["--trials", "20"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    # Its own process group, killed whole: the ff-sim stand-in it started must not outlive the test.
+    p = subprocess.Popen(cmd + ["--trials", "20"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         start_new_session=True)
     trials = tmp_path / "P05" / "trials.csv"
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline:
@@ -66,7 +68,7 @@ def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
             break
         time.sleep(0.05)
     time.sleep(0.15)  # into the next trial
-    p.send_signal(signal.SIGKILL)
+    os.killpg(p.pid, signal.SIGKILL)
     p.wait()
     done = [t["trial"] for t in logs.read_trials(str(tmp_path / "P05"))]
     assert 3 <= len(done) < 20
