@@ -25,7 +25,9 @@ def column(row, index):
     return float(row.split("|")[index + 1])
 
 
-class TrackBenchTrace(unittest.TestCase):
+class TraceFiles(unittest.TestCase):
+    """A generated trace, and the same reports as a recording without truth."""
+
     def setUp(self):
         self._tmp = tempfile.TemporaryDirectory()
         self.tmp = self._tmp.name
@@ -45,6 +47,9 @@ class TrackBenchTrace(unittest.TestCase):
                 out.write(",".join(line.rstrip("\n").split(",")[:4]) + "\n")
         return path
 
+
+
+class TrackBenchTrace(TraceFiles):
     def test_a_trace_with_truth_columns_is_judged_against_them(self):
         res = run(BENCH, "--trace", self.generated, "--target", "top")
         self.assertEqual(res.returncode, 0, res.stderr)
@@ -75,12 +80,6 @@ class TrackBenchTrace(unittest.TestCase):
             self.assertLess(column(recommended, 8), column(thesis, 8))  # heightmap amplitude RMS
             self.assertLess(column(recommended, 4), column(thesis, 4))  # lag
 
-    def test_tune_runs_on_trace_files(self):
-        res = run(BENCH, "--trace", self.without_truth(), "--tune", "--target", "top")
-        self.assertEqual(res.returncode, 0, res.stderr)
-        self.assertIn("best  ", res.stderr)
-        self.assertEqual(len([l for l in res.stdout.splitlines() if l.startswith("| tuned (")]), 1)
-
     def test_bad_files_exit_2_with_one_line(self):
         missing = run(BENCH, "--trace", os.path.join(self.tmp, "nope.csv"))
         self.assertEqual(missing.returncode, 2)
@@ -100,6 +99,16 @@ class TrackBenchTrace(unittest.TestCase):
         self.assertIn("no stroke to judge", res.stderr)
 
 
+class TuneOnTraceFiles(TraceFiles):
+    """The grid search: many evaluations of what TrackBenchTrace checks once."""
+
+    def test_tune_runs_on_trace_files(self):
+        res = run(BENCH, "--trace", self.without_truth(), "--tune", "--target", "top")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("best  ", res.stderr)
+        self.assertEqual(len([l for l in res.stdout.splitlines() if l.startswith("| tuned (")]), 1)
+
+
 if __name__ == "__main__":
     BENCH, TRACES = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-    unittest.main(argv=sys.argv[:1], verbosity=1)
+    unittest.main(argv=sys.argv[:1] + sys.argv[3:], verbosity=1)  # optional: test classes to run
