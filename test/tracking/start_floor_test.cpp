@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "class_report.hpp"
 
@@ -34,6 +35,18 @@ TEST(StartFloor, RendersRestOnlyUntilTheFingerHasMovedTheDistance) {
   EXPECT_NEAR(start_floor_rms(cases, 20.0, 0.0), 0.0, 1e-12);
   EXPECT_NEAR(start_floor_rms(cases, 20.0, 1e9), e, 1e-6);  // never a direction
   EXPECT_NEAR(start_floor_rms(cases, 150.0, 0.98), 0.0, 1e-12);  // nothing moves fast enough
+}
+
+TEST(StartFloor, TheTableHoldsTheTrackerAndItsUnfadedErrorAgainstTheThesis) {
+  StartFloorRow row{"white-200hz", 0.2, {0.02, 0.04, 0.08}};
+  row.tracker_heightmap_rms = 0.09;
+  row.unfaded_heightmap_rms = 0.1;
+  std::ostringstream out;
+  write_start_floor(out, {row});
+  EXPECT_NE(out.str().find("| white-200hz | 0.200 | 0.020 (0.10×) | 0.040 (0.20×) | 0.080 (0.40×) | 0.090 (0.45×) | "
+                           "0.100 (0.50×) |\n"),
+            std::string::npos)
+      << out.str();
 }
 
 }  // namespace

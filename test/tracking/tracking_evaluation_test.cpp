@@ -54,6 +54,30 @@ TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollows
   EXPECT_GT(checked, 100);
 }
 
+// The motion-oracle diagnostic: the heightmap error with the estimate's
+// direction at full length whenever the finger moves. For a tracker that never
+// fades (the thesis pipeline: v / |v| at any speed) it is its own error; for
+// one that fades it differs; and it costs nothing unless asked for.
+TEST(Unfaded, IsTheTrackersOwnErrorWithoutAFadeAndDiffersWithOne) {
+  std::vector<PreparedCase> cases;
+  for (const TrackCase& c : standard_cases(1.0, 4.0)) {
+    cases.push_back(prepare_case(c));
+    if (cases.size() == 2) break;
+  }
+  EvalOptions options;
+  options.cost = false;
+  options.lag = false;
+  options.moving_speed_px_s = 20.0;
+  options.unfaded = true;
+  const Metrics thesis = evaluate(TrackerConfig::thesis(), cases, options);
+  ASSERT_GT(thesis.moving_ticks, 1000u);
+  EXPECT_NEAR(thesis.heightmap_unfaded_rms, thesis.heightmap_rms, 1e-6);
+  const Metrics shipping = evaluate(TrackerConfig::recommended(), cases, options);
+  EXPECT_GT(std::fabs(shipping.heightmap_unfaded_rms - shipping.heightmap_rms), 1e-3);
+  options.unfaded = false;
+  EXPECT_EQ(evaluate(TrackerConfig::recommended(), cases, options).heightmap_unfaded_rms, 0.0);
+}
+
 class StandardSet : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

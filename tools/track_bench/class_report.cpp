@@ -100,20 +100,25 @@ double start_floor_rms(const std::vector<PreparedCase>& cases, double moving_spe
 void write_start_floor(std::ostream& out, const std::vector<StartFloorRow>& rows) {
   out << "| class | thesis HM amp RMS |";
   for (double d : kStartFloorDistancesPx) out << " floor, direction from " << fixed(d, 1) << " px |";
-  out << "\n|---|--:|";
+  out << " recommended(profile) | the same, never faded while moving |\n|---|--:|";
   for (size_t i = 0; i < std::size(kStartFloorDistancesPx); ++i) out << "--:|";
-  out << "\n";
+  out << "--:|--:|\n";
+  auto cell = [&out](double value, double thesis) { out << " " << fixed(value, 3) << " (" << ratio(value, thesis) << ") |"; };
   for (const StartFloorRow& r : rows) {
     out << "| " << r.trace_class << " | " << fixed(r.thesis_heightmap_rms, 3) << " |";
-    for (double f : r.floor_rms) out << " " << fixed(f, 3) << " (" << ratio(f, r.thesis_heightmap_rms) << ") |";
+    for (double f : r.floor_rms) cell(f, r.thesis_heightmap_rms);
+    cell(r.tracker_heightmap_rms, r.thesis_heightmap_rms);
+    cell(r.unfaded_heightmap_rms, r.thesis_heightmap_rms);
     out << "\n";
   }
-  out << "\nThe heightmap error of a tracker that knows the finger's position and direction exactly, except during "
-         "the first 0.5, 1 or 2 px of motion after every standstill (below "
+  out << "\nWhere the heightmap error comes from. Floors: the error of a tracker that knows the finger's position and "
+         "direction exactly, except during the first 0.5, 1 or 2 px of motion after every standstill (below "
       << fixed(kStandstillPxS, 0)
       << " px/s), where it renders 0.5: what no tracker avoids if it cannot tell the direction before the finger has "
-         "moved that far (1 px = 1 sigma of white-200hz's report noise). In parentheses: the ratio to the thesis "
-         "pipeline's error, to hold against the goals.\n";
+         "moved that far (1 px = 1 sigma of white-200hz's report noise). Last two columns: the shipping tracker, and "
+         "the same with its direction at full length whenever the finger moves (a perfect motion oracle in place of "
+         "the direction confidence): what remains there is its direction's and position's error, the difference is "
+         "the confidence's. In parentheses: the ratio to the thesis pipeline's error, to hold against the goals.\n";
 }
 
 }  // namespace ff::bench

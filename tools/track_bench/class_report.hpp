@@ -57,6 +57,11 @@ struct StartFloorRow {
   std::string trace_class;
   double thesis_heightmap_rms = 0.0;
   double floor_rms[std::size(kStartFloorDistancesPx)] = {};
+  // The shipping tracker's heightmap error, and the same never faded while
+  // the finger moves (Metrics::heightmap_unfaded_rms): the part a perfect
+  // direction confidence would remove, against the part its direction causes.
+  double tracker_heightmap_rms = 0.0;
+  double unfaded_heightmap_rms = 0.0;
 };
 void write_start_floor(std::ostream& out, const std::vector<StartFloorRow>& rows);
 

@@ -259,9 +259,13 @@ std::string run_classes(const std::vector<std::string>& names, double duration_s
     for (const auto& [name, config] : {std::pair<const char*, TrackerConfig>{"thesis", TrackerConfig::thesis()},
                                        {"recommended()", TrackerConfig::recommended()},
                                        {"recommended(profile)", proposed_tracker(candidate, sensor)}}) {
-      rows.push_back({trace_class.name, name, evaluate(config, cases, options), slow});
+      EvalOptions row_options = options;
+      row_options.unfaded = std::string(name) == "recommended(profile)";
+      rows.push_back({trace_class.name, name, evaluate(config, cases, row_options), slow});
     }
     StartFloorRow floor{trace_class.name, rows[rows.size() - 3].metrics.heightmap_rms, {}};
+    floor.tracker_heightmap_rms = rows.back().metrics.heightmap_rms;
+    floor.unfaded_heightmap_rms = rows.back().metrics.heightmap_unfaded_rms;
     for (size_t i = 0; i < std::size(kStartFloorDistancesPx); ++i)
       floor.floor_rms[i] = start_floor_rms(cases, options.moving_speed_px_s, kStartFloorDistancesPx[i]);
     floors.push_back(floor);

@@ -252,7 +252,8 @@ void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCa
 Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& cases, const EvalOptions& options,
                  const TrackerConfig* direction_from) {
   Metrics m;
-  std::vector<double> position_error, direction_error, heightmap_error, frictionmap_error, rest_deviation;
+  std::vector<double> position_error, direction_error, heightmap_error, frictionmap_error, rest_deviation,
+      unfaded_error;
   struct Estimate {
     const PreparedCase* c;
     uint64_t t_us;
@@ -294,6 +295,12 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
       direction_error.push_back(angle_deg(static_cast<double>(s.velocity.x), static_cast<double>(s.velocity.y),
                                           tick.state.velocity.x, tick.state.velocity.y));
       heightmap_error.push_back(std::fabs(static_cast<double>(hm - tick.heightmap_ideal)));
+      if (options.unfaded) {
+        const float speed_estimate = length(s.velocity);
+        const Vec2 unit = speed_estimate > 0.0f ? (1.0f / speed_estimate) * s.velocity : Vec2{};
+        const float unfaded = c.heightmap->amplitude(s.position, unit);
+        unfaded_error.push_back(std::fabs(static_cast<double>(unfaded - tick.heightmap_ideal)));
+      }
       const float fm = c.frictionmap->amplitude(s.position, {});
       frictionmap_error.push_back(std::fabs(static_cast<double>(fm - tick.frictionmap_ideal)));
       estimates.push_back({&c, tick.t_us, static_cast<double>(s.position.x), static_cast<double>(s.position.y)});
@@ -309,6 +316,7 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
   m.frictionmap_rms = rms(frictionmap_error);
   m.frictionmap_p95 = percentile(frictionmap_error, 95.0);
   m.heightmap_rest_rms = rms(rest_deviation);
+  m.heightmap_unfaded_rms = rms(unfaded_error);
 
   if (options.lag && !estimates.empty()) {
     // Times are global (case index * 1e6 s + motion time) so that one truth

@@ -67,6 +67,7 @@ struct EvalOptions {
   double moving_speed_px_s = 50.0;  // the finger "moves" above 10 mm/s
   bool lag = true;                  // the slowest metric
   bool cost = true;                 // time the pipeline's tick
+  bool unfaded = false;             // also Metrics::heightmap_unfaded_rms (one more amplitude per tick)
 };
 
 struct Metrics {
@@ -80,6 +81,10 @@ struct Metrics {
   double frictionmap_rms = 0.0;
   double frictionmap_p95 = 0.0;
   double heightmap_rest_rms = 0.0; // |A - 0.5| while the finger rests
+  // |A - A_ideal| while moving had the direction never been faded (the
+  // estimate's velocity at unit length): what a perfect motion oracle in place
+  // of the direction confidence would leave. EvalOptions::unfaded only.
+  double heightmap_unfaded_rms = 0.0;
   double ns_per_tick = 0.0;        // HapticPipeline::tick() on the heightmap, host
   size_t moving_ticks = 0;
   size_t rest_ticks = 0;
