@@ -123,6 +123,16 @@ class Unwrapper {
 
 }  // namespace
 
+namespace {
+
+// The device sends a report once a tick has taken it, within its stream's
+// flush interval (~10 ms, docs/protocol.md, "Streaming"); this much device time
+// past the last kept tick leaves none of that tick's reports behind.
+constexpr uint64_t kReportCatchUpUs = 50000;
+constexpr int kCatchUpTimeoutMs = 500;  // wall time: a device that stops streaming ends it sooner
+
+}  // namespace
+
 bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string& error,
             const std::function<bool(const RecordProgress&)>& progress) {
   Message start, reply;
@@ -132,6 +142,21 @@ bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string&
   Unwrapper unwrap;
   uint64_t first = 0;
   RecordProgress p;
+  // Reports of a Samples message; the newest tick that took one of them (0: unknown).
+  auto keep_samples = [&](const Message& m) {
+    uint64_t newest_taken = 0;
+    for (int i = 0; i < m.samples.count; ++i) {
+      const SensorSample& s = m.samples.samples[i];
+      DeviceSample d{{unwrap(s.t_us), s.x, s.y, s.touch}, m.samples.has_taken_times, 0};
+      if (d.taken_known) newest_taken = std::max(newest_taken, d.taken_us = unwrap(m.samples.taken_us[i]));
+      sink.sample(d);
+      p.finger = s.touch;
+      p.x = s.x;
+      p.y = s.y;
+      ++p.samples;
+    }
+    return newest_taken;
+  };
   bool ok = true;
   for (;;) {
     Message m;
@@ -147,16 +172,7 @@ bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string&
       break;
     }
     if (m.type == MessageType::Samples) {
-      for (int i = 0; i < m.samples.count; ++i) {
-        const SensorSample& s = m.samples.samples[i];
-        DeviceSample d{{unwrap(s.t_us), s.x, s.y, s.touch}, m.samples.has_taken_times, 0};
-        if (d.taken_known) d.taken_us = unwrap(m.samples.taken_us[i]);
-        sink.sample(d);
-        p.finger = s.touch;
-        p.x = s.x;
-        p.y = s.y;
-        ++p.samples;
-      }
+      keep_samples(m);
       continue;
     }
     if (m.type == MessageType::Force) {
@@ -188,6 +204,19 @@ bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string&
     p.done_s = static_cast<double>(p.last_tick.t_us - first) * 1e-6;
     if (progress && !progress(p)) break;
     if (seconds > 0.0 && p.done_s >= seconds) break;
+  }
+  if (ok && p.ticks > 0) {
+    // The reports trail the ticks by up to the flush interval: read on
+    // (keeping reports, not ticks) until they have caught up with the last
+    // kept tick, so that verify replays every report that tick had seen.
+    for (;;) {
+      Message m;
+      if (client.next(m, kCatchUpTimeoutMs) != ReceiveResult::Frame) break;
+      if (m.type == MessageType::Samples && keep_samples(m) >= p.last_tick.t_us) break;
+      if (m.type == MessageType::Ticks && m.ticks.count > 0 &&
+          unwrap(m.ticks.ticks[m.ticks.count - 1].t_us) >= p.last_tick.t_us + kReportCatchUpUs)
+        break;
+    }
   }
   Message stop;
   stop.type = MessageType::StopStream;

@@ -184,6 +184,10 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   for (size_t i = 1; i < r.ticks.size(); ++i) ASSERT_EQ(r.ticks[i].t_us - r.ticks[i - 1].t_us, 500u) << i;
   // The finger arrives 1 s after the stream starts: ~1.5 s of 200 Hz reports.
   EXPECT_GT(r.samples.size(), 280u);
+  // It ends mid-stroke: the reports, which trail the ticks by up to the
+  // stream's flush, were read on until one taken at or after the last kept tick.
+  ASSERT_TRUE(r.samples.back().taken_known);
+  EXPECT_GE(r.samples.back().taken_us, r.ticks.back().t_us);
 
   const std::string path = ::testing::TempDir() + "ffctl_rec.csv";
   ASSERT_TRUE(write_recording(path, r, error)) << error;
