@@ -1,5 +1,7 @@
 #include "class_report.hpp"
 
+#include "rest_chatter.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -67,6 +69,27 @@ void write_class_report(std::ostream& out, const std::vector<ClassRow>& rows, do
       << " mm/s, against its voluntary motion (tremor excluded) and the ideal renderer fed the true position "
          "and the voluntary direction; \"vs thesis\": the ratio to the thesis pipeline on the same class; "
          "\"slow ticks\": share of those moving ticks at 20-70 px/s (4-14 mm/s). Generated traces, not a sensor.\n";
+}
+
+void write_rest_report(std::ostream& out, const std::vector<ClassRow>& rows) {
+  out << "| class | tracker | HM at rest RMS | of its squares in the first " << fixed(kStopTransientUs * 1e-3, 0)
+      << " ms of each rest | after them, RMS | stops | back within " << fixed(kSettledBand, 2)
+      << " of 0.5, median ms | max ms | never |\n";
+  out << "|---|---|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const ClassRow& r : rows) {
+    const Metrics& m = r.metrics;
+    const bool any_settled = m.stops > m.unsettled_stops;
+    out << "| " << r.trace_class << " | " << r.tracker << " | " << fixed(m.heightmap_rest_rms, 3) << " | "
+        << fixed(100.0 * m.rest_transient_share, 0) << " % | " << fixed(m.heightmap_steady_rest_rms, 3) << " | " << m.stops
+        << " | " << (any_settled ? fixed(m.stop_settle_median_ms, 1) : "-") << " | "
+        << (any_settled ? fixed(m.stop_settle_max_ms, 1) : "-") << " | " << m.unsettled_stops << " |\n";
+  }
+  out << "\nThe chatter at rest, split at each stop (the generator's rests, 0.6-2 s after a stroke): the first "
+      << fixed(kStopTransientUs * 1e-3, 0)
+      << " ms of each rest, while the direction filter still reads the stroke's deceleration, and the steady rest "
+         "after them. \"Back within\": from the rest's first tick until the amplitude stays within "
+      << fixed(kSettledBand, 2) << " of 0.5 for " << fixed(kSettledHoldUs * 1e-3, 0)
+      << " ms; \"never\": rests that ended before that (a tracker without a fade).\n";
 }
 
 double start_floor_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s, double distance_px) {

@@ -42,6 +42,11 @@ struct ClassRow {
 void write_class_report(std::ostream& out, const std::vector<ClassRow>& rows, double duration_s,
                         double moving_speed_px_s);
 
+// The chatter at rest split at every stop (rest_chatter.hpp): what of it is
+// the ~20 ms after the finger stops, what is steady, and how long each stop
+// takes to settle; every row of the class table.
+void write_rest_report(std::ostream& out, const std::vector<ClassRow>& rows);
+
 // The heightmap error no tracker can avoid at the starts of strokes: that of
 // a tracker that knows the finger's position and direction exactly, except
 // during the first `distance_px` of motion after every standstill (true

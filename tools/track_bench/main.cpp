@@ -274,6 +274,8 @@ std::string run_classes(const std::vector<std::string>& names, double duration_s
   write_class_report(table, rows, duration_s, options.moving_speed_px_s);
   table << "\n";
   write_start_floor(table, floors);
+  table << "\n";
+  write_rest_report(table, rows);
   return table.str();
 }
 

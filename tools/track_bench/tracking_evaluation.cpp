@@ -7,6 +7,7 @@
 #include <fstream>
 #include <ostream>
 
+#include "rest_chatter.hpp"
 #include "support/statistics.hpp"
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scenes.hpp"
@@ -252,8 +253,8 @@ void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCa
 Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& cases, const EvalOptions& options,
                  const TrackerConfig* direction_from) {
   Metrics m;
-  std::vector<double> position_error, direction_error, heightmap_error, frictionmap_error, rest_deviation,
-      unfaded_error;
+  std::vector<double> position_error, direction_error, heightmap_error, frictionmap_error, unfaded_error;
+  RestChatter rest;
   struct Estimate {
     const PreparedCase* c;
     uint64_t t_us;
@@ -275,17 +276,17 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
         s.velocity = d.velocity;
         s.direction = d.direction;
       }
-      if (!tick.state.touching) return;
-      if (!s.present) {
-        ++m.untracked_ticks;
+      if (!tick.state.touching || !s.present) {
+        rest.not_resting();
+        if (tick.state.touching) ++m.untracked_ticks;
         return;
       }
       const float hm = c.heightmap->amplitude(s.position, s.direction);
       if (tick.state.resting) {
-        ++m.rest_ticks;
-        rest_deviation.push_back(static_cast<double>(hm) - 0.5);
+        rest.resting(tick.t_us, static_cast<double>(hm) - 0.5);
         return;
       }
+      rest.not_resting();
       const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
       if (speed < options.moving_speed_px_s) return;
       ++m.moving_ticks;
@@ -305,6 +306,7 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
       frictionmap_error.push_back(std::fabs(static_cast<double>(fm - tick.frictionmap_ideal)));
       estimates.push_back({&c, tick.t_us, static_cast<double>(s.position.x), static_cast<double>(s.position.y)});
     });
+    rest.not_resting();  // a rest ends with its trace
   }
 
   m.position_rmse_px = rms(position_error);
@@ -315,7 +317,14 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
   m.heightmap_p95 = percentile(heightmap_error, 95.0);
   m.frictionmap_rms = rms(frictionmap_error);
   m.frictionmap_p95 = percentile(frictionmap_error, 95.0);
-  m.heightmap_rest_rms = rms(rest_deviation);
+  m.rest_ticks = rest.ticks();
+  m.heightmap_rest_rms = rest.rms();
+  m.heightmap_steady_rest_rms = rest.steady_rms();
+  m.rest_transient_share = rest.transient_share();
+  m.stops = rest.stops();
+  m.unsettled_stops = rest.unsettled();
+  m.stop_settle_median_ms = rest.settle_median_ms();
+  m.stop_settle_max_ms = rest.settle_max_ms();
   m.heightmap_unfaded_rms = rms(unfaded_error);
 
   if (options.lag && !estimates.empty()) {

@@ -81,6 +81,15 @@ struct Metrics {
   double frictionmap_rms = 0.0;
   double frictionmap_p95 = 0.0;
   double heightmap_rest_rms = 0.0; // |A - 0.5| while the finger rests
+  // The same split at each stop (rest_chatter.hpp): after the first 20 ms of
+  // each rest; the first 20 ms' share of the squares; the stops, those that
+  // never settled, and how long the others took to settle.
+  double heightmap_steady_rest_rms = 0.0;
+  double rest_transient_share = 0.0;
+  size_t stops = 0;
+  size_t unsettled_stops = 0;
+  double stop_settle_median_ms = 0.0;
+  double stop_settle_max_ms = 0.0;
   // |A - A_ideal| while moving had the direction never been faded (the
   // estimate's velocity at unit length): what a perfect motion oracle in place
   // of the direction confidence would leave. EvalOptions::unfaded only.
