@@ -515,7 +515,7 @@ DecodeStatus decode(const uint8_t* in, size_t size, Message& out) {
   if (crc16_ccitt(in + 2, kHeaderBytes + length - 2) != crc) return DecodeStatus::BadCrc;
   if (!known_type(in[3])) return DecodeStatus::UnknownType;
   // Straight into `out`: a Message-sized temporary would be the deepest frame
-  // of the firmware's main loop (5 KB of the Teensy's 27.8 KB stack).
+  // of the firmware's main loop (5 KB of the Teensy's 21 KB stack).
   reset_in_place(out);
   out.type = static_cast<MessageType>(in[3]);
   out.sequence = in[4];
