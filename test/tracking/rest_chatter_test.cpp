@@ -21,17 +21,18 @@ uint64_t rest_for(RestChatter& r, uint64_t t0, int n, F d) {
   return t0 + kTick * static_cast<uint64_t>(n);
 }
 
-TEST(RestChatter, SplitsEachRestAtItsFirst20msAndTimesTheSettling) {
+TEST(RestChatter, SplitsEachRestAtItsFirst100msAndTimesTheSettling) {
+  ASSERT_EQ(kStopTransientUs, 100000u);
   RestChatter r;
-  // 40 ticks (20 ms) at 0.2, then 160 at 0.01: in the band from 20 ms on,
-  // for 80 ms, so settled after 20 ms.
-  rest_for(r, 1000, 200, [](int k) { return k < 40 ? 0.2 : -0.01; });
+  // 40 ticks (20 ms) at 0.2, then 360 at 0.01: in the band from 20 ms on,
+  // for 180 ms, so settled after 20 ms; ticks 0-199 are the first 100 ms.
+  rest_for(r, 1000, 400, [](int k) { return k < 40 ? 0.2 : -0.01; });
   r.not_resting();
-  const double squares = 40 * 0.04 + 160 * 1e-4;
-  EXPECT_EQ(r.ticks(), 200u);
-  EXPECT_NEAR(r.rms(), std::sqrt(squares / 200.0), 1e-12);
+  const double squares = 40 * 0.04 + 360 * 1e-4;
+  EXPECT_EQ(r.ticks(), 400u);
+  EXPECT_NEAR(r.rms(), std::sqrt(squares / 400.0), 1e-12);
   EXPECT_NEAR(r.steady_rms(), 0.01, 1e-12);
-  EXPECT_NEAR(r.transient_share(), 1.6 / squares, 1e-12);
+  EXPECT_NEAR(r.transient_share(), (1.6 + 160 * 1e-4) / squares, 1e-12);
   EXPECT_EQ(r.stops(), 1u);
   EXPECT_EQ(r.unsettled(), 0u);
   EXPECT_DOUBLE_EQ(r.settle_median_ms(), 20.0);
@@ -46,8 +47,9 @@ TEST(RestChatter, AnExcursionBeforeTheHoldRestartsItOneAfterDoesNot) {
   rest_for(r, 0, 400, [](int k) { return k == 60 || k == 200 ? 0.3 : 0.0; });
   r.not_resting();
   EXPECT_DOUBLE_EQ(r.settle_max_ms(), 30.5);
-  // Both excursions (30 and 100 ms) are past the first 20 ms: 2 x 0.09 over 360 ticks.
-  EXPECT_NEAR(r.steady_rms(), std::sqrt(0.18 / 360.0), 1e-12);
+  // Only the excursion at 100 ms is past the first 100 ms: 0.09 over 200 ticks.
+  EXPECT_NEAR(r.steady_rms(), std::sqrt(0.09 / 200.0), 1e-12);
+  EXPECT_NEAR(r.transient_share(), 0.5, 1e-12);
 }
 
 TEST(RestChatter, RestsThatEndUnsettledAreCountedAndTheMedianIsOverTheOthers) {
@@ -80,7 +82,7 @@ TEST(RestChatter, NoRestNoFigures) {
 
 // evaluate() counts a stop per rest of the generated traces (counted here
 // from the truth); a pipeline without a fade (the thesis') chatters alike
-// all through a rest, so the first 20 ms of each hold about their share of
+// all through a rest, so the first 100 ms of each hold about their share of
 // the rest's ticks, and it never settles for long.
 TEST(RestChatter, EvaluateSplitsTheGeneratedRests) {
   std::vector<PreparedCase> cases;
@@ -108,7 +110,7 @@ TEST(RestChatter, EvaluateSplitsTheGeneratedRests) {
   EXPECT_LT(m.heightmap_steady_rest_rms, 0.02);
   const Metrics thesis = evaluate(TrackerConfig::thesis(), cases, options);
   EXPECT_EQ(thesis.stops, rests);
-  const double tick_share = static_cast<double>(rests * 40) / static_cast<double>(thesis.rest_ticks);
+  const double tick_share = static_cast<double>(rests * 200) / static_cast<double>(thesis.rest_ticks);
   EXPECT_GT(thesis.rest_transient_share, tick_share / 3.0);
   EXPECT_LT(thesis.rest_transient_share, tick_share * 3.0);
   EXPECT_NEAR(thesis.heightmap_steady_rest_rms, thesis.heightmap_rest_rms, 0.2 * thesis.heightmap_rest_rms);

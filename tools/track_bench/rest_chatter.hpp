@@ -1,7 +1,8 @@
 #pragma once
 // The chatter at rest, split at every stop: the first kStopTransientUs of
 // each rest, while the direction filter still reads the stroke's
-// deceleration, and the steady rest after it; and how long after each stop
+// deceleration (up to ~70 ms with a wandering sensor), and the steady rest
+// after it; and how long after each stop
 // the rendered amplitude is back at rest (within kSettledBand of 0.5 for
 // kSettledHoldUs). A goal on the chatter alone does not tell the two apart.
 #include <cstddef>
@@ -10,7 +11,7 @@
 
 namespace ff::bench {
 
-constexpr uint64_t kStopTransientUs = 20000;
+constexpr uint64_t kStopTransientUs = 100000;
 constexpr double kSettledBand = 0.05;      // |A - 0.5| on the raw 0..1 scale
 constexpr uint64_t kSettledHoldUs = 50000;
 
