@@ -92,6 +92,35 @@ void write_rest_report(std::ostream& out, const std::vector<ClassRow>& rows) {
       << " ms; \"never\": rests that ended before that (a tracker without a fade).\n";
 }
 
+void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const std::vector<StartFloorRow>& floors) {
+  out << "class,tracker,lag_ms,position_rmse_px,direction_mean_deg,heightmap_rms,heightmap_vs_thesis,frictionmap_rms,"
+         "frictionmap_vs_thesis,rest_rms,rest_vs_thesis,rest_first_share,rest_steady_rms,stops,settle_median_ms,"
+         "settle_max_ms,unsettled_stops,slow_share";
+  for (double d : kStartFloorDistancesPx) out << ",floor_" << fixed(d, 1) << "px_rms";
+  out << ",unfaded_heightmap_rms\n";
+  auto number = [](double v) { return fixed(v, 6); };
+  auto over = [&](double value, double baseline) { return baseline > 0.0 ? number(value / baseline) : std::string(); };
+  const ClassRow* baseline = nullptr;
+  for (const ClassRow& r : rows) {
+    if (baseline == nullptr || baseline->trace_class != r.trace_class) baseline = &r;
+    const Metrics& m = r.metrics;
+    const Metrics& b = baseline->metrics;
+    out << r.trace_class << "," << r.tracker << "," << number(m.lag_ms) << "," << number(m.position_rmse_px) << ","
+        << number(m.direction_mean_deg) << "," << number(m.heightmap_rms) << "," << over(m.heightmap_rms, b.heightmap_rms)
+        << "," << number(m.frictionmap_rms) << "," << over(m.frictionmap_rms, b.frictionmap_rms) << ","
+        << number(m.heightmap_rest_rms) << "," << over(m.heightmap_rest_rms, b.heightmap_rest_rms) << ","
+        << number(m.rest_transient_share) << "," << number(m.heightmap_steady_rest_rms) << "," << m.stops << ","
+        << number(m.stop_settle_median_ms) << "," << number(m.stop_settle_max_ms) << "," << m.unsettled_stops << ","
+        << number(r.slow_share);
+    const StartFloorRow* floor = nullptr;
+    for (const StartFloorRow& f : floors)
+      if (f.trace_class == r.trace_class) floor = &f;
+    for (size_t i = 0; i < std::size(kStartFloorDistancesPx); ++i)
+      out << "," << (floor != nullptr ? number(floor->floor_rms[i]) : std::string());
+    out << "," << (m.heightmap_unfaded_rms > 0.0 ? number(m.heightmap_unfaded_rms) : std::string()) << "\n";
+  }
+}
+
 double start_floor_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s, double distance_px) {
   double sum = 0.0;
   size_t moving = 0;

@@ -70,4 +70,10 @@ struct StartFloorRow {
 };
 void write_start_floor(std::ostream& out, const std::vector<StartFloorRow>& rows);
 
+// Every figure of the three tables as CSV, one row per class and tracker
+// (the class's floors on each of its rows, the unfaded error on the rows
+// that measured it), for plots (tools/track_bench/plot_classes.py). No
+// metadata: the caller writes it first.
+void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const std::vector<StartFloorRow>& floors);
+
 }  // namespace ff::bench

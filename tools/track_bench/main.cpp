@@ -236,9 +236,14 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
   return best.t;
 }
 
-// The per-class table: the thesis pipeline and recommended() on each class.
-std::string run_classes(const std::vector<std::string>& names, double duration_s, const EvalOptions& base,
-                        const Tuned& candidate, const std::string& dump_path) {
+struct ClassResults {
+  std::vector<ClassRow> rows;
+  std::vector<StartFloorRow> floors;
+};
+
+// The per-class figures: the thesis pipeline and recommended() on each class.
+ClassResults run_classes(const std::vector<std::string>& names, double duration_s, const EvalOptions& base,
+                         const Tuned& candidate, const std::string& dump_path) {
   EvalOptions options = base;
   options.cost = false;
   std::vector<ClassRow> rows;
@@ -270,12 +275,17 @@ std::string run_classes(const std::vector<std::string>& names, double duration_s
       floor.floor_rms[i] = start_floor_rms(cases, options.moving_speed_px_s, kStartFloorDistancesPx[i]);
     floors.push_back(floor);
   }
+  return {rows, floors};
+}
+
+// The three per-class tables.
+std::string class_tables(const ClassResults& results, double duration_s, double moving_speed_px_s) {
   std::ostringstream table;
-  write_class_report(table, rows, duration_s, options.moving_speed_px_s);
+  write_class_report(table, results.rows, duration_s, moving_speed_px_s);
   table << "\n";
-  write_start_floor(table, floors);
+  write_start_floor(table, results.floors);
   table << "\n";
-  write_rest_report(table, rows);
+  write_rest_report(table, results.rows);
   return table.str();
 }
 
@@ -349,19 +359,13 @@ void print_calibration(std::ostream& out, const std::string& path, const Calibra
   out << "For ff-replay and ff-track-bench:\n  " << host::sensor_profile_flags(p) << "\n";
 }
 
-// The flags line with a '#' header, written to NAME.partial and renamed, so
-// that a failed write never leaves a half file under the real name.
-bool write_profile_file(const std::string& path, const std::string& input, const SensorProfile& profile,
-                        std::string& error) {
+// Written to NAME.partial and renamed, so that a failed write never leaves a
+// half file under the real name.
+bool write_file_atomically(const std::string& path, const std::string& content, std::string& error) {
   const std::string partial = path + ".partial";
   {
     std::ofstream out(partial);
-    host::write_metadata(out, {{"tool", std::string("ff-track-bench --calibrate ") + host::project_version()},
-                               {"input", input},
-                               {"date", host::utc_timestamp()},
-                               {"what", "a SensorProfile estimated from a resting finger (docs/tracking.md#calibration); "
-                                        "latency_us is not measurable from a recording: as given by --latency-us"}});
-    out << host::sensor_profile_flags(profile) << "\n";
+    out << content;
     out.close();
     if (!out) {
       std::remove(partial.c_str());
@@ -375,6 +379,19 @@ bool write_profile_file(const std::string& path, const std::string& input, const
     return false;
   }
   return true;
+}
+
+// The flags line with a '#' header.
+bool write_profile_file(const std::string& path, const std::string& input, const SensorProfile& profile,
+                        std::string& error) {
+  std::ostringstream out;
+  host::write_metadata(out, {{"tool", std::string("ff-track-bench --calibrate ") + host::project_version()},
+                             {"input", input},
+                             {"date", host::utc_timestamp()},
+                             {"what", "a SensorProfile estimated from a resting finger (docs/tracking.md#calibration); "
+                                      "latency_us is not measurable from a recording: as given by --latency-us"}});
+  out << host::sensor_profile_flags(profile) << "\n";
+  return write_file_atomically(path, out.str(), error);
 }
 
 // --calibrate REST.csv [STROKES.csv]: 0, or 2 with one line for a recording that gives no profile.
@@ -502,6 +519,9 @@ int main(int argc, char** argv) {
                                                "tool, version, input, date) to this file")
       ->group(calibration);
   std::string dump_path;
+  std::string csv_path;
+  app.add_option("--csv", csv_path, "With --classes: also write every figure of the tables to this CSV (with '#' "
+                                    "metadata), for tools/track_bench/plot_classes.py");
   app.add_option("--dump-ticks", dump_path, "Write every tick of the first low-noise trace for the tuned configuration "
                                             "(truth, estimate, amplitudes) to this CSV, for plots");
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
@@ -523,6 +543,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (!csv_path.empty() && !classes && class_names.empty()) {
+    std::fprintf(stderr, "ff-track-bench: --csv needs --classes or --class\n");
+    return 2;
+  }
   if (classes || !class_names.empty()) {
     if (!trace_paths.empty()) {
       std::fprintf(stderr, "ff-track-bench: --classes works on generated traces; it takes no --trace\n");
@@ -543,8 +567,26 @@ int main(int argc, char** argv) {
       tuned = tune(levels, bounds_given ? rest_bound : kClassRestBound, bounds_given ? max_lag_ms : kClassMaxLagMs,
                    kClassMaxFrictionmapRatio, options, std::cerr);
     }
-    const std::string table = run_classes(class_names, duration_s, options, tuned, dump_path);
+    const ClassResults results = run_classes(class_names, duration_s, options, tuned, dump_path);
+    const std::string table = class_tables(results, duration_s, options.moving_speed_px_s);
     std::cout << table;
+    if (!csv_path.empty()) {
+      std::ostringstream csv, traces, moving;
+      traces << "the standard set's 6 strokes per class, " << duration_s << " s each, generated (not a sensor)";
+      moving << options.moving_speed_px_s;
+      host::write_metadata(csv, {{"tool", std::string("ff-track-bench --classes ") + host::project_version()},
+                                 {"date", host::utc_timestamp()},
+                                 {"traces", traces.str()},
+                                 {"moving_above_px_s", moving.str()},
+                                 {"what", "docs/tracking.md#trace-classes; ratios are to the thesis row of each class"}});
+      write_class_csv(csv, results.rows, results.floors);
+      std::string error;
+      if (!write_file_atomically(csv_path, csv.str(), error)) {
+        std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
+        return 1;
+      }
+      std::fprintf(stderr, "ff-track-bench: figures written to %s\n", csv_path.c_str());
+    }
     if (!doc_path.empty()) {
       std::string error;
       if (!replace_marked_section(doc_path, table, error, "track-bench-classes")) {

@@ -88,7 +88,36 @@ class TrackBenchClasses(unittest.TestCase):
             self.assertIn("| latency | recommended() |", text)
             self.assertTrue(text.endswith("<!-- track-bench-classes:end -->\nafter\n"))
 
+    def test_csv_holds_the_tables_figures_with_metadata(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "classes.csv")
+            res = run(BENCH, "--class", "white-200hz", "--class", "tremor", "--duration", "3", "--csv", path)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(path) as f:
+                lines = f.read().splitlines()
+            self.assertFalse(os.path.exists(path + ".partial"))
+        meta = [l for l in lines if l.startswith("#")]
+        self.assertTrue(any(l.startswith("# tool: ff-track-bench --classes") for l in meta), meta)
+        self.assertTrue(any("3 s each" in l for l in meta), meta)
+        rows = list(csv.DictReader(l for l in lines if not l.startswith("#")))
+        self.assertEqual([(r["class"], r["tracker"]) for r in rows],
+                         [(c, t) for c in ("white-200hz", "tremor")
+                          for t in ("thesis", "recommended()", "recommended(profile)")])
+        table = table_rows(res.stdout)
+        for r in rows:
+            cells = table[(r["class"], r["tracker"])]
+            self.assertEqual("%.2f" % float(r["lag_ms"]), cells[2])
+            self.assertEqual("%.3f" % float(r["heightmap_rms"]), cells[5])
+            self.assertEqual("%.2f×" % float(r["heightmap_vs_thesis"]), cells[6])
+            self.assertEqual("%.3f" % float(r["rest_rms"]), cells[9])
+            # The unfaded error only where it was measured: the shipping rows.
+            self.assertEqual(r["unfaded_heightmap_rms"] != "", r["tracker"] == "recommended(profile)")
+            self.assertNotEqual(r["floor_1.0px_rms"], "")
+
     def test_bad_usage_exits_2(self):
+        res = run(BENCH, "--csv", "x.csv")
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("--csv needs --classes", res.stderr)
         self.assertEqual(run(BENCH, "--class", "no-such-class").returncode, 2)
         res = run(BENCH, "--classes", "--trace", __file__)
         self.assertEqual(res.returncode, 2)

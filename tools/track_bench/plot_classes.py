@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""Plot ff-track-bench --classes against issue 14's goals.
+
+Input: the CSV of `ff-track-bench --classes --csv FILE` ('#' metadata lines,
+then one row per class and tracker). Four panels, one group of bars per
+class: the heightmap and frictionmap amplitude errors as ratios to the
+thesis pipeline, the lag, and the chatter at rest; goals as dashed lines
+(the heightmap's is 0.35x on white-200hz, 0.45x elsewhere). The heightmap
+panel also marks the start floor (direction known after 1 px of motion) and
+the shipping tracker unfaded; the chatter panel marks what is left after the
+first 100 ms of each rest. A table of which goals each class meets is
+printed.
+
+Example:
+  ff-track-bench --classes --csv classes.csv
+  plot_classes.py classes.csv -o classes.png
+Exit codes: 0 ok, 2 bad usage or input (one line on stderr, never a traceback).
+"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+GOAL_HEIGHTMAP = 0.45
+GOAL_HEIGHTMAP_WHITE = 0.35
+GOAL_FRICTIONMAP = 0.8
+GOAL_LAG_MS = 1.0
+GOAL_CHATTER = 0.01
+SHIPPING = "recommended(profile)"
+TRACKERS = ("recommended()", SHIPPING)
+REQUIRED = ("class", "tracker", "lag_ms", "heightmap_vs_thesis", "frictionmap_vs_thesis", "rest_rms",
+            "rest_steady_rms", "floor_1.0px_rms", "unfaded_heightmap_rms", "heightmap_rms")
+
+
+class InputError(Exception):
+    pass
+
+
+def read_classes(path):
+    """(metadata dict, [row dicts]) of a --classes CSV."""
+    metadata, lines = {}, []
+    try:
+        with open(path, newline="") as f:
+            for line in f:
+                if line.startswith("#"):
+                    key, _, value = line[1:].strip().partition(":")
+                    metadata[key.strip()] = value.strip()
+                elif line.strip():
+                    lines.append(line)
+    except OSError as e:
+        raise InputError("cannot read %s: %s" % (path, e.strerror))
+    rows = list(csv.DictReader(lines))
+    if not rows:
+        raise InputError("%s: no rows (is it the CSV of ff-track-bench --classes --csv?)" % path)
+    missing = [c for c in REQUIRED if c not in rows[0]]
+    if missing:
+        raise InputError("%s: not a --classes CSV: no column %s" % (path, ", ".join(missing)))
+    return metadata, rows
+
+
+def number(row, key):
+    value = row.get(key, "")
+    try:
+        return float(value) if value != "" else float("nan")
+    except ValueError:
+        raise InputError("%s of %s/%s is not a number: %r" % (key, row["class"], row["tracker"], value))
+
+
+def heightmap_goal(trace_class):
+    return GOAL_HEIGHTMAP_WHITE if trace_class == "white-200hz" else GOAL_HEIGHTMAP
+
+
+def goal_status(rows):
+    """{class: {goal: met?}} for the shipping tracker's rows."""
+    status = {}
+    for r in rows:
+        if r["tracker"] != SHIPPING:
+            continue
+        c = r["class"]
+        status[c] = {
+            "lag": number(r, "lag_ms") <= GOAL_LAG_MS,
+            "heightmap": number(r, "heightmap_vs_thesis") <= heightmap_goal(c),
+            "frictionmap": number(r, "frictionmap_vs_thesis") <= GOAL_FRICTIONMAP,
+            "chatter": number(r, "rest_rms") <= GOAL_CHATTER,
+        }
+    return status
+
+
+def plot(metadata, rows, output):
+    classes = []
+    for r in rows:
+        if r["class"] not in classes:
+            classes.append(r["class"])
+    by = {(r["class"], r["tracker"]): r for r in rows}
+    x = range(len(classes))
+    width = 0.38
+    fig, axes = plt.subplots(2, 2, figsize=(13, 8.5))
+    panels = [
+        (axes[0][0], "heightmap_vs_thesis", "heightmap amplitude error / thesis", None),
+        (axes[0][1], "frictionmap_vs_thesis", "frictionmap amplitude error / thesis", GOAL_FRICTIONMAP),
+        (axes[1][0], "lag_ms", "lag [ms]", GOAL_LAG_MS),
+        (axes[1][1], "rest_rms", "chatter at rest: RMS of A - 0.5 (log)", GOAL_CHATTER),
+    ]
+    colours = {"recommended()": "#9db4d6", SHIPPING: "#1f5fa8"}
+    for ax, key, title, goal in panels:
+        for k, tracker in enumerate(TRACKERS):
+            values = [number(by[(c, tracker)], key) if (c, tracker) in by else float("nan") for c in classes]
+            ax.bar([i + (k - 0.5) * width for i in x], values, width, label=tracker, color=colours[tracker])
+        if goal is not None:
+            ax.axhline(goal, color="#c0392b", linestyle="--", linewidth=1.2, label="goal")
+        ax.set_title(title, fontsize=11)
+        ax.set_xticks(list(x))
+        ax.set_xticklabels(classes, rotation=30, ha="right", fontsize=9)
+        ax.grid(axis="y", alpha=0.3)
+    hm = axes[0][0]
+    goals = [heightmap_goal(c) for c in classes]
+    hm.hlines(goals, [i - 0.5 for i in x], [i + 0.5 for i in x], colors="#c0392b", linestyles="--", linewidth=1.2,
+              label="goal")
+    shipping = [by.get((c, SHIPPING)) for c in classes]
+    thesis_hm = [number(by[(c, "thesis")], "heightmap_rms") if (c, "thesis") in by else float("nan") for c in classes]
+    floor = [number(s, "floor_1.0px_rms") / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]
+    unfaded = [number(s, "unfaded_heightmap_rms") / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]
+    hm.plot([i + 0.5 * width for i in x], unfaded, "D", color="#e67e22", label=SHIPPING + ", never faded")
+    hm.plot([i + 0.5 * width for i in x], floor, "v", color="#27ae60", label="start floor (direction after 1 px)")
+    chatter = axes[1][1]
+    chatter.set_yscale("log")
+    steady = [number(s, "rest_steady_rms") if s else float("nan") for s in shipping]
+    chatter.plot([i + 0.5 * width for i in x], steady, "o", color="#e67e22",
+                 label=SHIPPING + ", after the first 100 ms of each rest")
+    for ax in (hm, axes[0][1], axes[1][0], chatter):  # room above the bars for the legend
+        low, high = ax.get_ylim()
+        ax.set_ylim(low, high * 8.0 if ax is chatter else high * 1.5)
+        handles, labels = ax.get_legend_handles_labels()
+        unique = dict(zip(labels, handles))
+        ax.legend(unique.values(), unique.keys(), fontsize=8, loc="upper left", ncol=2)
+    fig.suptitle("ff-track-bench --classes against issue 14's goals: %s; %s" % (
+        metadata.get("traces", "generated traces"), metadata.get("tool", "")), fontsize=11)
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
+    fig.savefig(output, dpi=110, metadata={"Software": "plot_classes.py", "Description": "; ".join(
+        "%s: %s" % kv for kv in metadata.items())})
+    plt.close(fig)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     epilog="Exit codes: 0 ok, 2 bad usage or input.")
+    parser.add_argument("csv", help="the CSV of ff-track-bench --classes --csv")
+    parser.add_argument("-o", "--output", default="classes.png", help="the PNG to write (default: %(default)s)")
+    args = parser.parse_args(argv)
+    try:
+        metadata, rows = read_classes(args.csv)
+        status = goal_status(rows)
+        if not status:
+            raise InputError("%s: no %s rows" % (args.csv, SHIPPING))
+        if os.path.abspath(args.output) == os.path.abspath(args.csv):
+            raise InputError("-o %s would overwrite the input" % args.output)
+        plot(metadata, rows, args.output)
+    except InputError as e:
+        print("plot_classes.py: %s" % e, file=sys.stderr)
+        return 2
+    names = ("lag", "heightmap", "frictionmap", "chatter")
+    print("%-18s %s" % ("class", " ".join("%-11s" % n for n in names)))
+    for c, met in status.items():
+        print("%-18s %s" % (c, " ".join("%-11s" % ("met" if met[n] else "NOT met") for n in names)))
+    totals = ", ".join("%s %d/%d" % (n, sum(m[n] for m in status.values()), len(status)) for n in names)
+    print("goals met (%s): %s" % (SHIPPING, totals))
+    print("wrote %s" % args.output)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
