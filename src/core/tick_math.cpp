@@ -31,10 +31,19 @@ inline __attribute__((always_inline)) SinCos taylor_sincos(float r) {
 FF_FASTRUN SinCos sincos_reduced(float r) { return taylor_sincos(r); }
 
 FF_FASTRUN SinCos sincos_turns(float turns) {
-  const float whole = nearest_integer(turns);
-  const float quarters = nearest_integer(4.0f * (turns - whole));  // -2 .. 2
-  const SinCos k = taylor_sincos(2.0f * kPi * ((turns - whole) - 0.25f * quarters));
-  switch ((static_cast<int>(quarters) + 4) & 3) {
+  // From 2^23 on every float is a whole number of turns (sin 0, cos 1); inf
+  // and NaN have no phase (NaN, like sin(inf): a wavelength so short that
+  // x / wavelength overflows; the renderer's clamp makes it 0.5). Below it the
+  // conversions to int are exact, and defined: NaN never reaches one.
+  if (!(std::fabs(turns) < 8388608.0f)) {
+    const float zero_or_nan = turns - turns;
+    return {zero_or_nan, 1.0f + zero_or_nan};
+  }
+  const float whole = static_cast<float>(static_cast<int32_t>(turns + (turns >= 0.0f ? 0.5f : -0.5f)));
+  const float fraction = turns - whole;  // -0.5 .. 0.5
+  const int32_t quarters = static_cast<int32_t>(4.0f * fraction + (fraction >= 0.0f ? 0.5f : -0.5f));  // -2 .. 2
+  const SinCos k = taylor_sincos(2.0f * kPi * (fraction - 0.25f * static_cast<float>(quarters)));
+  switch ((quarters + 4) & 3) {
     case 1: return {k.cos, -k.sin};
     case 2: return {-k.sin, -k.cos};
     case 3: return {-k.cos, k.sin};

@@ -45,6 +45,21 @@ TEST(TickMath, SinCosTurnsMatchesTheDoubleFormulaOnEveryQuadrant) {
   EXPECT_EQ(sincos_turns(2.0f).cos, 1.0f);
 }
 
+TEST(TickMath, SinCosTurnsOfANonFiniteTurnIsNaNNotUndefined) {
+  // A sine valley or texture whose wavelength is so short that x / wavelength
+  // overflows (a fuzzed condition: 3.85e-37 px): +-inf and NaN turns. Under
+  // UBSan (the asan preset) the old float-to-int quadrant aborted here.
+  for (float turns : {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                      std::numeric_limits<float>::quiet_NaN()}) {
+    const SinCos sc = sincos_turns(turns);
+    EXPECT_TRUE(std::isnan(sc.sin)) << turns;
+    EXPECT_TRUE(std::isnan(sc.cos)) << turns;
+  }
+  // Finite but beyond 2^23 turns every float is a whole turn: sin 0, cos 1.
+  EXPECT_EQ(sincos_turns(1e30f).sin, 0.0f);
+  EXPECT_EQ(sincos_turns(-3e38f).cos, 1.0f);
+}
+
 TEST(TickMath, ArctanWithinTwoUlpEverywhere) {
   double worst_relative = 0.0;
   for (int i = -30000; i <= 30000; ++i) {

@@ -229,5 +229,35 @@ TEST(CoreRegressions, ValleyFarFromItsPathGivesAFiniteGradient) {
   EXPECT_LE(length(g), 0.5f + 1e-6f);
 }
 
+// 11. A sine valley (or texture) whose wavelength is so short that x /
+// wavelength overflows on the screen (3.85e-37 px, from a fuzzed
+// SetCondition): sin(inf) is NaN, and sincos_turns converted its NaN quadrant
+// to int, which is undefined (clang's UBSan aborted; the M4's vcvt gives 0).
+// Now a turn of 2^23 or more, inf or NaN returns before any conversion; the
+// field is NaN and the amplitude falls back to 0.5. Found by fuzz/protocol_fixed_fuzz.cpp; the asan preset
+// now checks float-to-int conversions too (GCC's -fsanitize=undefined does
+// not include float-cast-overflow).
+TEST(CoreRegressions, AWavelengthSoShortThePhaseOverflowsRendersInRange) {
+  for (int kind = 0; kind < 2; ++kind) {
+    SceneDefinition s;
+    s.rendering = Rendering::Directional;
+    if (kind == 0) {
+      s.add(FieldElement::path_sink(PathCurve::sine(240.0f, 3.8e-37f, 3.85e-37f, 6.2e-39f), 0.2f, 100.0f));
+    } else {
+      s.add(FieldElement::sine_texture(1e-38f, 1e-38f, 1.0f));
+    }
+    s.add(FieldElement::point_sink({400.0f, 240.0f}, 1e-3f));
+    auto plan = std::make_unique<ScenePlan>();
+    const PrepareStatus status = plan->prepare(s, nullptr, 0);  // the max|G| search evaluates the field
+    EXPECT_TRUE(status == PrepareStatus::Ok || status == PrepareStatus::NonFiniteField) << to_string(status);
+    for (float x : {0.0f, 6.2e-39f, 1.0f, 400.0f, 800.0f}) {
+      for (float y : {0.0f, 240.0f, 480.0f}) {
+        const float a = plan->amplitude({x, y}, {1.0f, 0.0f});
+        EXPECT_TRUE(std::isfinite(a) && a >= 0.0f && a <= 1.0f) << kind << " " << x << " " << y << " " << a;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ff
