@@ -9,13 +9,13 @@ namespace ff {
 
 namespace {
 
-uint16_t nodes_for(float extent, float spacing) {
-  return static_cast<uint16_t>(std::ceil(extent / spacing) + 1.0f);
-}
-
 size_t element_bytes(TableStorage s) { return s == TableStorage::Int16 ? 2u : 4u; }
 
 }  // namespace
+
+uint16_t GridTable::nodes_for(float extent, float spacing_px) {
+  return static_cast<uint16_t>(std::ceil(extent / spacing_px) + 1.0f);
+}
 
 size_t GridTable::bytes_needed(uint16_t cols, uint16_t rows, int channels, TableStorage storage) {
   return static_cast<size_t>(cols) * rows * static_cast<size_t>(channels) * element_bytes(storage);

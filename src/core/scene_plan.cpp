@@ -67,10 +67,6 @@ bool valid_element(const FieldElement& e) {
   return false;
 }
 
-uint16_t nodes_for(float extent, float spacing) {
-  return static_cast<uint16_t>(std::ceil(extent / spacing) + 1.0f);
-}
-
 // |G| without overflow or underflow of the squares: scale by the larger
 // component; 0 for a non-finite G. In flash (only the rare fallback search).
 __attribute__((noinline)) float safe_length(Vec2 g) {
@@ -144,8 +140,8 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
     const bool heights = directional && next.table_source_ == TableSource::HeightCentralDifferences;
     if (heights && has_vortex) return PrepareStatus::InvalidParameter;  // a vortex has no height
     const int channels = (directional && !heights) ? 2 : 1;
-    const uint16_t cols = sampled ? sm.cols : nodes_for(kScreenMaxX, spacing);
-    const uint16_t rows = sampled ? sm.rows : nodes_for(kScreenMaxY, spacing);
+    const uint16_t cols = sampled ? sm.cols : GridTable::nodes_for(kScreenMaxX, spacing);
+    const uint16_t rows = sampled ? sm.rows : GridTable::nodes_for(kScreenMaxY, spacing);
     const TableStorage storage = tc.storage;
     if (GridTable::bytes_needed(cols, rows, channels, storage) > table_capacity) {
       return PrepareStatus::TableTooLarge;

@@ -12,6 +12,8 @@ namespace ff {
 
 class GridTable {
  public:
+  // Nodes that cover 0 .. extent at this spacing, both ends included.
+  static uint16_t nodes_for(float extent, float spacing_px);
   // Bytes needed for a table covering the screen at `spacing_px`.
   static size_t bytes_needed(float spacing_px, int channels, TableStorage storage);
   static size_t bytes_needed(uint16_t cols, uint16_t rows, int channels, TableStorage storage);
