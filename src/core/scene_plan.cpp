@@ -360,6 +360,25 @@ FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool sq
     }
   }
 
+  // A tunnel ends abruptly: its width's x-gradient, largest far from its
+  // centre line, stops at x_start and x_start + length, so the steepest point
+  // can sit just inside an end, narrower than the scan step: seed there too.
+  for (int e = 0; e < count_; ++e) {
+    const FieldElement& el = elements_[e];
+    if (el.kind != ElementKind::Tunnel) continue;
+    const TunnelParams& t = el.tunnel;
+    const float inset = 1.0f / 32.0f;  // the refinement's finest step
+    for (int end = 0; end < 2; ++end) {
+      const float x = end == 0 ? t.x_start + inset : t.x_start + t.length - inset;
+      if (!(x > 0.0f && x < kScreenMaxX)) continue;
+      const float near = 3.0f * (end == 0 ? t.width_start : t.width_end) / t.scale;
+      for (float y : {0.0f, kScreenMaxY, t.y_centre - near, t.y_centre + near}) {
+        const Vec2 p{x, clamp(y, 0.0f, kScreenMaxY)};
+        consider(p, magnitude(p));
+      }
+    }
+  }
+
   float best = 0.0f;
   for (int c = 0; c < candidates; ++c) {
     if (best_m[c] < 0.0f) continue;

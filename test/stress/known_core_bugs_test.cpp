@@ -229,6 +229,28 @@ TEST(CoreRegressions, ValleyFarFromItsPathGivesAFiniteGradient) {
   EXPECT_LE(length(g), 0.5f + 1e-6f);
 }
 
+// 12. A tunnel that converges fast (76 -> 15 px over 60 px) ends abruptly at
+// x = 457.19: its width's x-gradient, largest far from the centre line,
+// stops there, so |G| peaks in a strip a few px wide at the bottom edge,
+// between two nodes of the 32 px scan: max|G| 0.9368 where the double scan
+// finds 1.0643 (-12 %), so G_norm reached 0.57 near that end. Now the search
+// is also seeded just inside both ends of every tunnel. From
+// ff-stress-report --cases 1500 --seed 90210 (max_gradient_search, case 90287).
+TEST(CoreRegressions, MaxGradientMissesATunnelsAbruptEnd) {
+  const char* text =
+      "rendering directional\n"
+      "element tunnel weight 0.405110657 x_start 396.801605 length 60.3854675 width 76.3150482 15.2348881 scale 0.803224981 y_centre 191.811539\n"
+      "element path_sink weight 0.0973550901 a 0.111497864 band 16.7462902 29.8614025 curve sine 463.751221 26.9362507 71.1088257 -3.79944968\n"
+      "element tunnel weight 0.120325804 x_start 311.179047 length 562.199951 width 57.3502159 39.7233696 scale 1.60645223 y_centre 130.461777\n";
+  SceneDefinition s;
+  std::string error;
+  ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
+  auto plan = std::make_unique<ScenePlan>();
+  ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
+  const double truth = reference::ReferenceScene(s).max_gradient();  // 1.0643
+  EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-2 * truth);  // was 0.9368
+}
+
 // 11. A sine valley (or texture) whose wavelength is so short that x /
 // wavelength overflows on the screen (3.85e-37 px, from a fuzzed
 // SetCondition): sin(inf) is NaN, and sincos_turns converted its NaN quadrant
