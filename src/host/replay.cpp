@@ -96,6 +96,7 @@ ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const Ti
   bool more = true;
   for (uint64_t k = 0;; ++k) {
     const uint64_t now = t0 + k * kTickPeriodUs;
+    if (now < t0) break;  // stamps near 2^64 (the reader refuses them): the tick time wrapped
     // Samples due at or before this tick, in file order; the tracker judges their stamps.
     while (more && (more = queue.peek(row, arrival)) && arrival <= now) {
       pipeline.post_sample({static_cast<uint32_t>(row.t_us), row.x, row.y, row.touch});

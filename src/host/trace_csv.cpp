@@ -113,6 +113,11 @@ bool SensorTraceReader::next(TraceRow& row, TraceError& error, TruthPoint* truth
     error = {line_no_, static_cast<size_t>(col_t_) + 1, "t_us must be a non-negative integer (got '" + ts + "')"};
     return false;
   }
+  if (row.t_us > kMaxTraceTimeUs) {
+    error = {line_no_, static_cast<size_t>(col_t_) + 1,
+             "t_us must be at most 2^53 = " + std::to_string(kMaxTraceTimeUs) + " (got '" + ts + "')"};
+    return false;
+  }
   uint64_t touch = 0;
   if (!parse_u64(touchs, touch) || touch > 1) {
     error = {line_no_, static_cast<size_t>(col_touch_) + 1, "touch must be 0 or 1 (got '" + touchs + "')"};

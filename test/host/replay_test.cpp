@@ -32,6 +32,16 @@ TEST(Replay, TicksFromTheFirstSampleAndDeliversSamplesOnTime) {
   EXPECT_FLOAT_EQ(s.amplitude_max, 0.5f);
 }
 
+TEST(Replay, StopsWhereTheTickTimeWouldWrapPast2To64) {
+  // Rows that bypass the reader's 2^53 bound: t0 + k * 500 us wraps after one
+  // tick, and the replay's end test (a tick at or after the last report)
+  // never held again: it ticked on for ever (found by fuzz/trace_csv).
+  auto p = std::make_unique<HapticPipeline>();
+  const std::vector<TraceRow> rows = {{UINT64_MAX - 5, 100, 0, false}};
+  const ReplaySummary s = replay(rows, *p, nullptr, 600);
+  EXPECT_EQ(s.ticks, 1u);
+}
+
 TEST(Replay, ExtraTicksLetLiftOffPlayOut) {
   auto p = std::make_unique<HapticPipeline>();
   const std::vector<TraceRow> rows = {{0, 10, 10, true}, {5000, 10, 10, true}, {10000, 0, 0, false}};

@@ -26,6 +26,14 @@ TEST(TraceCsv, ReadsAnyColumnOrderAndIgnoresExtraColumns) {
   EXPECT_FALSE(rows[1].touch);  // no finger: empty x, y allowed
 }
 
+TEST(TraceCsv, TakesStampsUpTo2To53) {
+  std::vector<TraceRow> rows;
+  TraceError err;
+  ASSERT_TRUE(parse("t_us,x,y,touch\n9007199254740992,1,2,1\n", rows, err)) << err.message;
+  EXPECT_EQ(rows[0].t_us, kMaxTraceTimeUs);
+  EXPECT_EQ(kMaxTraceTimeUs, 9007199254740992ull);  // 2^53
+}
+
 TEST(TraceCsv, KeepsNonFiniteCoordinatesForTheTrackerToJudge) {
   std::vector<TraceRow> rows;
   TraceError err;
@@ -45,6 +53,9 @@ TEST(TraceCsv, ErrorsNameLineAndColumn) {
       {"t_us,x,y,touch\n0,1,2,2\n", 2, 4, "touch"},
       {"t_us,x,y,touch\n0,abc,2,1\n", 2, 2, "x is not a number"},
       {"t_us,x,y,touch\n0,1,,1\n", 2, 3, "y is not a number"},
+      // A stamp near 2^64 hung the replay (its tick times wrapped): found by fuzz/trace_csv.
+      {"t_us,x,y,touch\n18446744073709551610,100,0,0\n", 2, 1, "at most 2^53"},
+      {"t_us,x,y,touch\n9007199254740993,100,0,0\n", 2, 1, "at most 2^53"},
   };
   for (const Case& c : cases) {
     std::vector<TraceRow> rows;

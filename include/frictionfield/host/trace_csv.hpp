@@ -16,8 +16,13 @@
 
 namespace ff::host {
 
+// The largest stamp a trace may carry: 2^53 us (285 years), exact in a double
+// (numpy, the plots), and far enough below 2^64 that a replay's tick times
+// never wrap.
+constexpr uint64_t kMaxTraceTimeUs = uint64_t{1} << 53;
+
 struct TraceRow {
-  uint64_t t_us = 0;  // may exceed 2^32; the device sees the low 32 bits
+  uint64_t t_us = 0;  // may exceed 2^32; the device sees the low 32 bits; at most kMaxTraceTimeUs
   float x = 0.0f;
   float y = 0.0f;
   bool touch = false;
