@@ -43,6 +43,17 @@ void check_long_run(const TrackerConfig& tracker, const char* label) {
   EXPECT_EQ(r.faults[Fault::SensorTimeout], 0u);
 }
 
+// Shorter than one cycle: rounded up to one minute (ff-stress-report
+// --long-run-seconds 30 read the first minute's figures from an empty list).
+TEST(LongRun, ARunShorterThanAMinuteIsOneWholeMinute) {
+  const LongRunResult r = long_run(TrackerConfig::recommended(), 1, base_seed());
+  EXPECT_EQ(r.cycles, 1u);
+  EXPECT_EQ(r.seconds, 60u);
+  EXPECT_EQ(r.ticks, 120000u);  // 60 s at 2 kHz
+  EXPECT_EQ(r.bad_ticks, 0u);
+  EXPECT_EQ(r.max_error_per_cycle.size(), 1u);
+}
+
 TEST(LongRun, ThreeHoursRecommendedTracker) { check_long_run(TrackerConfig::recommended(), "recommended"); }
 TEST(LongRun, ThreeHoursThesisTracker) { check_long_run(TrackerConfig::thesis(), "thesis (ticks + 1-euro)"); }
 

@@ -88,7 +88,9 @@ struct CycleStats {
 }  // namespace
 
 LongRunResult long_run(const TrackerConfig& tracker, uint64_t seconds, uint64_t seed) {
-  const uint64_t cycles = seconds * 1000000 / kCycleUs;
+  // Whole one-minute cycles, at least one (a shorter run left none, and the
+  // first-minute figures read an empty list: ff-stress-report crashed).
+  const uint64_t cycles = std::max<uint64_t>(1, (seconds * 1000000 + kCycleUs - 1) / kCycleUs);
   const Cycle cycle = make_cycle(seed);
   auto pipeline = std::make_unique<HapticPipeline>(tracker);
   Condition condition;
@@ -135,7 +137,7 @@ LongRunResult long_run(const TrackerConfig& tracker, uint64_t seconds, uint64_t 
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   LongRunResult r;
-  r.seconds = seconds;
+  r.seconds = cycles * kCycleUs / 1000000;
   r.ticks = ticks;
   r.cycles = cycles;
   r.lifts = lifts;

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   std::string only;
   app.add_option("--cases", cases, "cases per input class")->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "base seed (case i of a class runs with seed + i)");
-  app.add_option("--long-run-seconds", long_seconds, "simulated length of each long run");
+  app.add_option("--long-run-seconds", long_seconds, "simulated length of each long run (rounded up to whole minutes)");
   app.add_option("--class", only, "run only this class");
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
@@ -53,13 +53,15 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(seed), cases, (cases + 5) / 6);
   std::printf("| input class | what | cases | ticks | failures | worst \\|A_f32 - A_f64\\| | worst recovery (ticks) | class measure |\n");
   std::printf("|---|---|---:|---:|---:|---:|---:|---|\n");
-  int total_failures = 0;
+  int total_failures = 0;   // failing cases and long runs
+  int failing_classes = 0;  // input classes with a failing case, and failing long runs
   std::string failures_text;
   for (const ff::stress::StressClass& c : ff::stress::stress_classes()) {
     if (!only.empty() && only != c.name) continue;
     const int n = std::string(c.name) == "long_rest_then_move" ? (cases + 5) / 6 : cases;
     const ff::stress::ClassResult r = c.run(seed, n);
     total_failures += r.failures;
+    failing_classes += r.failures > 0 ? 1 : 0;
     std::string measure = r.note;
     if (r.worst_table > 0.0) {
       char buf[80];
@@ -91,6 +93,7 @@ int main(int argc, char** argv) {
     const bool ok = r.bad_ticks == 0 && r.worst_rest_offset <= 0.1 && r.worst_max_error <= r.first_max_error + 1e-3 &&
                     r.worst_mean_error <= r.first_mean_error + 1e-3;
     total_failures += ok ? 0 : 1;
+    failing_classes += ok ? 0 : 1;
     std::printf("| %s | %s | %llu | %.2g | %.3f / %.3f | %.3f / %.3f | %.0f |\n", t.name, with_commas(r.ticks).c_str(),
                 static_cast<unsigned long long>(r.bad_ticks), r.worst_rest_offset, r.first_max_error, r.worst_max_error,
                 r.first_mean_error, r.worst_mean_error, r.wall_seconds * 1e9 / static_cast<double>(r.ticks));
@@ -109,7 +112,9 @@ int main(int argc, char** argv) {
               with_commas(cp.moving_ticks).c_str(), cp.worst_position, cp.worst_amplitude);
 
   const double wall = std::chrono::duration<double>(clock::now() - started).count();
-  std::printf("\n%d failing class%s; report computed in %.0f s.\n", total_failures, total_failures == 1 ? "" : "es", wall);
+  // Cases and classes apart: "3 failing classes" once meant three cases of one class.
+  std::printf("\n%d failing case%s in %d class%s; report computed in %.0f s.\n", total_failures,
+              total_failures == 1 ? "" : "s", failing_classes, failing_classes == 1 ? "" : "es", wall);
   if (!failures_text.empty()) std::printf("\nFirst failure of each failing class:\n\n%s", failures_text.c_str());
   return total_failures == 0 ? 0 : 1;
 }
