@@ -10,6 +10,7 @@
 
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/output_file.hpp"
 #include "frictionfield/host/replay.hpp"
 #include "frictionfield/host/scene_hash.hpp"
 #include "frictionfield/host/scene_spec.hpp"
@@ -53,35 +54,6 @@ bool parse_screen(const std::string& text, float& width, float& height) {
   height = static_cast<float>(h);
   return true;
 }
-
-// The output goes to NAME.partial first and is renamed when the replay has
-// succeeded, so a failed run never leaves a half file under the real name.
-class OutputFile {
- public:
-  explicit OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {}
-  ~OutputFile() {
-    if (!committed_ && file_.is_open()) {
-      file_.close();
-      std::remove(partial_.c_str());
-    }
-  }
-  bool open() {
-    file_.open(partial_);
-    return static_cast<bool>(file_);
-  }
-  std::ostream& stream() { return file_; }
-  bool commit() {
-    file_.close();
-    if (!file_ || std::rename(partial_.c_str(), path_.c_str()) != 0) return false;
-    committed_ = true;
-    return true;
-  }
-
- private:
-  std::string path_, partial_;
-  std::ofstream file_;
-  bool committed_ = false;
-};
 
 }  // namespace
 
@@ -166,7 +138,7 @@ int main(int argc, char** argv) {
     return kExitBadUsage;
   }
 
-  std::unique_ptr<OutputFile> file;
+  std::unique_ptr<ff::host::OutputFile> file;
   std::ofstream device;  // -o /dev/null, a FIFO: written directly
   std::ostream* out = &std::cout;
   const bool special = output != "-" && std::filesystem::exists(output, ec) &&
@@ -179,7 +151,7 @@ int main(int argc, char** argv) {
     }
     out = &device;
   } else if (output != "-") {
-    file = std::make_unique<OutputFile>(output);
+    file = std::make_unique<ff::host::OutputFile>(output);
     if (!file->open()) {
       std::cerr << "ff-replay: cannot write " << output << "\n";
       return kExitBadUsage;

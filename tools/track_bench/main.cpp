@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/output_file.hpp"
 #include "frictionfield/host/sensor_profile_options.hpp"
 #include "frictionfield/host/trace_csv.hpp"
 #include "bench_report.hpp"
@@ -359,28 +360,6 @@ void print_calibration(std::ostream& out, const std::string& path, const Calibra
   out << "For ff-replay and ff-track-bench:\n  " << host::sensor_profile_flags(p) << "\n";
 }
 
-// Written to NAME.partial and renamed, so that a failed write never leaves a
-// half file under the real name.
-bool write_file_atomically(const std::string& path, const std::string& content, std::string& error) {
-  const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial);
-    out << content;
-    out.close();
-    if (!out) {
-      std::remove(partial.c_str());
-      error = "cannot write " + path;
-      return false;
-    }
-  }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    std::remove(partial.c_str());
-    error = "cannot write " + path;
-    return false;
-  }
-  return true;
-}
-
 // The flags line with a '#' header.
 bool write_profile_file(const std::string& path, const std::string& input, const SensorProfile& profile,
                         std::string& error) {
@@ -391,7 +370,9 @@ bool write_profile_file(const std::string& path, const std::string& input, const
                              {"what", "a SensorProfile estimated from a resting finger (docs/tracking.md#calibration); "
                                       "latency_us is not measurable from a recording: as given by --latency-us"}});
   out << host::sensor_profile_flags(profile) << "\n";
-  return write_file_atomically(path, out.str(), error);
+  if (host::write_file_atomically(path, out.str())) return true;
+  error = "cannot write " + path;
+  return false;
 }
 
 // --calibrate REST.csv [STROKES.csv]: 0, or 2 with one line for a recording that gives no profile.
@@ -580,9 +561,8 @@ int main(int argc, char** argv) {
                                  {"moving_above_px_s", moving.str()},
                                  {"what", "docs/tracking.md#trace-classes; ratios are to the thesis row of each class"}});
       write_class_csv(csv, results.rows, results.floors);
-      std::string error;
-      if (!write_file_atomically(csv_path, csv.str(), error)) {
-        std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
+      if (!host::write_file_atomically(csv_path, csv.str())) {
+        std::fprintf(stderr, "ff-track-bench: cannot write %s\n", csv_path.c_str());
         return 1;
       }
       std::fprintf(stderr, "ff-track-bench: figures written to %s\n", csv_path.c_str());

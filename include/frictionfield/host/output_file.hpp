@@ -1,0 +1,32 @@
+#pragma once
+// An output file written as NAME.partial and renamed to NAME only when the
+// tool commits it, so a failed or killed run never leaves a half file under
+// the real name (docs/tools.md). Uncommitted, the partial file is removed.
+#include <fstream>
+#include <ostream>
+#include <string>
+
+namespace ff::host {
+
+class OutputFile {
+ public:
+  explicit OutputFile(std::string path);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  bool open();
+  std::ostream& stream() { return file_; }
+  // Closes and renames: false if a write failed or the rename did.
+  bool commit();
+
+ private:
+  std::string path_, partial_;
+  std::ofstream file_;
+  bool committed_ = false;
+};
+
+// `content` to `path` through an OutputFile: false (and no file) on failure.
+bool write_file_atomically(const std::string& path, const std::string& content);
+
+}  // namespace ff::host

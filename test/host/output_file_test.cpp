@@ -1,0 +1,51 @@
+// OutputFile: nothing under the real name until commit; an uncommitted or
+// failed file leaves nothing at all.
+#include "frictionfield/host/output_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace ff::host {
+namespace {
+
+std::string read(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ff_output_file_test";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / "out.csv", partial = dir / "out.csv.partial";
+  std::filesystem::remove(path);
+  {
+    OutputFile f(path.string());
+    ASSERT_TRUE(f.open());
+    f.stream() << "a,b\n";
+    EXPECT_TRUE(std::filesystem::exists(partial));
+    EXPECT_FALSE(std::filesystem::exists(path));
+    ASSERT_TRUE(f.commit());
+  }
+  EXPECT_EQ(read(path), "a,b\n");
+  EXPECT_FALSE(std::filesystem::exists(partial));
+  {
+    OutputFile f(path.string());  // abandoned: the old file stays, no partial remains
+    ASSERT_TRUE(f.open());
+    f.stream() << "half";
+  }
+  EXPECT_EQ(read(path), "a,b\n");
+  EXPECT_FALSE(std::filesystem::exists(partial));
+  EXPECT_TRUE(write_file_atomically(path.string(), "x\n"));
+  EXPECT_EQ(read(path), "x\n");
+  EXPECT_FALSE(write_file_atomically((dir / "no-such-dir" / "f").string(), "x\n"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ff::host
