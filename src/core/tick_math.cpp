@@ -8,12 +8,12 @@
 
 namespace ff {
 
-FF_FASTRUN float nearest_integer(float v) {
-  if (!(std::fabs(v) < 8388608.0f)) return v;
-  return static_cast<float>(static_cast<int32_t>(v + (v >= 0.0f ? 0.5f : -0.5f)));
-}
-
 namespace {
+
+// Half away from zero, for |v| < 2^23 (where the conversion is exact and defined).
+inline __attribute__((always_inline)) int32_t round_half_away(float v) {
+  return static_cast<int32_t>(v + (v >= 0.0f ? 0.5f : -0.5f));
+}
 
 // Compiled into sincos_turns: a call costs about as much as the polynomials.
 inline __attribute__((always_inline)) SinCos taylor_sincos(float r) {
@@ -28,6 +28,11 @@ inline __attribute__((always_inline)) SinCos taylor_sincos(float r) {
 
 }  // namespace
 
+FF_FASTRUN float nearest_integer(float v) {
+  if (!(std::fabs(v) < 8388608.0f)) return v;
+  return static_cast<float>(round_half_away(v));
+}
+
 FF_FASTRUN SinCos sincos_reduced(float r) { return taylor_sincos(r); }
 
 FF_FASTRUN SinCos sincos_turns(float turns) {
@@ -39,9 +44,8 @@ FF_FASTRUN SinCos sincos_turns(float turns) {
     const float zero_or_nan = turns - turns;
     return {zero_or_nan, 1.0f + zero_or_nan};
   }
-  const float whole = static_cast<float>(static_cast<int32_t>(turns + (turns >= 0.0f ? 0.5f : -0.5f)));
-  const float fraction = turns - whole;  // -0.5 .. 0.5
-  const int32_t quarters = static_cast<int32_t>(4.0f * fraction + (fraction >= 0.0f ? 0.5f : -0.5f));  // -2 .. 2
+  const float fraction = turns - static_cast<float>(round_half_away(turns));  // -0.5 .. 0.5
+  const int32_t quarters = round_half_away(4.0f * fraction);                    // -2 .. 2
   const SinCos k = taylor_sincos(2.0f * kPi * (fraction - 0.25f * static_cast<float>(quarters)));
   switch ((quarters + 4) & 3) {
     case 1: return {k.cos, -k.sin};
