@@ -17,6 +17,23 @@
 namespace ff {
 namespace {
 
+// A scene file's text, parsed into `s` and prepared in closed form; null
+// (and a test failure) if it does not parse or prepare.
+std::unique_ptr<ScenePlan> prepared_scene_text(const char* text, SceneDefinition& s) {
+  std::string error;
+  if (!host::parse_scene_text(text, s, error)) {
+    ADD_FAILURE() << error;
+    return nullptr;
+  }
+  auto plan = std::make_unique<ScenePlan>();
+  const PrepareStatus status = plan->prepare(s, nullptr, 0);
+  if (status != PrepareStatus::Ok) {
+    ADD_FAILURE() << to_string(status);
+    return nullptr;
+  }
+  return plan;
+}
+
 // A finger moving right along y = 240 at 300 px/s from x = 100; reports
 // every 5 ms; `stamp` may corrupt a report's time, `tick_time` a tick's.
 struct Stroke {
@@ -178,10 +195,8 @@ TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
       "element texture weight 20.6443539 wavelength 20.745903 35.8538437 height 12.9968691\n"
       "element point_sink weight 4.59806776 centre 325.678223 -23.409893 radius 11.8105936 feather 46.1646957\n";
   SceneDefinition s;
-  std::string error;
-  ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
-  auto plan = std::make_unique<ScenePlan>();
-  ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
+  const auto plan = prepared_scene_text(text, s);
+  ASSERT_NE(plan, nullptr);
   const double truth = reference::ReferenceScene(s).max_gradient();  // 122.76
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 113.30
 }
@@ -200,10 +215,8 @@ TEST(CoreRegressions, MaxGradientMissesATexturePeakNearTheEdge) {
       "element path_sink weight 0.0205193441 a 0.0453976728 band 33.9885559 31.4133015 curve polyline 227.603165,275.615204 242.523911,78.8675537 344.108307,58.8125114\n"
       "element saddle weight -0.0183024872 centre 75.393837 64.7268066\n";
   SceneDefinition s;
-  std::string error;
-  ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
-  auto plan = std::make_unique<ScenePlan>();
-  ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
+  const auto plan = prepared_scene_text(text, s);
+  ASSERT_NE(plan, nullptr);
   EXPECT_GE(static_cast<double>(length(plan->field({571.5f, 467.0f}))), 77.3);  // the core's own field there
   const double truth = reference::ReferenceScene(s).max_gradient();                  // 77.375
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-3 * truth);  // was 71.73
@@ -243,10 +256,8 @@ TEST(CoreRegressions, MaxGradientMissesATunnelsAbruptEnd) {
       "element path_sink weight 0.0973550901 a 0.111497864 band 16.7462902 29.8614025 curve sine 463.751221 26.9362507 71.1088257 -3.79944968\n"
       "element tunnel weight 0.120325804 x_start 311.179047 length 562.199951 width 57.3502159 39.7233696 scale 1.60645223 y_centre 130.461777\n";
   SceneDefinition s;
-  std::string error;
-  ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
-  auto plan = std::make_unique<ScenePlan>();
-  ASSERT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::Ok);
+  const auto plan = prepared_scene_text(text, s);
+  ASSERT_NE(plan, nullptr);
   const double truth = reference::ReferenceScene(s).max_gradient();  // 1.0643
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, 1e-2 * truth);  // was 0.9368
 }
