@@ -92,12 +92,15 @@ void write_rest_report(std::ostream& out, const std::vector<ClassRow>& rows) {
       << " ms; \"never\": rests that ended before that (a tracker without a fade).\n";
 }
 
-void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const std::vector<StartFloorRow>& floors) {
+void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const std::vector<StartFloorRow>& floors,
+                     const std::vector<LookaheadRow>& lookahead) {
   out << "class,tracker,lag_ms,position_rmse_px,direction_mean_deg,heightmap_rms,heightmap_vs_thesis,frictionmap_rms,"
          "frictionmap_vs_thesis,rest_rms,rest_vs_thesis,rest_first_share,rest_steady_rms,stops,settle_median_ms,"
          "settle_max_ms,unsettled_stops,slow_share";
   for (double d : kStartFloorDistancesPx) out << ",floor_" << fixed(d, 1) << "px_rms";
-  out << ",unfaded_heightmap_rms\n";
+  out << ",unfaded_heightmap_rms";
+  for (double ms : kLookaheadsMs) out << ",lookahead_" << (std::isinf(ms) ? std::string("whole") : fixed(ms, 0) + "ms") << "_rms";
+  out << "\n";
   auto number = [](double v) { return fixed(v, 6); };
   auto over = [&](double value, double baseline) { return baseline > 0.0 ? number(value / baseline) : std::string(); };
   const ClassRow* baseline = nullptr;
@@ -117,7 +120,13 @@ void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const
       if (f.trace_class == r.trace_class) floor = &f;
     for (size_t i = 0; i < std::size(kStartFloorDistancesPx); ++i)
       out << "," << (floor != nullptr ? number(floor->floor_rms[i]) : std::string());
-    out << "," << (m.heightmap_unfaded_rms > 0.0 ? number(m.heightmap_unfaded_rms) : std::string()) << "\n";
+    out << "," << (m.heightmap_unfaded_rms > 0.0 ? number(m.heightmap_unfaded_rms) : std::string());
+    const LookaheadRow* bound = nullptr;
+    for (const LookaheadRow& l : lookahead)
+      if (l.trace_class == r.trace_class) bound = &l;
+    for (size_t i = 0; i < std::size(kLookaheadsMs); ++i)
+      out << "," << (bound != nullptr ? number(bound->best_rms[i]) : std::string());
+    out << "\n";
   }
 }
 

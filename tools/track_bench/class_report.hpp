@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lookahead_bound.hpp"
 #include "support/models/trace_classes.hpp"
 #include "tracking_evaluation.hpp"
 
@@ -70,10 +71,11 @@ struct StartFloorRow {
 };
 void write_start_floor(std::ostream& out, const std::vector<StartFloorRow>& rows);
 
-// Every figure of the three tables as CSV, one row per class and tracker
-// (the class's floors on each of its rows, the unfaded error on the rows
-// that measured it), for plots (tools/track_bench/plot_classes.py). No
-// metadata: the caller writes it first.
-void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const std::vector<StartFloorRow>& floors);
+// Every figure of the four tables as CSV, one row per class and tracker
+// (the class's floors and lookahead bounds on each of its rows, the unfaded
+// error on the rows that measured it), for plots
+// (tools/track_bench/plot_classes.py). No metadata: the caller writes it first.
+void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const std::vector<StartFloorRow>& floors,
+                     const std::vector<LookaheadRow>& lookahead);
 
 }  // namespace ff::bench

@@ -18,6 +18,7 @@
 #include "frictionfield/host/trace_csv.hpp"
 #include "bench_report.hpp"
 #include "class_report.hpp"
+#include "lookahead_bound.hpp"
 #include "proposed_config.hpp"
 #include "sensor_calibration.hpp"
 #include "tracking_evaluation.hpp"
@@ -44,7 +45,9 @@ constexpr const char* kDescription =
     "  host cost of HapticPipeline::tick() on the heightmap (ns per tick, this machine).\n"
     "With --classes: the same metrics per class of finger and sensor (white noise at 200 Hz, slow\n"
     "fingers, tremor, stamp latency, correlated noise, everything at 100 Hz / 200 Hz / 1 kHz), for the\n"
-    "thesis pipeline and recommended(), with recommended()'s ratio to the thesis pipeline.\n"
+    "thesis pipeline and recommended(), with recommended()'s ratio to the thesis pipeline; then where\n"
+    "the heightmap error comes from (start floors, the tracker unfaded), the chatter at each stop, and\n"
+    "the bound of a constant-velocity filter with a perfect motion detector seeing 0-100 ms ahead.\n"
     "With --calibrate: a SensorProfile estimated from a recording of a resting finger, and the line\n"
     "that sends it to the device (docs/tracking.md#calibration); of the sensor-profile flags it takes\n"
     "only --latency-us (a recording cannot show the latency).";
@@ -240,6 +243,7 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
 struct ClassResults {
   std::vector<ClassRow> rows;
   std::vector<StartFloorRow> floors;
+  std::vector<LookaheadRow> lookahead;
 };
 
 // The per-class figures: the thesis pipeline and recommended() on each class.
@@ -249,6 +253,7 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
   options.cost = false;
   std::vector<ClassRow> rows;
   std::vector<StartFloorRow> floors;
+  std::vector<LookaheadRow> lookahead;
   for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
     if (!names.empty() && std::find(names.begin(), names.end(), trace_class.name) == names.end()) continue;
     std::fprintf(stderr, "ff-track-bench: class %s: generating 6 traces of %.0f s...\n", trace_class.name, duration_s);
@@ -275,11 +280,17 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
     for (size_t i = 0; i < std::size(kStartFloorDistancesPx); ++i)
       floor.floor_rms[i] = start_floor_rms(cases, options.moving_speed_px_s, kStartFloorDistancesPx[i]);
     floors.push_back(floor);
+    LookaheadRow bound = lookahead_row(trace_class.name, cases, options.moving_speed_px_s,
+                                       static_cast<double>(sensor.white_noise_px),
+                                       static_cast<double>(sensor.correlated_noise_px), sensor.latency_us * 1e-6);
+    bound.thesis_heightmap_rms = floor.thesis_heightmap_rms;
+    bound.tracker_heightmap_rms = floor.tracker_heightmap_rms;
+    lookahead.push_back(bound);
   }
-  return {rows, floors};
+  return {rows, floors, lookahead};
 }
 
-// The three per-class tables.
+// The four per-class tables.
 std::string class_tables(const ClassResults& results, double duration_s, double moving_speed_px_s) {
   std::ostringstream table;
   write_class_report(table, results.rows, duration_s, moving_speed_px_s);
@@ -287,6 +298,8 @@ std::string class_tables(const ClassResults& results, double duration_s, double 
   write_start_floor(table, results.floors);
   table << "\n";
   write_rest_report(table, results.rows);
+  table << "\n";
+  write_lookahead_report(table, results.lookahead);
   return table.str();
 }
 
@@ -560,7 +573,7 @@ int main(int argc, char** argv) {
                                  {"traces", traces.str()},
                                  {"moving_above_px_s", moving.str()},
                                  {"what", "docs/tracking.md#trace-classes; ratios are to the thesis row of each class"}});
-      write_class_csv(csv, results.rows, results.floors);
+      write_class_csv(csv, results.rows, results.floors, results.lookahead);
       if (!host::write_file_atomically(csv_path, csv.str())) {
         std::fprintf(stderr, "ff-track-bench: cannot write %s\n", csv_path.c_str());
         return 1;

@@ -6,8 +6,9 @@ then one row per class and tracker). Four panels, one group of bars per
 class: the heightmap and frictionmap amplitude errors as ratios to the
 thesis pipeline, the lag, and the chatter at rest; goals as dashed lines
 (the heightmap's is 0.35x on white-200hz, 0.45x elsewhere). The heightmap
-panel also marks the start floor (direction known after 1 px of motion) and
-the shipping tracker unfaded; the chatter panel marks what is left after the
+panel also marks the start floor (direction known after 1 px of motion),
+the shipping tracker unfaded, and the best constant-velocity filter with a
+perfect motion detector, causal and seeing 30 ms ahead; the chatter panel marks what is left after the
 first 100 ms of each rest. A table of which goals each class meets is
 printed.
 
@@ -34,7 +35,8 @@ GOAL_CHATTER = 0.01
 SHIPPING = "recommended(profile)"
 TRACKERS = ("recommended()", SHIPPING)
 REQUIRED = ("class", "tracker", "lag_ms", "heightmap_vs_thesis", "frictionmap_vs_thesis", "rest_rms",
-            "rest_steady_rms", "floor_1.0px_rms", "unfaded_heightmap_rms", "heightmap_rms")
+            "rest_steady_rms", "floor_1.0px_rms", "unfaded_heightmap_rms", "heightmap_rms", "lookahead_0ms_rms",
+            "lookahead_30ms_rms")
 
 
 class InputError(Exception):
@@ -127,6 +129,11 @@ def plot(metadata, rows, output):
     unfaded = [number(s, "unfaded_heightmap_rms") / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]
     hm.plot([i + 0.5 * width for i in x], unfaded, "D", color="#e67e22", label=SHIPPING + ", never faded")
     hm.plot([i + 0.5 * width for i in x], floor, "v", color="#27ae60", label="start floor (direction after 1 px)")
+    for key, marker, colour, label in (("lookahead_0ms_rms", "_", "#000000", "best CV filter, perfect motion detector"),
+                                       ("lookahead_30ms_rms", "x", "#7f8c8d", "the same, seeing 30 ms ahead")):
+        bound = [number(s, key) / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]
+        hm.plot([i + 0.5 * width for i in x], bound, marker, color=colour, markersize=14 if marker == "_" else 7,
+                markeredgewidth=2, label=label)
     chatter = axes[1][1]
     chatter.set_yscale("log")
     steady = [number(s, "rest_steady_rms") if s else float("nan") for s in shipping]

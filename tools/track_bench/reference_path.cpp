@@ -16,25 +16,22 @@ bool on_screen(double x, double y) {
          y <= static_cast<double>(kScreenMaxY);
 }
 
-// 2 x 2 symmetric covariance.
-struct Cov {
-  double pp = 0.0, pv = 0.0, vv = 0.0;
-};
-
 }  // namespace
 
-void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
-                 std::vector<double>& position, std::vector<double>& velocity) {
+AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options) {
   const size_t n = t.size();
-  position.assign(n, 0.0);
-  velocity.assign(n, 0.0);
-  if (n == 0) return;
+  AxisPass f;
+  f.t = t;
+  f.predicted_p.resize(n);
+  f.predicted_v.resize(n);
+  f.filtered_p.resize(n);
+  f.filtered_v.resize(n);
+  f.predicted_cov.resize(n);
+  f.filtered_cov.resize(n);
+  if (n == 0) return f;
   const double q = options.accel_noise_px2_s3, r = options.measurement_noise_px * options.measurement_noise_px;
-  // Forward Kalman filter; keep the predicted and the filtered state of every step.
-  std::vector<double> fp(n), fv(n), pp(n), pv(n);
-  std::vector<Cov> fc(n), pc(n);
   double p = z[0], v = 0.0;
-  Cov c{r, 0.0, 1e12};  // velocity unknown at the first report: a diffuse prior
+  AxisCov c{r, 0.0, 1e12};  // velocity unknown at the first report: a diffuse prior
   for (size_t k = 0; k < n; ++k) {
     if (k > 0) {
       const double dt = t[k] - t[k - 1];
@@ -42,33 +39,50 @@ void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, con
       c = {c.pp + 2.0 * dt * c.pv + dt * dt * c.vv + q * dt * dt * dt / 3.0, c.pv + dt * c.vv + q * dt * dt / 2.0,
            c.vv + q * dt};
     }
-    pp[k] = p;
-    pv[k] = v;
-    pc[k] = c;
+    f.predicted_p[k] = p;
+    f.predicted_v[k] = v;
+    f.predicted_cov[k] = c;
     const double s = c.pp + r, kp = c.pp / s, kv = c.pv / s, innovation = z[k] - p;  // update: H = [1 0]
     p += kp * innovation;
     v += kv * innovation;
     c = {(1.0 - kp) * c.pp, (1.0 - kp) * c.pv, c.vv - kv * c.pv};
-    fp[k] = p;
-    fv[k] = v;
-    fc[k] = c;
+    f.filtered_p[k] = p;
+    f.filtered_v[k] = v;
+    f.filtered_cov[k] = c;
   }
-  // Backward pass: x_s(k) = x_f(k) + G (x_s(k+1) - x_p(k+1)), G = P_f F^T P_p(k+1)^-1.
-  position[n - 1] = fp[n - 1];
-  velocity[n - 1] = fv[n - 1];
+  return f;
+}
+
+void smooth_step(const AxisPass& pass, size_t k, double& p, double& v) {
+  // x_s(k) = x_f(k) + G (x_s(k+1) - x_p(k+1)), G = P_f F^T P_p(k+1)^-1.
+  const double dt = pass.t[k + 1] - pass.t[k];
+  const AxisCov& f = pass.filtered_cov[k];
+  const AxisCov& pr = pass.predicted_cov[k + 1];
+  // P_f F^T = [f.pp + dt f.pv, f.pv; f.pv + dt f.vv, f.vv]
+  const double a00 = f.pp + dt * f.pv, a01 = f.pv, a10 = f.pv + dt * f.vv, a11 = f.vv;
+  const double det = pr.pp * pr.vv - pr.pv * pr.pv;
+  const double i00 = pr.vv / det, i01 = -pr.pv / det, i11 = pr.pp / det;
+  const double g00 = a00 * i00 + a01 * i01, g01 = a00 * i01 + a01 * i11;
+  const double g10 = a10 * i00 + a11 * i01, g11 = a10 * i01 + a11 * i11;
+  const double dp = p - pass.predicted_p[k + 1], dv = v - pass.predicted_v[k + 1];
+  p = pass.filtered_p[k] + g00 * dp + g01 * dv;
+  v = pass.filtered_v[k] + g10 * dp + g11 * dv;
+}
+
+void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
+                 std::vector<double>& position, std::vector<double>& velocity) {
+  const size_t n = t.size();
+  position.assign(n, 0.0);
+  velocity.assign(n, 0.0);
+  if (n == 0) return;
+  const AxisPass pass = filter_axis(t, z, options);
+  double p = pass.filtered_p[n - 1], v = pass.filtered_v[n - 1];
+  position[n - 1] = p;
+  velocity[n - 1] = v;
   for (size_t k = n - 1; k-- > 0;) {
-    const double dt = t[k + 1] - t[k];
-    const Cov& f = fc[k];
-    const Cov& pr = pc[k + 1];
-    // P_f F^T = [f.pp + dt f.pv, f.pv; f.pv + dt f.vv, f.vv]
-    const double a00 = f.pp + dt * f.pv, a01 = f.pv, a10 = f.pv + dt * f.vv, a11 = f.vv;
-    const double det = pr.pp * pr.vv - pr.pv * pr.pv;
-    const double i00 = pr.vv / det, i01 = -pr.pv / det, i11 = pr.pp / det;
-    const double g00 = a00 * i00 + a01 * i01, g01 = a00 * i01 + a01 * i11;
-    const double g10 = a10 * i00 + a11 * i01, g11 = a10 * i01 + a11 * i11;
-    const double dp = position[k + 1] - pp[k + 1], dv = velocity[k + 1] - pv[k + 1];
-    position[k] = fp[k] + g00 * dp + g01 * dv;
-    velocity[k] = fv[k] + g10 * dp + g11 * dv;
+    smooth_step(pass, k, p, v);
+    position[k] = p;
+    velocity[k] = v;
   }
 }
 

@@ -62,4 +62,19 @@ std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint6
 void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
                  std::vector<double>& position, std::vector<double>& velocity);
 
+// The smoother in two halves, for a fixed-lag smoother (lookahead_bound.hpp):
+// the forward Kalman filter's predicted and filtered state at every report,
+// and one step of the backward (Rauch-Tung-Striebel) pass.
+struct AxisCov {
+  double pp = 0.0, pv = 0.0, vv = 0.0;  // 2 x 2 symmetric covariance of (position, velocity)
+};
+struct AxisPass {
+  std::vector<double> t;
+  std::vector<double> predicted_p, predicted_v, filtered_p, filtered_v;
+  std::vector<AxisCov> predicted_cov, filtered_cov;
+};
+AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options);
+// The smoothed state at report k from the smoothed state (p, v) at k + 1 (in place).
+void smooth_step(const AxisPass& pass, size_t k, double& p, double& v);
+
 }  // namespace ff::bench

@@ -37,8 +37,6 @@ SensorSample to_sample(const tracegen::TraceSample& s) {
   return {static_cast<uint32_t>(s.t_us), static_cast<float>(s.x), static_cast<float>(s.y), s.touch};
 }
 
-Vec2 to_vec(tracegen::Point p) { return {static_cast<float>(p.x), static_cast<float>(p.y)}; }
-
 // The tick schedule of docs/spec.md#tick-timing (the rule host::replay applies
 // to trace files): every report stamped at or before a tick is delivered
 // before that tick. The one tick loop of this file.
@@ -91,6 +89,8 @@ struct TrackerRunner {
 };
 
 }  // namespace
+
+Vec2 to_vec(tracegen::Point p) { return {static_cast<float>(p.x), static_cast<float>(p.y)}; }
 
 std::vector<TrackCase> standard_cases(double noise_px, double duration_s) {
   struct Shape {

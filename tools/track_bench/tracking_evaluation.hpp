@@ -28,6 +28,9 @@ struct TrackCase {
 // rests and a lift. The motion does not depend on the noise level.
 std::vector<TrackCase> standard_cases(double noise_px, double duration_s);
 
+// A generator point (double) as the core's vector (float).
+Vec2 to_vec(tracegen::Point p);
+
 // The truth at one tick and what the ideal renderer outputs there.
 struct TickTruth {
   uint64_t t_us = 0;

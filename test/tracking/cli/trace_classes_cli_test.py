@@ -113,6 +113,12 @@ class TrackBenchClasses(unittest.TestCase):
             # The unfaded error only where it was measured: the shipping rows.
             self.assertEqual(r["unfaded_heightmap_rms"] != "", r["tracker"] == "recommended(profile)")
             self.assertNotEqual(r["floor_1.0px_rms"], "")
+            # The lookahead bound per class, on every row; more lookahead, less error.
+            bound = [float(r["lookahead_%s_rms" % k]) for k in ("0ms", "10ms", "30ms", "100ms")]
+            self.assertEqual(bound, sorted(bound, reverse=True), r["class"])
+            self.assertNotEqual(r["lookahead_whole_rms"], "")
+        self.assertIn("| white-200hz | %.3f |" % float(rows[0]["heightmap_rms"]), res.stdout)  # the bound's table
+        self.assertIn("whole stroke (RTS)", res.stdout)
 
     def test_bad_usage_exits_2(self):
         res = run(BENCH, "--csv", "x.csv")

@@ -1,0 +1,129 @@
+// The fixed-lag smoother behind ff-track-bench's lookahead bound: closed
+// forms on noiseless constant-velocity paths (the model's own, so every
+// innovation is zero), a stop seen only once it is inside the lookahead, the
+// unbounded lookahead equal to the whole-run smoother, and on a generated
+// class what more lookahead and the latency's dating buy.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "class_report.hpp"
+#include "lookahead_bound.hpp"
+#include "support/models/trace_classes.hpp"
+
+namespace ff::bench {
+namespace {
+
+// x = 20 + 100 t until t_stop, then at rest; reports every 5 ms, noiseless.
+AxisPass stopping_finger(double t_stop, double duration_s) {
+  std::vector<double> t, z;
+  for (int k = 0; 0.005 * k <= duration_s + 1e-9; ++k) {
+    t.push_back(0.005 * k);
+    z.push_back(20.0 + 100.0 * std::min(t.back(), t_stop));
+  }
+  return filter_axis(t, z, SmootherOptions{});
+}
+
+TEST(FixedLagSmoother, CausalFollowsAConstantVelocityExactlyAndPredictsBetweenReports) {
+  FixedLagAxis axis(stopping_finger(10.0, 1.0), 0.0);
+  for (double t : {0.3, 0.3025, 0.6013, 0.9999}) {
+    const AxisState s = axis.at(t);
+    EXPECT_NEAR(s.v, 100.0, 1e-3) << t;
+    EXPECT_NEAR(s.p, 20.0 + 100.0 * t, 1e-4) << t;  // predicted from the last report at 100 px/s
+  }
+}
+
+TEST(FixedLagSmoother, SeesAStopOnlyOnceItIsInsideTheLookahead) {
+  // Stop at 0.5 s. At 0.45 s a 30 ms lookahead reaches 0.48 s: still moving,
+  // the estimate exact. At 0.49 s it reaches 0.52 s: the stop pulls the
+  // velocity down; the causal filter still reads 100 px/s.
+  const AxisPass pass = stopping_finger(0.5, 1.0);
+  FixedLagAxis causal(pass, 0.0), ahead(pass, 0.030);
+  EXPECT_NEAR(ahead.at(0.45).v, 100.0, 1e-3);
+  EXPECT_NEAR(causal.at(0.49).v, 100.0, 1e-3);
+  EXPECT_LT(ahead.at(0.49).v, 95.0);
+  // Long after the stop both agree that the finger rests where it stopped.
+  EXPECT_NEAR(causal.at(0.99).p, 70.0, 0.05);
+  EXPECT_NEAR(ahead.at(0.99).v, 0.0, 0.5);
+}
+
+TEST(FixedLagSmoother, AReportIsSeenWhenStampedNotWhenScanned) {
+  // The same stop at 0.5 s (scan time), each report stamped 10 ms late. At
+  // 0.475 s a 30 ms lookahead has seen stamps up to 0.505 s: scans up to
+  // 0.495 s, all before the stop, so the estimate is still exact (dated by
+  // the scan, the reports up to 0.505 s would already show the stop). At
+  // 0.49 s no lookahead has seen the scan of 0.485 s yet: predicted from 0.48 s.
+  const AxisPass pass = stopping_finger(0.5, 1.0);
+  FixedLagAxis late(pass, 0.030, 0.010), causal(pass, 0.0, 0.010);
+  EXPECT_NEAR(late.at(0.475).v, 100.0, 1e-3);
+  EXPECT_LT(FixedLagAxis(pass, 0.030).at(0.475).v, 99.0);  // stamped as scanned: sees 0.505 s
+  EXPECT_LT(late.at(0.485).v, 99.0);  // sees stamps up to 0.515 s: the scans after the stop
+  const AxisState s = causal.at(0.49);
+  EXPECT_NEAR(s.v, 100.0, 1e-3);
+  EXPECT_NEAR(s.p, 20.0 + 100.0 * 0.49, 1e-4);
+}
+
+TEST(FixedLagSmoother, ALookaheadPastTheRunIsTheWholeRunSmoother) {
+  // The finite lookahead walks back from the run's last report at every
+  // call; the unbounded one is the smoother of reference_path.hpp.
+  std::vector<double> t, z;
+  for (int k = 0; k < 120; ++k) {
+    t.push_back(0.005 * k + 0.0007 * (k % 4));
+    z.push_back(50.0 + 30.0 * std::sin(7.0 * t.back()) + ((k * 37) % 11 - 5) * 0.3);  // curved, with noise
+  }
+  std::vector<double> p, v;
+  smooth_axis(t, z, SmootherOptions{}, p, v);
+  FixedLagAxis far(filter_axis(t, z, SmootherOptions{}), 10.0), whole(filter_axis(t, z, SmootherOptions{}), INFINITY);
+  for (size_t k = 0; k < t.size(); k += 7) {
+    EXPECT_NEAR(far.at(t[k]).p, p[k], 1e-6) << k;
+    EXPECT_NEAR(far.at(t[k]).v, v[k], 1e-5) << k;
+    EXPECT_NEAR(whole.at(t[k]).v, v[k], 1e-9) << k;
+  }
+}
+
+std::vector<PreparedCase> class_traces(const char* name, double duration_s) {
+  std::vector<PreparedCase> cases;
+  for (const TrackCase& c : class_cases(*tracegen::find_trace_class(name), duration_s)) cases.push_back(prepare_case(c));
+  return cases;
+}
+
+TEST(LookaheadBound, MoreOfTheFutureLessError) {
+  // Each step sees the stroke's changes (starts, stops, reversals) sooner.
+  const std::vector<PreparedCase> cases = class_traces("latency", 4.0);
+  const SensorProfile sensor = tracegen::nominal_profile(cases.front().spec.options);
+  ASSERT_GT(sensor.latency_us, 1000u);
+  SmootherOptions smoother;
+  smoother.accel_noise_px2_s3 = 3e3;
+  smoother.measurement_noise_px = 1.0;
+  double previous = 1.0;
+  for (double ms : {0.0, 10.0, 30.0, 100.0}) {
+    const double rms = lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, sensor.latency_us * 1e-6, ms * 1e-3);
+    EXPECT_GT(rms, 0.0) << ms;
+    EXPECT_LT(rms, 0.95 * previous) << ms;
+    previous = rms;
+  }
+}
+
+TEST(LookaheadBound, TheTablePicksTheBestAccelerationNoisePerLookahead) {
+  const std::vector<PreparedCase> cases = class_traces("white-200hz", 3.0);
+  LookaheadRow row = lookahead_row("white-200hz", cases, kClassMovingSpeedPxS, 1.0, 0.0, 0.0);
+  SmootherOptions smoother;
+  smoother.measurement_noise_px = 1.0;
+  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) {
+    for (double q : kLookaheadAccelNoise) {
+      smoother.accel_noise_px2_s3 = q;
+      EXPECT_LE(row.best_rms[i], lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0,
+                                                         kLookaheadsMs[i] * 1e-3) + 1e-12);
+    }
+  }
+  row.thesis_heightmap_rms = 0.2;
+  row.tracker_heightmap_rms = 0.09;
+  std::ostringstream out;
+  write_lookahead_report(out, {row});
+  EXPECT_NE(out.str().find("| white-200hz | 0.200 | 0.090 (0.45×) |"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("whole stroke (RTS)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ff::bench

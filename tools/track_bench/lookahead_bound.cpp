@@ -1,0 +1,151 @@
+#include "lookahead_bound.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <ostream>
+#include <utility>
+
+namespace ff::bench {
+
+FixedLagAxis::FixedLagAxis(AxisPass pass, double lookahead_s, double latency_s)
+    : pass_(std::move(pass)), lookahead_s_(lookahead_s), latency_s_(latency_s) {
+  const size_t n = pass_.t.size();
+  if (std::isinf(lookahead_s_) && n > 0) {
+    smoothed_p_.resize(n);
+    smoothed_v_.resize(n);
+    double p = pass_.filtered_p[n - 1], v = pass_.filtered_v[n - 1];
+    smoothed_p_[n - 1] = p;
+    smoothed_v_[n - 1] = v;
+    for (size_t k = n - 1; k-- > 0;) {
+      smooth_step(pass_, k, p, v);
+      smoothed_p_[k] = p;
+      smoothed_v_[k] = v;
+    }
+  }
+}
+
+AxisState FixedLagAxis::at(double t_s) {
+  const std::vector<double>& t = pass_.t;
+  const auto last_at_or_before = [&t](double time) {
+    const auto it = std::upper_bound(t.begin(), t.end(), time);
+    return it == t.begin() ? size_t{0} : static_cast<size_t>(it - t.begin()) - 1;
+  };
+  size_t k = last_at_or_before(t_s);
+  AxisState s;
+  if (std::isinf(lookahead_s_)) {
+    s = {smoothed_p_[k], smoothed_v_[k]};
+  } else {
+    // Seen by then: stamped by t_s + lookahead, so scanned latency earlier
+    // (a later scan is not known yet, however early it was dated).
+    const size_t m = last_at_or_before(t_s + lookahead_s_ - latency_s_);
+    k = std::min(k, m);
+    if (k != cached_k_ || m != cached_m_) {
+      double p = pass_.filtered_p[m], v = pass_.filtered_v[m];
+      for (size_t j = m; j-- > k;) smooth_step(pass_, j, p, v);
+      cached_ = {p, v};
+      cached_k_ = k;
+      cached_m_ = m;
+    }
+    s = cached_;
+  }
+  s.p += s.v * (t_s - t[k]);
+  return s;
+}
+
+double lookahead_heightmap_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
+                               const SmootherOptions& smoother, double latency_s, double lookahead_s) {
+  double sum = 0.0;
+  size_t moving = 0;
+  for (const PreparedCase& c : cases) {
+    std::vector<host::TraceRow> rows;
+    rows.reserve(c.trace.samples.size());
+    for (const tracegen::TraceSample& s : c.trace.samples)
+      rows.push_back({s.t_us, static_cast<float>(s.x), static_cast<float>(s.y), s.touch});
+    struct Run {
+      double first = 0.0, last = 0.0;
+      FixedLagAxis x, y;
+    };
+    std::vector<Run> runs;
+    for (ReportRun& run : touch_runs(rows, c.trace.start_us, smoother.max_gap_s)) {
+      for (double& t : run.t) t -= latency_s;  // when the sensor scanned
+      runs.push_back({run.t.front() + latency_s, run.t.back(),
+                      FixedLagAxis(filter_axis(run.t, run.x, smoother), lookahead_s, latency_s),
+                      FixedLagAxis(filter_axis(run.t, run.y, smoother), lookahead_s, latency_s)});
+    }
+    size_t r = 0;
+    for (const TickTruth& tick : c.ticks) {
+      const double t_s = static_cast<double>(tick.t_us - c.trace.start_us) * 1e-6;
+      while (r < runs.size() && t_s > runs[r].last + smoother.max_gap_s) ++r;
+      if (r == runs.size()) break;
+      if (t_s < runs[r].first || !tick.state.touching || tick.state.resting) continue;  // untracked, or not moving
+      const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
+      if (speed < moving_speed_px_s) continue;
+      const AxisState x = runs[r].x.at(t_s), y = runs[r].y.at(t_s);
+      const double v = std::hypot(x.v, y.v);
+      const Vec2 direction = v > 0.0 ? Vec2{static_cast<float>(x.v / v), static_cast<float>(y.v / v)} : Vec2{};
+      const float hm = c.heightmap->amplitude(to_vec(tick.state.position), direction);
+      const double e = static_cast<double>(hm - tick.heightmap_ideal);
+      sum += e * e;
+      ++moving;
+    }
+  }
+  return moving > 0 ? std::sqrt(sum / static_cast<double>(moving)) : 0.0;
+}
+
+LookaheadRow lookahead_row(const std::string& trace_class, const std::vector<PreparedCase>& cases,
+                           double moving_speed_px_s, double white_noise_px, double correlated_noise_px,
+                           double latency_s) {
+  LookaheadRow row;
+  row.trace_class = trace_class;
+  SmootherOptions smoother;
+  smoother.measurement_noise_px = std::hypot(white_noise_px, correlated_noise_px);
+  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) {
+    row.best_rms[i] = INFINITY;
+    for (double q : kLookaheadAccelNoise) {
+      smoother.accel_noise_px2_s3 = q;
+      const double rms = lookahead_heightmap_rms(cases, moving_speed_px_s, smoother, latency_s, kLookaheadsMs[i] * 1e-3);
+      if (rms < row.best_rms[i]) {
+        row.best_rms[i] = rms;
+        row.best_accel_noise[i] = q;
+      }
+    }
+  }
+  return row;
+}
+
+void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& rows) {
+  char cell[96];
+  out << "| class | thesis HM amp RMS | recommended(profile) |";
+  for (double ms : kLookaheadsMs) {
+    if (std::isinf(ms)) {
+      out << " whole stroke (RTS) |";
+    } else {
+      std::snprintf(cell, sizeof cell, " %.0f ms ahead |", ms);
+      out << (ms == 0.0 ? std::string(" causal, 0 ms ahead |") : std::string(cell));
+    }
+  }
+  out << "\n|---|--:|--:|";
+  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) out << "--:|";
+  out << "\n";
+  for (const LookaheadRow& r : rows) {
+    const double base = r.thesis_heightmap_rms;
+    auto ratio = [base](double v) { return base > 0.0 ? v / base : 0.0; };
+    std::snprintf(cell, sizeof cell, "| %s | %.3f | %.3f (%.2f×) |", r.trace_class.c_str(), base, r.tracker_heightmap_rms,
+                  ratio(r.tracker_heightmap_rms));
+    out << cell;
+    for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) {
+      std::snprintf(cell, sizeof cell, " %.3f (%.2f×, q %.0e) |", r.best_rms[i], ratio(r.best_rms[i]), r.best_accel_noise[i]);
+      out << cell;
+    }
+    out << "\n";
+  }
+  out << "\nWhat knowing the future would buy: a constant-velocity Kalman smoother that at each tick has seen "
+         "every report up to 0, 10, 30 or 100 ms after it, or the whole stroke, its direction at full length "
+         "whenever the finger moves (a perfect motion oracle) and its white-acceleration density q (px²/s³) the "
+         "best of 3e2-1e6 for each class and lookahead, told the profile's noise and latency "
+         "(`tools/track_bench/lookahead_bound.*`). Not a tracker (it sees the future, and picks q against the "
+         "truth): the causal column is a constant-velocity filter's best with a perfect motion detector, the "
+         "others what waiting for the future would remove, at the cost of that much lag.\n";
+}
+
+}  // namespace ff::bench
