@@ -9,19 +9,7 @@ namespace ff::bench {
 
 FixedLagAxis::FixedLagAxis(AxisPass pass, double lookahead_s, double latency_s)
     : pass_(std::move(pass)), lookahead_s_(lookahead_s), latency_s_(latency_s) {
-  const size_t n = pass_.t.size();
-  if (std::isinf(lookahead_s_) && n > 0) {
-    smoothed_p_.resize(n);
-    smoothed_v_.resize(n);
-    double p = pass_.filtered_p[n - 1], v = pass_.filtered_v[n - 1];
-    smoothed_p_[n - 1] = p;
-    smoothed_v_[n - 1] = v;
-    for (size_t k = n - 1; k-- > 0;) {
-      smooth_step(pass_, k, p, v);
-      smoothed_p_[k] = p;
-      smoothed_v_[k] = v;
-    }
-  }
+  if (std::isinf(lookahead_s_)) smooth_pass(pass_, smoothed_p_, smoothed_v_);
 }
 
 AxisState FixedLagAxis::at(double t_s) {

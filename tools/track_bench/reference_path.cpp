@@ -69,13 +69,11 @@ void smooth_step(const AxisPass& pass, size_t k, double& p, double& v) {
   v = pass.filtered_v[k] + g10 * dp + g11 * dv;
 }
 
-void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
-                 std::vector<double>& position, std::vector<double>& velocity) {
-  const size_t n = t.size();
+void smooth_pass(const AxisPass& pass, std::vector<double>& position, std::vector<double>& velocity) {
+  const size_t n = pass.t.size();
   position.assign(n, 0.0);
   velocity.assign(n, 0.0);
   if (n == 0) return;
-  const AxisPass pass = filter_axis(t, z, options);
   double p = pass.filtered_p[n - 1], v = pass.filtered_v[n - 1];
   position[n - 1] = p;
   velocity[n - 1] = v;
@@ -84,6 +82,11 @@ void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, con
     position[k] = p;
     velocity[k] = v;
   }
+}
+
+void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
+                 std::vector<double>& position, std::vector<double>& velocity) {
+  smooth_pass(filter_axis(t, z, options), position, velocity);
 }
 
 ReferencePath ReferencePath::from_truth(const std::vector<host::TraceRow>& rows,

@@ -76,5 +76,7 @@ struct AxisPass {
 AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options);
 // The smoothed state at report k from the smoothed state (p, v) at k + 1 (in place).
 void smooth_step(const AxisPass& pass, size_t k, double& p, double& v);
+// The whole backward pass: the smoothed state at every report.
+void smooth_pass(const AxisPass& pass, std::vector<double>& position, std::vector<double>& velocity);
 
 }  // namespace ff::bench
