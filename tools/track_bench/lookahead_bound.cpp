@@ -130,8 +130,8 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
   out << "\nWhat knowing the future would buy: a constant-velocity Kalman smoother that at each tick has seen "
          "every report up to 0, 10, 30 or 100 ms after it, or the whole stroke, its direction at full length "
          "whenever the finger moves (a perfect motion oracle) and its white-acceleration density q (px²/s³) the "
-         "best of 3e2-1e6 for each class and lookahead, told the profile's noise and latency "
-         "(`tools/track_bench/lookahead_bound.*`). Not a tracker (it sees the future, and picks q against the "
+         "best of 3e2-1e6 for each class and lookahead, told the profile's latency and its white and "
+         "correlated noise together as one white noise (no wander state) (`tools/track_bench/lookahead_bound.*`). Not a tracker (it sees the future, and picks q against the "
          "truth): the causal column is a constant-velocity filter's best with a perfect motion detector, the "
          "others what waiting for the future would remove, at the cost of that much lag.\n";
 }
