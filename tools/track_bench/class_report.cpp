@@ -36,9 +36,8 @@ double slow_share(const std::vector<PreparedCase>& cases, double moving_speed_px
   size_t moving = 0, slow = 0;
   for (const PreparedCase& c : cases) {
     for (const TickTruth& t : c.ticks) {
-      if (!t.state.touching || t.state.resting) continue;
+      if (!judged_moving(t.state, moving_speed_px_s)) continue;
       const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
-      if (speed < moving_speed_px_s) continue;
       ++moving;
       if (speed >= 20.0 && speed <= 70.0) ++slow;
     }
@@ -146,7 +145,7 @@ double start_floor_rms(const std::vector<PreparedCase>& cases, double moving_spe
         from = t.state.position;
         stood = true;
       }
-      if (t.state.resting || speed < moving_speed_px_s) continue;
+      if (!judged_moving(t.state, moving_speed_px_s)) continue;
       ++moving;
       const double moved = std::hypot(t.state.position.x - from.x, t.state.position.y - from.y);
       if (moved < distance_px) {

@@ -65,9 +65,7 @@ double lookahead_heightmap_rms(const std::vector<PreparedCase>& cases, double mo
       const double t_s = static_cast<double>(tick.t_us - c.trace.start_us) * 1e-6;
       while (r < runs.size() && t_s > runs[r].last + smoother.max_gap_s) ++r;
       if (r == runs.size()) break;
-      if (t_s < runs[r].first || !tick.state.touching || tick.state.resting) continue;  // untracked, or not moving
-      const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
-      if (speed < moving_speed_px_s) continue;
+      if (t_s < runs[r].first || !judged_moving(tick.state, moving_speed_px_s)) continue;  // untracked, or not moving
       const AxisState x = runs[r].x.at(t_s), y = runs[r].y.at(t_s);
       const double v = std::hypot(x.v, y.v);
       const Vec2 direction = v > 0.0 ? Vec2{static_cast<float>(x.v / v), static_cast<float>(y.v / v)} : Vec2{};

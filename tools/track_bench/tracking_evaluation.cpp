@@ -92,6 +92,15 @@ struct TrackerRunner {
 
 Vec2 to_vec(tracegen::Point p) { return {static_cast<float>(p.x), static_cast<float>(p.y)}; }
 
+Vec2 true_direction(const tracegen::TrueState& s) {
+  const double speed = std::hypot(s.velocity.x, s.velocity.y);
+  return speed > 0.0 ? to_vec({s.velocity.x / speed, s.velocity.y / speed}) : Vec2{};
+}
+
+bool judged_moving(const tracegen::TrueState& s, double moving_speed_px_s) {
+  return s.touching && !s.resting && std::hypot(s.velocity.x, s.velocity.y) >= moving_speed_px_s;
+}
+
 std::vector<TrackCase> standard_cases(double noise_px, double duration_s) {
   struct Shape {
     const char* name;
@@ -143,11 +152,8 @@ void fill_ticks(PreparedCase& c, const Truth& truth_at) {
     t.t_us = t0 + k * kTickUs;
     t.state = truth_at(t.t_us);
     const Vec2 p = to_vec(t.state.position);
-    const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
     // The ideal renderer: true position, true unit direction (0.5 where undefined).
-    Vec2 direction{};
-    if (speed > 0.0) direction = to_vec({t.state.velocity.x / speed, t.state.velocity.y / speed});
-    t.heightmap_ideal = c.heightmap->amplitude(p, direction);
+    t.heightmap_ideal = c.heightmap->amplitude(p, true_direction(t.state));
     t.frictionmap_ideal = c.frictionmap->amplitude(p, {});
     c.ticks.push_back(t);
   }
@@ -230,10 +236,7 @@ void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCa
     const TrackState s = tracker.on_tick(static_cast<uint32_t>(tick.t_us));
     const float hm = c.heightmap->amplitude(s.position, s.direction);
     const float fm = c.frictionmap->amplitude(s.position, {});
-    const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
-    Vec2 true_dir{};
-    if (speed > 0.0) true_dir = to_vec({tick.state.velocity.x / speed, tick.state.velocity.y / speed});
-    const float hm_true_dir = c.heightmap->amplitude(s.position, true_dir);
+    const float hm_true_dir = c.heightmap->amplitude(s.position, true_direction(tick.state));
     const float vl = length(s.velocity);
     const Vec2 unit = vl > 0.0f ? (1.0f / vl) * s.velocity : Vec2{};
     const float hm_unit_dir = c.heightmap->amplitude(to_vec(tick.state.position), unit);
@@ -287,8 +290,7 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
         return;
       }
       rest.not_resting();
-      const double speed = std::hypot(tick.state.velocity.x, tick.state.velocity.y);
-      if (speed < options.moving_speed_px_s) return;
+      if (!judged_moving(tick.state, options.moving_speed_px_s)) return;
       ++m.moving_ticks;
       const double ex = static_cast<double>(s.position.x) - tick.state.position.x;
       const double ey = static_cast<double>(s.position.y) - tick.state.position.y;

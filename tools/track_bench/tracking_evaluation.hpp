@@ -31,6 +31,14 @@ std::vector<TrackCase> standard_cases(double noise_px, double duration_s);
 // A generator point (double) as the core's vector (float).
 Vec2 to_vec(tracegen::Point p);
 
+// The finger's true unit direction of motion (0 at a standstill): what the
+// ideal renderer is fed.
+Vec2 true_direction(const tracegen::TrueState& s);
+
+// Where every metric judges a tracker "while moving": the finger down, not
+// resting, at least moving_speed_px_s fast.
+bool judged_moving(const tracegen::TrueState& s, double moving_speed_px_s);
+
 // The truth at one tick and what the ideal renderer outputs there.
 struct TickTruth {
   uint64_t t_us = 0;
@@ -84,9 +92,9 @@ struct Metrics {
   double frictionmap_rms = 0.0;
   double frictionmap_p95 = 0.0;
   double heightmap_rest_rms = 0.0; // |A - 0.5| while the finger rests
-  // The same split at each stop (rest_chatter.hpp): after the first 20 ms of
-  // each rest; the first 20 ms' share of the squares; the stops, those that
-  // never settled, and how long the others took to settle.
+  // The same split at each stop (rest_chatter.hpp): after the first
+  // kStopTransientUs of each rest; that first part's share of the squares;
+  // the stops, those that never settled, and how long the others took.
   double heightmap_steady_rest_rms = 0.0;
   double rest_transient_share = 0.0;
   size_t stops = 0;
