@@ -1,8 +1,9 @@
 // The fixed-lag smoother behind ff-track-bench's lookahead bound: closed
 // forms on noiseless constant-velocity paths (the model's own, so every
 // innovation is zero), a stop seen only once it is inside the lookahead, the
-// unbounded lookahead equal to the whole-run smoother, and on a generated
-// class what more lookahead and the latency's dating buy.
+// unbounded lookahead equal to the whole-run smoother, the filter told when
+// the finger stands still (a running mean there, a start from it), and on a
+// generated class what more lookahead, the latency's dating and the anchor buy.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,6 +83,41 @@ TEST(FixedLagSmoother, ALookaheadPastTheRunIsTheWholeRunSmoother) {
   }
 }
 
+TEST(AnchoredFilter, AveragesAtAStandstillAndStartsFromTheMean) {
+  // 40 reports at rest around 10 px, then a start at 100 px/s, every 5 ms.
+  std::vector<double> t, z;
+  std::vector<bool> still;
+  for (int k = 0; k < 60; ++k) {
+    t.push_back(0.005 * k);
+    z.push_back(k < 40 ? 10.0 + 0.6 * (k % 3 - 1) + 0.05 * (k % 7) : 10.0 + 100.0 * 0.005 * (k - 39));
+    still.push_back(k < 40);
+  }
+  SmootherOptions options;
+  options.measurement_noise_px = 1.0;
+  options.accel_noise_px2_s3 = 3e3;
+  const AxisPass pass = filter_axis(t, z, options, &still);
+  // At rest: the velocity exactly 0, the position the mean of the reports so
+  // far.
+  double sum = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    sum += z[k];
+    EXPECT_EQ(pass.filtered_v[k], 0.0) << k;
+    EXPECT_NEAR(pass.filtered_p[k], sum / (k + 1), 1e-9) << k;
+    EXPECT_NEAR(pass.filtered_cov[k].pp, 1.0 / (k + 1), 1e-9) << k;
+  }
+  // The first moving report: the velocity unknown (kStartSpeedSigmaPxS),
+  // so it is nearly the step from the anchor over one interval. By hand:
+  // P = [pp + dt^2 s^2 + q dt^3 / 3, dt s^2 + q dt^2 / 2; ...], v = P01 (z - anchor) / (P00 + r).
+  const double anchor = sum / 40.0, pp = 1.0 / 40.0, dt = 0.005, s2 = kStartSpeedSigmaPxS * kStartSpeedSigmaPxS;
+  const double q = options.accel_noise_px2_s3;
+  const double expected_v =
+      (dt * s2 + q * dt * dt / 2.0) * (z[40] - anchor) / (pp + dt * dt * s2 + q * dt * dt * dt / 3.0 + 1.0);
+  EXPECT_NEAR(pass.filtered_v[40], expected_v, 1e-9 * std::fabs(expected_v));
+  // Without the oracle the same filter has not learned that the finger rests.
+  const AxisPass plain = filter_axis(t, z, options);
+  EXPECT_NE(plain.filtered_v[20], 0.0);
+}
+
 std::vector<PreparedCase> class_traces(const char* name, double duration_s) {
   std::vector<PreparedCase> cases;
   for (const TrackCase& c : class_cases(*tracegen::find_trace_class(name), duration_s)) cases.push_back(prepare_case(c));
@@ -117,12 +153,34 @@ TEST(LookaheadBound, TheTablePicksTheBestAccelerationNoisePerLookahead) {
                                                          kLookaheadsMs[i] * 1e-3) + 1e-12);
     }
   }
+  for (double q : kLookaheadAccelNoise) {
+    smoother.accel_noise_px2_s3 = q;
+    EXPECT_LE(row.anchored_rms, lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0, 0.0,
+                                                        BoundModel::AnchoredAtRest) + 1e-12);
+  }
   row.thesis_heightmap_rms = 0.2;
   row.tracker_heightmap_rms = 0.09;
   std::ostringstream out;
   write_lookahead_report(out, {row});
   EXPECT_NE(out.str().find("| white-200hz | 0.200 | 0.090 (0.45×) |"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("whole stroke (RTS)"), std::string::npos);
+  EXPECT_NE(out.str().find("causal, anchored at rest |"), std::string::npos);
+}
+
+TEST(LookaheadBound, AnAnchorAtRestHelpsAtStartsAndIsCausalOnly) {
+  // The same filter, told when the finger stands still, starts each stroke
+  // from a settled position instead of a wandering velocity.
+  const std::vector<PreparedCase> cases = class_traces("white-200hz", 8.0);
+  SmootherOptions smoother;
+  smoother.accel_noise_px2_s3 = 1e3;
+  smoother.measurement_noise_px = 1.0;
+  const double plain = lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0, 0.0);
+  const double anchored =
+      lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0, 0.0, BoundModel::AnchoredAtRest);
+  EXPECT_GT(anchored, 0.0);
+  EXPECT_LT(anchored, 0.8 * plain);  // 0.054 against 0.093 when written
+  EXPECT_TRUE(std::isnan(
+      lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0, 0.010, BoundModel::AnchoredAtRest)));
 }
 
 }  // namespace

@@ -51,11 +51,10 @@ void write_rest_report(std::ostream& out, const std::vector<ClassRow>& rows);
 // The heightmap error no tracker can avoid at the starts of strokes: that of
 // a tracker that knows the finger's position and direction exactly, except
 // during the first `distance_px` of motion after every standstill (true
-// speed below kStandstillPxS), where it renders 0.5, as a direction cannot be
+// speed below kStandstillPxS, tracking_evaluation.hpp), where it renders 0.5, as a direction cannot be
 // told from the reports' noise before the finger has moved about that far.
 // RMS over the moving ticks (speed >= moving_speed_px_s, not resting), as
 // Metrics::heightmap_rms.
-constexpr double kStandstillPxS = 1.0;
 constexpr double kStartFloorDistancesPx[] = {0.5, 1.0, 2.0};
 double start_floor_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s, double distance_px);
 

@@ -41,7 +41,10 @@ AxisState FixedLagAxis::at(double t_s) {
 }
 
 double lookahead_heightmap_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
-                               const SmootherOptions& smoother, double latency_s, double lookahead_s) {
+                               const SmootherOptions& smoother, double latency_s, double lookahead_s,
+                               BoundModel model) {
+  const bool anchored = model == BoundModel::AnchoredAtRest;
+  if (anchored && lookahead_s != 0.0) return NAN;  // no smoother over a singular covariance
   double sum = 0.0;
   size_t moving = 0;
   for (const PreparedCase& c : cases) {
@@ -56,9 +59,18 @@ double lookahead_heightmap_rms(const std::vector<PreparedCase>& cases, double mo
     std::vector<Run> runs;
     for (ReportRun& run : touch_runs(rows, c.trace.start_us, smoother.max_gap_s)) {
       for (double& t : run.t) t -= latency_s;  // when the sensor scanned
+      std::vector<bool> standstill;
+      if (anchored) {
+        for (double t : run.t) {
+          const double scanned_us = std::max(0.0, t * 1e6);
+          const tracegen::TrueState s = c.trace.truth_at(c.trace.start_us + static_cast<uint64_t>(std::llround(scanned_us)));
+          standstill.push_back(std::hypot(s.velocity.x, s.velocity.y) < kStandstillPxS);
+        }
+      }
+      const std::vector<bool>* oracle = anchored ? &standstill : nullptr;
       runs.push_back({run.t.front() + latency_s, run.t.back(),
-                      FixedLagAxis(filter_axis(run.t, run.x, smoother), lookahead_s, latency_s),
-                      FixedLagAxis(filter_axis(run.t, run.y, smoother), lookahead_s, latency_s)});
+                      FixedLagAxis(filter_axis(run.t, run.x, smoother, oracle), lookahead_s, latency_s),
+                      FixedLagAxis(filter_axis(run.t, run.y, smoother, oracle), lookahead_s, latency_s)});
     }
     size_t r = 0;
     for (const TickTruth& tick : c.ticks) {
@@ -96,6 +108,15 @@ LookaheadRow lookahead_row(const std::string& trace_class, const std::vector<Pre
       }
     }
   }
+  row.anchored_rms = INFINITY;
+  for (double q : kLookaheadAccelNoise) {
+    smoother.accel_noise_px2_s3 = q;
+    const double rms = lookahead_heightmap_rms(cases, moving_speed_px_s, smoother, latency_s, 0.0, BoundModel::AnchoredAtRest);
+    if (rms < row.anchored_rms) {
+      row.anchored_rms = rms;
+      row.anchored_accel_noise = q;
+    }
+  }
   return row;
 }
 
@@ -110,8 +131,9 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
       out << (ms == 0.0 ? std::string(" causal, 0 ms ahead |") : std::string(cell));
     }
   }
+  out << " causal, anchored at rest |";
   out << "\n|---|--:|--:|";
-  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) out << "--:|";
+  for (size_t i = 0; i <= std::size(kLookaheadsMs); ++i) out << "--:|";
   out << "\n";
   for (const LookaheadRow& r : rows) {
     const double base = r.thesis_heightmap_rms;
@@ -123,15 +145,20 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
       std::snprintf(cell, sizeof cell, " %.3f (%.2f×, q %.0e) |", r.best_rms[i], ratio(r.best_rms[i]), r.best_accel_noise[i]);
       out << cell;
     }
-    out << "\n";
+    std::snprintf(cell, sizeof cell, " %.3f (%.2f×, q %.0e) |", r.anchored_rms, ratio(r.anchored_rms), r.anchored_accel_noise);
+    out << cell << "\n";
   }
   out << "\nWhat knowing the future would buy: a constant-velocity Kalman smoother that at each tick has seen "
          "every report up to 0, 10, 30 or 100 ms after it, or the whole stroke, its direction at full length "
          "whenever the finger moves (a perfect motion oracle) and its white-acceleration density q (px²/s³) the "
-         "best of 3e2-1e6 for each class and lookahead, told the profile's latency and its white and "
+         "best of 3e1-1e6 for each class and lookahead, told the profile's latency and its white and "
          "correlated noise together as one white noise (no wander state) (`tools/track_bench/lookahead_bound.*`). Not a tracker (it sees the future, and picks q against the "
          "truth): the causal column is a constant-velocity filter's best with a perfect motion detector, the "
-         "others what waiting for the future would remove, at the cost of that much lag.\n";
+         "others what waiting for the future would remove, at the cost of that much lag. Last column: the causal "
+         "filter also told when the finger stands still (below " << kStandstillPxS << " px/s, by the truth): its "
+         "velocity held at 0 and its position averaged there, its velocity unknown again at each start (1 sigma "
+         << kStartSpeedSigmaPxS << " px/s): the best of a tracker with a resting mode and a perfect start "
+         "detector, starting from a settled anchor.\n";
 }
 
 }  // namespace ff::bench

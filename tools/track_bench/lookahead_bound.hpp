@@ -9,6 +9,7 @@
 // bound that shows how much of a causal tracker's error is the future it
 // cannot see (starts, stops, reversals) rather than the reports' noise.
 #include <cmath>
+#include <cstdint>
 #include <iosfwd>
 #include <iterator>
 #include <string>
@@ -45,13 +46,18 @@ class FixedLagAxis {
 
 // RMS of |A - A_ideal| over the moving ticks a tracker would have tracked
 // (inside a run of reports, as Metrics::heightmap_rms counts them), the
-// reports dated latency_s before their stamps.
+// reports dated latency_s before their stamps. Anchored (causal only): the
+// filter is also told when the finger stands still (filter_axis'
+// `standstill`, from the truth at each report's dated scan time): what a
+// tracker with a resting mode and a perfect start detector could do.
+enum class BoundModel : uint8_t { ConstantVelocity, AnchoredAtRest };
 double lookahead_heightmap_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
-                               const SmootherOptions& smoother, double latency_s, double lookahead_s);
+                               const SmootherOptions& smoother, double latency_s, double lookahead_s,
+                               BoundModel model = BoundModel::ConstantVelocity);
 
 constexpr double kLookaheadsMs[] = {0.0, 10.0, 30.0, 100.0, INFINITY};
 // The grid of white-acceleration densities (px^2/s^3) the bound picks from.
-constexpr double kLookaheadAccelNoise[] = {3e2, 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};
+constexpr double kLookaheadAccelNoise[] = {3e1, 1e2, 3e2, 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};
 
 struct LookaheadRow {
   std::string trace_class;
@@ -59,8 +65,10 @@ struct LookaheadRow {
   double tracker_heightmap_rms = 0.0;
   double best_rms[std::size(kLookaheadsMs)] = {};
   double best_accel_noise[std::size(kLookaheadsMs)] = {};
+  double anchored_rms = 0.0;  // BoundModel::AnchoredAtRest, causal, at its best acceleration noise
+  double anchored_accel_noise = 0.0;
 };
-// Every lookahead at its best acceleration noise; the measurement noise is
+// Every lookahead, and the anchored causal bound, at its best acceleration noise; the measurement noise is
 // the profile's white and correlated noise together.
 LookaheadRow lookahead_row(const std::string& trace_class, const std::vector<PreparedCase>& cases,
                            double moving_speed_px_s, double white_noise_px, double correlated_noise_px,

@@ -36,7 +36,7 @@ SHIPPING = "recommended(profile)"
 TRACKERS = ("recommended()", SHIPPING)
 REQUIRED = ("class", "tracker", "lag_ms", "heightmap_vs_thesis", "frictionmap_vs_thesis", "rest_rms",
             "rest_steady_rms", "floor_1.0px_rms", "unfaded_heightmap_rms", "heightmap_rms", "lookahead_0ms_rms",
-            "lookahead_30ms_rms")
+            "lookahead_30ms_rms", "anchored_0ms_rms")
 
 
 class InputError(Exception):
@@ -130,9 +130,11 @@ def plot(metadata, rows, output):
     hm.plot([i + 0.5 * width for i in x], unfaded, "D", color="#e67e22", label=SHIPPING + ", never faded")
     hm.plot([i + 0.5 * width for i in x], floor, "v", color="#27ae60", label="start floor (direction after 1 px)")
     for key, marker, colour, label in (("lookahead_0ms_rms", "_", "#000000", "best CV filter, perfect motion detector"),
-                                       ("lookahead_30ms_rms", "x", "#7f8c8d", "the same, seeing 30 ms ahead")):
+                                       ("lookahead_30ms_rms", "x", "#7f8c8d", "the same, seeing 30 ms ahead"),
+                                       ("anchored_0ms_rms", "+", "#8e44ad",
+                                        "the same, held at rest, perfect start detector")):
         bound = [number(s, key) / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]
-        hm.plot([i + 0.5 * width for i in x], bound, marker, color=colour, markersize=14 if marker == "_" else 7,
+        hm.plot([i + 0.5 * width for i in x], bound, marker, color=colour, markersize=14 if marker == "_" else 8,
                 markeredgewidth=2, label=label)
     chatter = axes[1][1]
     chatter.set_yscale("log")

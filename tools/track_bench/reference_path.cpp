@@ -18,7 +18,8 @@ bool on_screen(double x, double y) {
 
 }  // namespace
 
-AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options) {
+AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
+                     const std::vector<bool>* standstill) {
   const size_t n = t.size();
   AxisPass f;
   f.t = t;
@@ -29,12 +30,15 @@ AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z,
   f.predicted_cov.resize(n);
   f.filtered_cov.resize(n);
   if (n == 0) return f;
-  const double q = options.accel_noise_px2_s3, r = options.measurement_noise_px * options.measurement_noise_px;
+  const double r = options.measurement_noise_px * options.measurement_noise_px;
+  const auto still = [standstill](size_t k) { return standstill != nullptr && (*standstill)[k]; };
   double p = z[0], v = 0.0;
-  AxisCov c{r, 0.0, 1e12};  // velocity unknown at the first report: a diffuse prior
+  AxisCov c{1e12, 0.0, 1e12};  // nothing known before the first report: a diffuse prior
   for (size_t k = 0; k < n; ++k) {
     if (k > 0) {
       const double dt = t[k] - t[k - 1];
+      if (still(k - 1) && !still(k)) c = {c.pp, 0.0, kStartSpeedSigmaPxS * kStartSpeedSigmaPxS};  // a start
+      const double q = still(k) ? 0.0 : options.accel_noise_px2_s3;
       p += v * dt;  // predict: F = [1 dt; 0 1], Q = q [dt^3/3 dt^2/2; dt^2/2 dt]
       c = {c.pp + 2.0 * dt * c.pv + dt * dt * c.vv + q * dt * dt * dt / 3.0, c.pv + dt * c.vv + q * dt * dt / 2.0,
            c.vv + q * dt};
@@ -45,7 +49,11 @@ AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z,
     const double s = c.pp + r, kp = c.pp / s, kv = c.pv / s, innovation = z[k] - p;  // update: H = [1 0]
     p += kp * innovation;
     v += kv * innovation;
-    c = {(1.0 - kp) * c.pp, (1.0 - kp) * c.pv, c.vv - kv * c.pv};
+    c = {c.pp * r / s, c.pv * r / s, c.vv - kv * c.pv};  // 1 - kp = r / s, without the cancellation
+    if (still(k)) {  // known: not moving
+      v = 0.0;
+      c = {c.pp, 0.0, 0.0};
+    }
     f.filtered_p[k] = p;
     f.filtered_v[k] = v;
     f.filtered_cov[k] = c;

@@ -65,6 +65,13 @@ void smooth_axis(const std::vector<double>& t, const std::vector<double>& z, con
 // The smoother in two halves, for a fixed-lag smoother (lookahead_bound.hpp):
 // the forward Kalman filter's predicted and filtered state at every report,
 // and one step of the backward (Rauch-Tung-Striebel) pass.
+//
+// With `standstill` (one flag per report, from a motion oracle) the filter
+// is told when the finger stands still: there its velocity is exactly 0 and
+// its position the mean of the reports since the stop, so that a start
+// begins from a settled anchor; at the first report after a standstill the
+// velocity is unknown again (1 sigma kStartSpeedSigmaPxS). Forward pass only:
+// its covariances at a standstill are singular, so no smooth_step over them.
 struct AxisCov {
   double pp = 0.0, pv = 0.0, vv = 0.0;  // 2 x 2 symmetric covariance of (position, velocity)
 };
@@ -73,7 +80,9 @@ struct AxisPass {
   std::vector<double> predicted_p, predicted_v, filtered_p, filtered_v;
   std::vector<AxisCov> predicted_cov, filtered_cov;
 };
-AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options);
+constexpr double kStartSpeedSigmaPxS = 1000.0;
+AxisPass filter_axis(const std::vector<double>& t, const std::vector<double>& z, const SmootherOptions& options,
+                     const std::vector<bool>* standstill = nullptr);
 // The smoothed state at report k from the smoothed state (p, v) at k + 1 (in place).
 void smooth_step(const AxisPass& pass, size_t k, double& p, double& v);
 // The whole backward pass: the smoothed state at every report.

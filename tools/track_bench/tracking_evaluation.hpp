@@ -39,6 +39,10 @@ Vec2 true_direction(const tracegen::TrueState& s);
 // resting, at least moving_speed_px_s fast.
 bool judged_moving(const tracegen::TrueState& s, double moving_speed_px_s);
 
+// Slower than this the finger stands still: where a start begins (the
+// start floors, the anchored bound).
+constexpr double kStandstillPxS = 1.0;
+
 // The truth at one tick and what the ideal renderer outputs there.
 struct TickTruth {
   uint64_t t_us = 0;
