@@ -117,8 +117,11 @@ class TrackBenchClasses(unittest.TestCase):
             bound = [float(r["lookahead_%s_rms" % k]) for k in ("0ms", "10ms", "30ms", "100ms")]
             self.assertEqual(bound, sorted(bound, reverse=True), r["class"])
             self.assertNotEqual(r["lookahead_whole_rms"], "")
+            # Anchored at rest by a perfect start detector, but causal: above the whole-stroke smoother.
+            self.assertGreater(float(r["anchored_0ms_rms"]), float(r["lookahead_whole_rms"]), r["class"])
         self.assertIn("| white-200hz | %.3f |" % float(rows[0]["heightmap_rms"]), res.stdout)  # the bound's table
         self.assertIn("whole stroke (RTS)", res.stdout)
+        self.assertIn("causal, anchored at rest", res.stdout)
 
     def test_bad_usage_exits_2(self):
         res = run(BENCH, "--csv", "x.csv")
