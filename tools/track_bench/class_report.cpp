@@ -140,8 +140,7 @@ double start_floor_rms(const std::vector<PreparedCase>& cases, double moving_spe
         stood = false;  // a new touch is a new start: from where it lands
         continue;
       }
-      const double speed = std::hypot(t.state.velocity.x, t.state.velocity.y);
-      if (speed < kStandstillPxS || !stood) {
+      if (standing_still(t.state) || !stood) {
         from = t.state.position;
         stood = true;
       }

@@ -63,8 +63,8 @@ double lookahead_heightmap_rms(const std::vector<PreparedCase>& cases, double mo
       if (anchored) {
         for (double t : run.t) {
           const double scanned_us = std::max(0.0, t * 1e6);
-          const tracegen::TrueState s = c.trace.truth_at(c.trace.start_us + static_cast<uint64_t>(std::llround(scanned_us)));
-          standstill.push_back(std::hypot(s.velocity.x, s.velocity.y) < kStandstillPxS);
+          standstill.push_back(
+              standing_still(c.trace.truth_at(c.trace.start_us + static_cast<uint64_t>(std::llround(scanned_us)))));
         }
       }
       const std::vector<bool>* oracle = anchored ? &standstill : nullptr;
@@ -97,26 +97,21 @@ LookaheadRow lookahead_row(const std::string& trace_class, const std::vector<Pre
   row.trace_class = trace_class;
   SmootherOptions smoother;
   smoother.measurement_noise_px = std::hypot(white_noise_px, correlated_noise_px);
-  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) {
-    row.best_rms[i] = INFINITY;
+  // The grid's best acceleration noise for one lookahead and model.
+  const auto best = [&](double lookahead_s, BoundModel model, double& best_rms, double& best_q) {
+    best_rms = INFINITY;
     for (double q : kLookaheadAccelNoise) {
       smoother.accel_noise_px2_s3 = q;
-      const double rms = lookahead_heightmap_rms(cases, moving_speed_px_s, smoother, latency_s, kLookaheadsMs[i] * 1e-3);
-      if (rms < row.best_rms[i]) {
-        row.best_rms[i] = rms;
-        row.best_accel_noise[i] = q;
+      const double rms = lookahead_heightmap_rms(cases, moving_speed_px_s, smoother, latency_s, lookahead_s, model);
+      if (rms < best_rms) {
+        best_rms = rms;
+        best_q = q;
       }
     }
-  }
-  row.anchored_rms = INFINITY;
-  for (double q : kLookaheadAccelNoise) {
-    smoother.accel_noise_px2_s3 = q;
-    const double rms = lookahead_heightmap_rms(cases, moving_speed_px_s, smoother, latency_s, 0.0, BoundModel::AnchoredAtRest);
-    if (rms < row.anchored_rms) {
-      row.anchored_rms = rms;
-      row.anchored_accel_noise = q;
-    }
-  }
+  };
+  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i)
+    best(kLookaheadsMs[i] * 1e-3, BoundModel::ConstantVelocity, row.best_rms[i], row.best_accel_noise[i]);
+  best(0.0, BoundModel::AnchoredAtRest, row.anchored_rms, row.anchored_accel_noise);
   return row;
 }
 

@@ -101,6 +101,8 @@ bool judged_moving(const tracegen::TrueState& s, double moving_speed_px_s) {
   return s.touching && !s.resting && std::hypot(s.velocity.x, s.velocity.y) >= moving_speed_px_s;
 }
 
+bool standing_still(const tracegen::TrueState& s) { return std::hypot(s.velocity.x, s.velocity.y) < kStandstillPxS; }
+
 std::vector<TrackCase> standard_cases(double noise_px, double duration_s) {
   struct Shape {
     const char* name;

@@ -42,6 +42,7 @@ bool judged_moving(const tracegen::TrueState& s, double moving_speed_px_s);
 // Slower than this the finger stands still: where a start begins (the
 // start floors, the anchored bound).
 constexpr double kStandstillPxS = 1.0;
+bool standing_still(const tracegen::TrueState& s);
 
 // The truth at one tick and what the ideal renderer outputs there.
 struct TickTruth {
