@@ -23,6 +23,10 @@ std::string ratio(double value, double baseline) {
 
 }  // namespace
 
+double class_heightmap_goal(const std::string& trace_class) {
+  return trace_class == "white-200hz" ? kClassMaxHeightmapRatioWhite : kClassMaxHeightmapRatio;
+}
+
 std::vector<TrackCase> class_cases(const tracegen::TraceClass& trace_class, double duration_s) {
   std::vector<TrackCase> cases = standard_cases(tracegen::kNoiseLowPx, duration_s);
   for (TrackCase& c : cases) {

@@ -26,6 +26,8 @@ constexpr double kClassMaxHeightmapRatioWhite = 0.35;
 constexpr double kClassMaxLagMs = 1.0;
 constexpr double kClassMaxFrictionmapRatio = 0.8;
 constexpr double kClassRestBound = 0.01;
+// The heightmap goal of one class: the white-noise class has its own.
+double class_heightmap_goal(const std::string& trace_class);
 
 // standard_cases' six strokes and targets with the class's finger and sensor.
 std::vector<TrackCase> class_cases(const tracegen::TraceClass& trace_class, double duration_s);

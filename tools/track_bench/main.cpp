@@ -18,6 +18,7 @@
 #include "frictionfield/host/trace_csv.hpp"
 #include "bench_report.hpp"
 #include "class_report.hpp"
+#include "fade_frontier.hpp"
 #include "lookahead_bound.hpp"
 #include "proposed_config.hpp"
 #include "sensor_calibration.hpp"
@@ -48,6 +49,9 @@ constexpr const char* kDescription =
     "thesis pipeline and recommended(), with recommended()'s ratio to the thesis pipeline; then where\n"
     "the heightmap error comes from (start floors, the tracker unfaded), the chatter at each stop, and\n"
     "the bound of a constant-velocity filter with a perfect motion detector seeing 0-100 ms ahead.\n"
+    "With --frontier: per class, recommended(profile) with its direction confidence's two fade levels swept\n"
+    "over a grid: the heightmap error while moving against the chatter at rest, the whole trade\n"
+    "between the two (docs/tracking.md#fade-frontier).\n"
     "With --calibrate: a SensorProfile estimated from a recording of a resting finger, and the line\n"
     "that sends it to the device (docs/tracking.md#calibration); of the sensor-profile flags it takes\n"
     "only --latency-us (a recording cannot show the latency).";
@@ -240,6 +244,11 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
   return best.t;
 }
 
+// No names: every class.
+bool selected(const std::vector<std::string>& names, const char* trace_class) {
+  return names.empty() || std::find(names.begin(), names.end(), trace_class) != names.end();
+}
+
 struct ClassResults {
   std::vector<ClassRow> rows;
   std::vector<StartFloorRow> floors;
@@ -255,7 +264,7 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
   std::vector<StartFloorRow> floors;
   std::vector<LookaheadRow> lookahead;
   for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
-    if (!names.empty() && std::find(names.begin(), names.end(), trace_class.name) == names.end()) continue;
+    if (!selected(names, trace_class.name)) continue;
     std::fprintf(stderr, "ff-track-bench: class %s: generating 6 traces of %.0f s...\n", trace_class.name, duration_s);
     std::vector<PreparedCase> cases;
     for (const TrackCase& c : class_cases(trace_class, duration_s)) cases.push_back(prepare_case(c));
@@ -301,6 +310,65 @@ std::string class_tables(const ClassResults& results, double duration_s, double 
   table << "\n";
   write_lookahead_report(table, results.lookahead);
   return table.str();
+}
+
+// What a per-class run (--classes, --frontier) prints and, on request, writes:
+// the table to stdout, the CSV behind the run's metadata, the table into the
+// doc between the run's markers. The exit code.
+struct ClassRunOutput {
+  const char* flag;
+  const char* what;    // the CSV's "what" metadata: where the figures are explained
+  const char* marker;  // of the doc section
+};
+int emit_class_run(const ClassRunOutput& run, const std::string& table, const std::string& csv_body, double duration_s,
+                   double moving_speed_px_s, const std::string& csv_path, const std::string& doc_path) {
+  std::cout << table;
+  if (!csv_path.empty()) {
+    std::ostringstream csv, traces, moving;
+    traces << "the standard set's 6 strokes per class, " << duration_s << " s each, generated (not a sensor)";
+    moving << moving_speed_px_s;
+    host::write_metadata(csv, {{"tool", std::string("ff-track-bench ") + run.flag + " " + host::project_version()},
+                               {"date", host::utc_timestamp()},
+                               {"traces", traces.str()},
+                               {"moving_above_px_s", moving.str()},
+                               {"what", run.what}});
+    csv << csv_body;
+    if (!host::write_file_atomically(csv_path, csv.str())) {
+      std::fprintf(stderr, "ff-track-bench: cannot write %s\n", csv_path.c_str());
+      return 1;
+    }
+    std::fprintf(stderr, "ff-track-bench: figures written to %s\n", csv_path.c_str());
+  }
+  if (!doc_path.empty()) {
+    std::string error;
+    if (!replace_marked_section(doc_path, table, error, run.marker)) {
+      std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
+      return 1;
+    }
+    std::fprintf(stderr, "ff-track-bench: table written to %s\n", doc_path.c_str());
+  }
+  return 0;
+}
+
+// --frontier: the fade's trade per class, printed, and as CSV and in a doc on request.
+int run_frontier(const std::vector<std::string>& names, double duration_s, const EvalOptions& options,
+                 const Tuned& base, const std::string& csv_path, const std::string& doc_path) {
+  std::vector<FrontierRow> rows;
+  for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
+    if (!selected(names, trace_class.name)) continue;
+    std::fprintf(stderr, "ff-track-bench: class %s: 6 traces of %.0f s, %zu fades...\n", trace_class.name, duration_s,
+                 frontier_grid().size());
+    std::vector<PreparedCase> cases;
+    for (const TrackCase& c : class_cases(trace_class, duration_s)) cases.push_back(prepare_case(c));
+    rows.push_back(fade_frontier(trace_class.name, cases, tracegen::nominal_profile(cases.front().spec.options), base,
+                                 options));
+  }
+  std::ostringstream table, csv;
+  write_frontier_report(table, rows, duration_s);
+  write_frontier_csv(csv, rows);
+  return emit_class_run({"--frontier", "docs/tracking.md#fade-frontier; heightmap ratios are to the thesis pipeline",
+                         "track-bench-frontier"},
+                        table.str(), csv.str(), duration_s, options.moving_speed_px_s, csv_path, doc_path);
 }
 
 // Each configuration on each level: the report table. With `tell_sensor`,
@@ -498,6 +566,13 @@ int main(int argc, char** argv) {
                                      "moving above 4 mm/s unless --moving-above is given. With --write-doc, "
                                      "between <!-- track-bench-classes:begin --> and <!-- track-bench-classes:end -->")
       ->group(per_class);
+  bool frontier = false;
+  app.add_flag("--frontier", frontier, "Instead of the class tables: recommended(profile) with its fade's two levels "
+                                       "swept over a grid, the heightmap error while moving against the chatter at "
+                                       "rest per class (docs/tracking.md#fade-frontier); --csv for "
+                                       "tools/track_bench/plot_frontier.py. With --write-doc, between "
+                                       "<!-- track-bench-frontier:begin --> and <!-- track-bench-frontier:end -->")
+      ->group(per_class);
   app.add_option("--class", class_names, "Only these classes (implies --classes)")
       ->check(CLI::IsMember(known_classes))->group(per_class);
   std::vector<std::string> calibrate_paths;
@@ -537,9 +612,18 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  if (!csv_path.empty() && !classes && class_names.empty()) {
-    std::fprintf(stderr, "ff-track-bench: --csv needs --classes or --class\n");
+  if (!csv_path.empty() && !classes && class_names.empty() && !frontier) {
+    std::fprintf(stderr, "ff-track-bench: --csv needs --classes, --class or --frontier\n");
     return 2;
+  }
+  if (frontier) {
+    if (!trace_paths.empty() || run_tune || !dump_path.empty()) {
+      std::fprintf(stderr, "ff-track-bench: --frontier works on generated traces; it takes none of --trace, --tune, "
+                           "--dump-ticks\n");
+      return 2;
+    }
+    if (app.count("--moving-above") == 0) options.moving_speed_px_s = kClassMovingSpeedPxS;
+    return run_frontier(class_names, duration_s, options, tuned, csv_path, doc_path);
   }
   if (classes || !class_names.empty()) {
     if (!trace_paths.empty()) {
@@ -550,8 +634,7 @@ int main(int argc, char** argv) {
     if (run_tune) {
       std::vector<LevelSet> levels;
       for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
-        if (!class_names.empty() && std::find(class_names.begin(), class_names.end(), trace_class.name) == class_names.end())
-          continue;
+        if (!selected(class_names, trace_class.name)) continue;
         LevelSet level{trace_class.name, 0.0, {}, {}};
         for (const TrackCase& c : class_cases(trace_class, duration_s)) level.cases.push_back(prepare_case(c));
         level.sensor = tracegen::nominal_profile(level.cases.front().spec.options);
@@ -563,32 +646,11 @@ int main(int argc, char** argv) {
     }
     const ClassResults results = run_classes(class_names, duration_s, options, tuned, dump_path);
     const std::string table = class_tables(results, duration_s, options.moving_speed_px_s);
-    std::cout << table;
-    if (!csv_path.empty()) {
-      std::ostringstream csv, traces, moving;
-      traces << "the standard set's 6 strokes per class, " << duration_s << " s each, generated (not a sensor)";
-      moving << options.moving_speed_px_s;
-      host::write_metadata(csv, {{"tool", std::string("ff-track-bench --classes ") + host::project_version()},
-                                 {"date", host::utc_timestamp()},
-                                 {"traces", traces.str()},
-                                 {"moving_above_px_s", moving.str()},
-                                 {"what", "docs/tracking.md#trace-classes; ratios are to the thesis row of each class"}});
-      write_class_csv(csv, results.rows, results.floors, results.lookahead);
-      if (!host::write_file_atomically(csv_path, csv.str())) {
-        std::fprintf(stderr, "ff-track-bench: cannot write %s\n", csv_path.c_str());
-        return 1;
-      }
-      std::fprintf(stderr, "ff-track-bench: figures written to %s\n", csv_path.c_str());
-    }
-    if (!doc_path.empty()) {
-      std::string error;
-      if (!replace_marked_section(doc_path, table, error, "track-bench-classes")) {
-        std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
-        return 1;
-      }
-      std::fprintf(stderr, "ff-track-bench: table written to %s\n", doc_path.c_str());
-    }
-    return 0;
+    std::ostringstream csv;
+    write_class_csv(csv, results.rows, results.floors, results.lookahead);
+    return emit_class_run({"--classes", "docs/tracking.md#trace-classes; ratios are to the thesis row of each class",
+                           "track-bench-classes"},
+                          table, csv.str(), duration_s, options.moving_speed_px_s, csv_path, doc_path);
   }
 
   std::vector<LevelSet> levels;

@@ -43,8 +43,8 @@ class InputError(Exception):
     pass
 
 
-def read_classes(path):
-    """(metadata dict, [row dicts]) of a --classes CSV."""
+def read_csv(path, required, what):
+    """(metadata dict, [row dicts]) of an ff-track-bench CSV: '#' metadata lines, then a header and rows."""
     metadata, lines = {}, []
     try:
         with open(path, newline="") as f:
@@ -58,19 +58,25 @@ def read_classes(path):
         raise InputError("cannot read %s: %s" % (path, e.strerror))
     rows = list(csv.DictReader(lines))
     if not rows:
-        raise InputError("%s: no rows (is it the CSV of ff-track-bench --classes --csv?)" % path)
-    missing = [c for c in REQUIRED if c not in rows[0]]
+        raise InputError("%s: no rows (is it the CSV of %s?)" % (path, what))
+    missing = [c for c in required if c not in rows[0]]
     if missing:
-        raise InputError("%s: not a --classes CSV: no column %s" % (path, ", ".join(missing)))
+        raise InputError("%s: not the CSV of %s: no column %s" % (path, what, ", ".join(missing)))
     return metadata, rows
 
 
+def read_classes(path):
+    """(metadata dict, [row dicts]) of a --classes CSV."""
+    return read_csv(path, REQUIRED, "ff-track-bench --classes --csv")
+
+
 def number(row, key):
-    value = row.get(key, "")
+    value = row.get(key) or ""  # None: the row is short
     try:
         return float(value) if value != "" else float("nan")
     except ValueError:
-        raise InputError("%s of %s/%s is not a number: %r" % (key, row["class"], row["tracker"], value))
+        where = "/".join(row.get(k, "") for k in ("class", "tracker") if row.get(k))
+        raise InputError("%s of %s is not a number: %r" % (key, where, value))
 
 
 def heightmap_goal(trace_class):

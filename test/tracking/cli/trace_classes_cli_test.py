@@ -132,6 +132,44 @@ class TrackBenchClasses(unittest.TestCase):
         self.assertEqual(res.returncode, 2)
         self.assertIn("--classes", res.stderr)
 
+    def test_frontier_sweeps_the_fade_and_marks_its_pareto_front(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "frontier.csv")
+            res = run(BENCH, "--frontier", "--class", "white-200hz", "--class", "realistic-200hz", "--duration", "2",
+                      "--csv", path)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(path) as f:
+                lines = f.read().splitlines()
+        meta = [l for l in lines if l.startswith("#")]
+        self.assertTrue(any(l.startswith("# tool: ff-track-bench --frontier") for l in meta), meta)
+        self.assertTrue(any(l.startswith("# date: ") for l in meta), meta)
+        rows = list(csv.DictReader(l for l in lines if not l.startswith("#")))
+        for name in ("white-200hz", "realistic-200hz"):
+            points = [r for r in rows if r["class"] == name]
+            self.assertEqual(len(points), 40)
+            shipping = [r for r in points if r["shipping"] == "1"]
+            self.assertEqual([(r["rest_sigmas"], r["moving_sigmas"]) for r in shipping], [("2.50", "5.00")])
+            self.assertEqual(points[0]["heightmap_goal"], "0.35" if name == "white-200hz" else "0.45")
+            # The front, by brute force here: no other point at most as high on both and lower on one.
+            hm = [float(r["heightmap_vs_thesis"]) for r in points]
+            rest = [float(r["rest_rms"]) for r in points]
+            for i, r in enumerate(points):
+                beaten = any(hm[j] <= hm[i] and rest[j] <= rest[i] and (hm[j] < hm[i] or rest[j] < rest[i])
+                             for j in range(len(points)))
+                self.assertEqual(r["pareto"], "0" if beaten else "1", (name, r))
+            # The table's shipping cell is the CSV's shipping row.
+            cell = "%.2f× at %.3f (2.5 / 5.0 σ)" % (float(shipping[0]["heightmap_vs_thesis"]),
+                                                   float(shipping[0]["rest_rms"]))
+            self.assertIn("| %s | %s |" % (name, cell), res.stdout)
+        self.assertIn("both goals by some fade", res.stdout)
+        self.assertIn("Generated traces, not a sensor", res.stdout)
+
+    def test_frontier_takes_no_recording_and_no_tuning(self):
+        for extra in (("--trace", __file__), ("--tune",)):
+            res = run(BENCH, "--frontier", *extra)
+            self.assertEqual(res.returncode, 2, extra)
+            self.assertIn("--frontier works on generated traces", res.stderr)
+
 
 class TuneOnAClass(unittest.TestCase):
     """The grid search: many evaluations of what TrackBenchClasses checks once."""
