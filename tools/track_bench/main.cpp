@@ -19,6 +19,7 @@
 #include "bench_report.hpp"
 #include "class_report.hpp"
 #include "fade_frontier.hpp"
+#include "direction_bound.hpp"
 #include "lookahead_bound.hpp"
 #include "proposed_config.hpp"
 #include "sensor_calibration.hpp"
@@ -294,6 +295,7 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
                                        static_cast<double>(sensor.correlated_noise_px), sensor.latency_us * 1e-6);
     bound.thesis_heightmap_rms = floor.thesis_heightmap_rms;
     bound.tracker_heightmap_rms = floor.tracker_heightmap_rms;
+    bound.direction_bound_rms = class_direction_bound(trace_class, cases, duration_s, options.moving_speed_px_s);
     lookahead.push_back(bound);
   }
   return {rows, floors, lookahead};

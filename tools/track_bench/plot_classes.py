@@ -8,7 +8,8 @@ thesis pipeline, the lag, and the chatter at rest; goals as dashed lines
 (the heightmap's is 0.35x on white-200hz, 0.45x elsewhere). The heightmap
 panel also marks the start floor (direction known after 1 px of motion),
 the shipping tracker unfaded, and the best constant-velocity filter with a
-perfect motion detector, causal and seeing 30 ms ahead; the chatter panel marks what is left after the
+perfect motion detector, causal and seeing 30 ms ahead, and the observer told everything but where each
+stroke goes (no tracker that assumes nothing about it does better); the chatter panel marks what is left after the
 first 100 ms of each rest. A table of which goals each class meets is
 printed.
 
@@ -36,7 +37,7 @@ SHIPPING = "recommended(profile)"
 TRACKERS = ("recommended()", SHIPPING)
 REQUIRED = ("class", "tracker", "lag_ms", "heightmap_vs_thesis", "frictionmap_vs_thesis", "rest_rms",
             "rest_steady_rms", "floor_1.0px_rms", "unfaded_heightmap_rms", "heightmap_rms", "lookahead_0ms_rms",
-            "lookahead_30ms_rms", "anchored_0ms_rms")
+            "lookahead_30ms_rms", "anchored_0ms_rms", "direction_bound_rms")
 
 
 class InputError(Exception):
@@ -138,7 +139,9 @@ def plot(metadata, rows, output):
     for key, marker, colour, label in (("lookahead_0ms_rms", "_", "#000000", "best CV filter, perfect motion detector"),
                                        ("lookahead_30ms_rms", "x", "#7f8c8d", "the same, seeing 30 ms ahead"),
                                        ("anchored_0ms_rms", "+", "#8e44ad",
-                                        "the same, held at rest, perfect start detector")):
+                                        "the same, held at rest, perfect start detector"),
+                                       ("direction_bound_rms", "*", "#145a32",
+                                        "told all but each stroke's direction (a floor)")):
         bound = [number(s, key) / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]
         hm.plot([i + 0.5 * width for i in x], bound, marker, color=colour, markersize=14 if marker == "_" else 8,
                 markeredgewidth=2, label=label)

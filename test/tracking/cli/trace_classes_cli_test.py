@@ -119,9 +119,15 @@ class TrackBenchClasses(unittest.TestCase):
             self.assertNotEqual(r["lookahead_whole_rms"], "")
             # Anchored at rest by a perfect start detector, but causal: above the whole-stroke smoother.
             self.assertGreater(float(r["anchored_0ms_rms"]), float(r["lookahead_whole_rms"]), r["class"])
+            # Told all but the direction: under the anchored bound and the tracker here (a floor on average over
+            # strokes turned at random, not a strict bound: direction_bound.hpp).
+            self.assertGreater(float(r["direction_bound_rms"]), 0.0, r["class"])
+            self.assertLess(float(r["direction_bound_rms"]), float(r["anchored_0ms_rms"]), r["class"])
+            self.assertLess(float(r["direction_bound_rms"]), float(r["heightmap_rms"]), r["class"])
         self.assertIn("| white-200hz | %.3f |" % float(rows[0]["heightmap_rms"]), res.stdout)  # the bound's table
         self.assertIn("whole stroke (RTS)", res.stdout)
         self.assertIn("causal, anchored at rest", res.stdout)
+        self.assertIn("told all but each stroke's direction", res.stdout)
 
     def test_bad_usage_exits_2(self):
         res = run(BENCH, "--csv", "x.csv")
