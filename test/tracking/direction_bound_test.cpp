@@ -133,6 +133,39 @@ TEST(DirectionBound, AtRestTheReportsSayNothingOfTheTurn) {
   EXPECT_LT(filter.kappa(), 1e-5);
 }
 
+TEST(DirectionBound, ThePosteriorMeanIsTheVonMisesAverage) {
+  // Against a plain Riemann sum over the whole circle, 2e5 steps (100 per
+  // spread at kappa 1e5), with the density's peak divided out.
+  const tracegen::TraceClass* white = tracegen::find_trace_class("white-200hz");
+  ASSERT_NE(white, nullptr);
+  const PreparedCase c = prepare_case(class_cases(*white, 2.0).front());
+  int checked = 0;
+  for (size_t k = 0; k < c.ticks.size() && checked < 4; k += 97) {
+    const TickTruth& tick = c.ticks[k];
+    if (!judged_moving(tick.state, 50.0) || std::fabs(tick.heightmap_ideal - 0.5f) < 0.05f) continue;
+    ++checked;
+    const Vec2 position = to_vec(tick.state.position), direction = true_direction(tick.state);
+    for (double kappa : {0.0, 0.5, 3.0, 40.0, 2000.0, 1e5}) {
+      for (double mu : {0.0, 0.3, -2.5}) {
+        const int n = 200000;
+        double sum = 0.0, weights = 0.0;
+        for (int j = 0; j < n; ++j) {
+          const double phi = 2.0 * M_PI * j / n;
+          const double w = std::exp(kappa * (std::cos(phi - mu) - 1.0));
+          const double x = static_cast<double>(direction.x), y = static_cast<double>(direction.y);
+          const Vec2 turned{static_cast<float>(x * std::cos(phi) - y * std::sin(phi)),
+                            static_cast<float>(x * std::sin(phi) + y * std::cos(phi))};
+          sum += w * static_cast<double>(c.heightmap->amplitude(position, turned));
+          weights += w;
+        }
+        EXPECT_NEAR(posterior_mean_amplitude(*c.heightmap, position, direction, kappa, mu), sum / weights, 1e-5)
+            << "kappa " << kappa << " mu " << mu;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 4);
+}
+
 TEST(DirectionBound, UnknownNoiseCountsTheQuantumAsWhite) {
   tracegen::SensorOptions s;
   s.noise_px = 0.5;

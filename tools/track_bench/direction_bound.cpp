@@ -1,5 +1,6 @@
 #include "direction_bound.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "class_report.hpp"
@@ -18,8 +19,8 @@ using Matrix4 = std::array<double, 16>;
 double& at(Matrix4& m, int r, int c) { return m[static_cast<size_t>(r * 4 + c)]; }
 double at(const Matrix4& m, int r, int c) { return m[static_cast<size_t>(r * 4 + c)]; }
 
-// The posterior mean of the heightmap amplitude at the true position when
-// the direction is the true one turned by phi ~ von Mises(mu, kappa).
+}  // namespace
+
 double posterior_mean_amplitude(const ScenePlan& heightmap, Vec2 position, Vec2 direction, double kappa, double mu) {
   const auto turned = [&](double phi) {
     const double c = std::cos(phi), s = std::sin(phi);
@@ -41,8 +42,6 @@ double posterior_mean_amplitude(const ScenePlan& heightmap, Vec2 position, Vec2 
   }
   return sum / weights;
 }
-
-}  // namespace
 
 UnknownNoise unknown_noise(const tracegen::SensorOptions& sensor) {
   UnknownNoise n;

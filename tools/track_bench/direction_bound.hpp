@@ -59,6 +59,12 @@ class StrokeRotation {
   std::array<double, 16> p_{};      // row-major covariance
 };
 
+// The posterior mean of the heightmap amplitude at `position` when the
+// direction is `direction` turned by phi ~ von Mises(mu, kappa): a 61-point
+// rule over +-6 spreads of phi (the whole circle when wider), the mean
+// direction alone above kappa 1e8.
+double posterior_mean_amplitude(const ScenePlan& heightmap, Vec2 position, Vec2 direction, double kappa, double mu);
+
 // RMS of |A - A_ideal| over the moving ticks (as Metrics::heightmap_rms
 // counts them, from the first report of each touch) of the observer's
 // posterior-mean amplitude; the cases generated without drift.
