@@ -44,6 +44,27 @@ class InputError(Exception):
     pass
 
 
+def parse_plot_args(argv, doc, what, default_output):
+    """The command line both plot scripts take: the CSV and -o PNG."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0],
+                                     epilog="Exit codes: 0 ok, 2 bad usage or input.")
+    parser.add_argument("csv", help="the CSV of %s" % what)
+    parser.add_argument("-o", "--output", default=default_output, help="the PNG to write (default: %(default)s)")
+    return parser.parse_args(argv)
+
+
+def refuse_overwrite(args):
+    if os.path.abspath(args.output) == os.path.abspath(args.csv):
+        raise InputError("-o %s would overwrite the input" % args.output)
+
+
+def save_figure(fig, output, software, metadata, dpi):
+    """Write the PNG with the CSV's metadata in it, and close the figure."""
+    fig.savefig(output, dpi=dpi, metadata={
+        "Software": software, "Description": "; ".join("%s: %s" % kv for kv in metadata.items())})
+    plt.close(fig)
+
+
 def read_csv(path, required, what):
     """(metadata dict, [row dicts]) of an ff-track-bench CSV: '#' metadata lines, then a header and rows."""
     metadata, lines = {}, []
@@ -159,24 +180,17 @@ def plot(metadata, rows, output):
     fig.suptitle("ff-track-bench --classes against issue 14's goals: %s; %s" % (
         metadata.get("traces", "generated traces"), metadata.get("tool", "")), fontsize=11)
     fig.tight_layout(rect=(0, 0, 1, 0.96))
-    fig.savefig(output, dpi=110, metadata={"Software": "plot_classes.py", "Description": "; ".join(
-        "%s: %s" % kv for kv in metadata.items())})
-    plt.close(fig)
+    save_figure(fig, output, "plot_classes.py", metadata, dpi=110)
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     epilog="Exit codes: 0 ok, 2 bad usage or input.")
-    parser.add_argument("csv", help="the CSV of ff-track-bench --classes --csv")
-    parser.add_argument("-o", "--output", default="classes.png", help="the PNG to write (default: %(default)s)")
-    args = parser.parse_args(argv)
+    args = parse_plot_args(argv, __doc__, "ff-track-bench --classes --csv", "classes.png")
     try:
         metadata, rows = read_classes(args.csv)
         status = goal_status(rows)
         if not status:
             raise InputError("%s: no %s rows" % (args.csv, SHIPPING))
-        if os.path.abspath(args.output) == os.path.abspath(args.csv):
-            raise InputError("-o %s would overwrite the input" % args.output)
+        refuse_overwrite(args)
         plot(metadata, rows, args.output)
     except InputError as e:
         print("plot_classes.py: %s" % e, file=sys.stderr)

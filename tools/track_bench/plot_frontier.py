@@ -16,9 +16,7 @@ Example:
   plot_frontier.py frontier.csv -o frontier.png
 Exit codes: 0 ok, 2 bad usage or input (one line on stderr, never a traceback).
 """
-import argparse
 import math
-import os
 import sys
 
 import matplotlib
@@ -26,7 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from plot_classes import InputError, number, read_csv  # noqa: E402
+from plot_classes import InputError, number, parse_plot_args, read_csv, refuse_overwrite, save_figure  # noqa: E402
 
 REQUIRED = ("class", "rest_sigmas", "moving_sigmas", "heightmap_vs_thesis", "rest_rms", "pareto", "shipping",
             "heightmap_goal", "rest_goal")
@@ -109,22 +107,15 @@ def plot(metadata, classes, output):
     fig.suptitle("ff-track-bench --frontier: the fade's trade per class; %s; %s" % (
         metadata.get("traces", "generated traces"), metadata.get("tool", "")), fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.95))
-    fig.savefig(output, dpi=100, metadata={"Software": "plot_frontier.py", "Description": "; ".join(
-        "%s: %s" % kv for kv in metadata.items())})
-    plt.close(fig)
+    save_figure(fig, output, "plot_frontier.py", metadata, dpi=100)
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     epilog="Exit codes: 0 ok, 2 bad usage or input.")
-    parser.add_argument("csv", help="the CSV of ff-track-bench --frontier --csv")
-    parser.add_argument("-o", "--output", default="frontier.png", help="the PNG to write (default: %(default)s)")
-    args = parser.parse_args(argv)
+    args = parse_plot_args(argv, __doc__, "ff-track-bench --frontier --csv", "frontier.png")
     try:
         metadata, classes = read_frontier(args.csv)
         check_pareto_column(args.csv, classes)
-        if os.path.abspath(args.output) == os.path.abspath(args.csv):
-            raise InputError("-o %s would overwrite the input" % args.output)
+        refuse_overwrite(args)
         plot(metadata, classes, args.output)
     except InputError as e:
         print("plot_frontier.py: %s" % e, file=sys.stderr)
