@@ -32,9 +32,9 @@ double posterior_mean_amplitude(const ScenePlan& heightmap, Vec2 position, Vec2 
   const double half = kappa > 0.0 ? std::min(M_PI, kQuadratureSigmas / std::sqrt(kappa)) : M_PI;
   const bool whole_circle = half >= M_PI;
   double sum = 0.0, weights = 0.0;
+  // The whole circle: equal steps, the end left out (it is the start).
+  const double step = whole_circle ? 2.0 * half / kQuadraturePoints : 2.0 * half / (kQuadraturePoints - 1);
   for (int j = 0; j < kQuadraturePoints; ++j) {
-    // The whole circle: equal steps, the end left out (it is the start).
-    const double step = whole_circle ? 2.0 * half / kQuadraturePoints : 2.0 * half / (kQuadraturePoints - 1);
     const double offset = -half + step * j;
     const double w = std::exp(kappa * (std::cos(offset) - 1.0));
     sum += w * turned(mu + offset);
@@ -129,17 +129,20 @@ void StrokeRotation::update(double ex, double ey, double dx, double dy) {
   p_ = next;
 }
 
-double StrokeRotation::kappa() const {
+std::array<double, 2> StrokeRotation::information_times_mean() const {
+  // Lambda c_hat = P_cc^-1 c_hat, the 2 x 2 inverse written out.
   const double det = at(p_, 0, 0) * at(p_, 1, 1) - at(p_, 0, 1) * at(p_, 1, 0);
-  const double m0 = (at(p_, 1, 1) * x_[0] - at(p_, 0, 1) * x_[1]) / det;
-  const double m1 = (-at(p_, 1, 0) * x_[0] + at(p_, 0, 0) * x_[1]) / det;
-  return std::hypot(m0, m1);
+  return {(at(p_, 1, 1) * x_[0] - at(p_, 0, 1) * x_[1]) / det, (-at(p_, 1, 0) * x_[0] + at(p_, 0, 0) * x_[1]) / det};
+}
+
+double StrokeRotation::kappa() const {
+  const std::array<double, 2> m = information_times_mean();
+  return std::hypot(m[0], m[1]);
 }
 
 double StrokeRotation::mu() const {
-  const double m0 = at(p_, 1, 1) * x_[0] - at(p_, 0, 1) * x_[1];
-  const double m1 = -at(p_, 1, 0) * x_[0] + at(p_, 0, 0) * x_[1];
-  return std::atan2(m1, m0);  // det > 0 drops out
+  const std::array<double, 2> m = information_times_mean();
+  return std::atan2(m[1], m[0]);
 }
 
 double direction_bound_heightmap_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s,

@@ -54,6 +54,7 @@ class StrokeRotation {
   double mu() const;  // radians
 
  private:
+  std::array<double, 2> information_times_mean() const;  // (kappa cos mu, kappa sin mu)
   UnknownNoise noise_;
   std::array<double, 4> x_{};       // c1, c2, gx, gy
   std::array<double, 16> p_{};      // row-major covariance
