@@ -200,9 +200,8 @@ double class_direction_bound(const tracegen::TraceClass& trace_class, const std:
   const UnknownNoise noise = unknown_noise(cases.front().spec.options.sensor);
   if (cases.front().spec.options.sensor.drift_px <= 0.0)
     return direction_bound_heightmap_rms(cases, moving_speed_px_s, noise);
-  std::vector<PreparedCase> drift_known;
-  for (const TrackCase& c : without_drift(class_cases(trace_class, duration_s))) drift_known.push_back(prepare_case(c));
-  return direction_bound_heightmap_rms(drift_known, moving_speed_px_s, noise);
+  return direction_bound_heightmap_rms(prepare_cases(without_drift(class_cases(trace_class, duration_s))),
+                                       moving_speed_px_s, noise);
 }
 
 }  // namespace ff::bench

@@ -127,7 +127,7 @@ std::vector<LevelSet> prepare_levels(double duration_s) {
   std::vector<LevelSet> levels;
   for (auto [label, noise] : {std::pair<const char*, double>{"low", 1.0}, {"high", 2.5}}) {
     LevelSet level{label, noise, {}, {}};
-    for (const TrackCase& c : standard_cases(noise, duration_s)) level.cases.push_back(prepare_case(c));
+    level.cases = prepare_cases(standard_cases(noise, duration_s));
     level.sensor = tracegen::nominal_profile(level.cases.front().spec.options);
     levels.push_back(std::move(level));
   }
@@ -268,8 +268,7 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
   for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
     if (!selected(names, trace_class.name)) continue;
     std::fprintf(stderr, "ff-track-bench: class %s: generating 6 traces of %.0f s...\n", trace_class.name, duration_s);
-    std::vector<PreparedCase> cases;
-    for (const TrackCase& c : class_cases(trace_class, duration_s)) cases.push_back(prepare_case(c));
+    const std::vector<PreparedCase> cases = prepare_cases(class_cases(trace_class, duration_s));
     const double slow = slow_share(cases, options.moving_speed_px_s);
     const SensorProfile sensor = tracegen::nominal_profile(cases.front().spec.options);
     if (!dump_path.empty() && rows.empty()) {
@@ -361,8 +360,7 @@ int run_frontier(const std::vector<std::string>& names, double duration_s, const
     if (!selected(names, trace_class.name)) continue;
     std::fprintf(stderr, "ff-track-bench: class %s: 6 traces of %.0f s, %zu fades...\n", trace_class.name, duration_s,
                  frontier_grid().size());
-    std::vector<PreparedCase> cases;
-    for (const TrackCase& c : class_cases(trace_class, duration_s)) cases.push_back(prepare_case(c));
+    const std::vector<PreparedCase> cases = prepare_cases(class_cases(trace_class, duration_s));
     rows.push_back(fade_frontier(trace_class.name, cases, tracegen::nominal_profile(cases.front().spec.options), base,
                                  options));
   }
@@ -639,7 +637,7 @@ int main(int argc, char** argv) {
       for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
         if (!selected(class_names, trace_class.name)) continue;
         LevelSet level{trace_class.name, 0.0, {}, {}};
-        for (const TrackCase& c : class_cases(trace_class, duration_s)) level.cases.push_back(prepare_case(c));
+        level.cases = prepare_cases(class_cases(trace_class, duration_s));
         level.sensor = tracegen::nominal_profile(level.cases.front().spec.options);
         levels.push_back(std::move(level));
       }

@@ -174,6 +174,13 @@ PreparedCase prepare_case(const TrackCase& spec) {
   return c;
 }
 
+std::vector<PreparedCase> prepare_cases(const std::vector<TrackCase>& specs) {
+  std::vector<PreparedCase> cases;
+  cases.reserve(specs.size());
+  for (const TrackCase& c : specs) cases.push_back(prepare_case(c));
+  return cases;
+}
+
 bool load_trace_case(const std::string& path, const TraceFileOptions& options, PreparedCase& out, std::string& error) {
   std::ifstream in(path);
   if (!in) {

@@ -66,6 +66,7 @@ struct PreparedCase {
 // Generates the trace, prepares both scenes (closed form) and the ideal
 // amplitudes at every tick.
 PreparedCase prepare_case(const TrackCase& spec);
+std::vector<PreparedCase> prepare_cases(const std::vector<TrackCase>& specs);
 
 struct TraceFileOptions {
   Target target = Target::Middle;  // the heightmap and frictionmap the amplitudes are judged on
