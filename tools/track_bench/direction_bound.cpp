@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "class_report.hpp"
+#include "observer_replay.hpp"
 
 namespace ff::bench {
 
@@ -147,51 +148,36 @@ double StrokeRotation::mu() const {
 
 double direction_bound_heightmap_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
                                      const UnknownNoise& noise) {
-  double sum = 0.0;
-  size_t moving = 0;
-  for (const PreparedCase& c : cases) {
-    const std::vector<tracegen::TraceSample>& samples = c.trace.samples;
-    StrokeRotation rotation(noise);
-    size_t next = 0;
-    bool touching = false;
-    double last_scan_us = 0.0;
+  struct Observer {
+    StrokeRotation rotation;
+    const PreparedCase& c;
+    double last_scan_s = 0.0;
     tracegen::Point anchor;
-    for (const TickTruth& tick : c.ticks) {
-      for (; next < samples.size(); ++next) {  // every report scanned by this tick
-        const tracegen::TraceSample& s = samples[next];
-        const double scan_us = static_cast<double>(s.t_us) - s.latency_us;
-        if (scan_us > static_cast<double>(tick.t_us)) break;
-        if (!s.touch || !std::isfinite(s.x) || !std::isfinite(s.y)) {
-          touching = touching && s.touch;
-          continue;
-        }
-        const uint64_t scanned = static_cast<uint64_t>(std::llround(scan_us));
-        const tracegen::TrueState truth = c.trace.truth_at(scanned);
-        if (!touching) {
-          rotation.touch_down();
-          anchor = truth.position;
-        } else {
-          rotation.predict((scan_us - last_scan_us) * 1e-6);
-        }
-        if (standing_still(truth)) {
-          rotation.new_stroke();
-          anchor = truth.position;
-        }
-        touching = true;
-        last_scan_us = scan_us;
-        const tracegen::Point shake = c.trace.tremor_at(scanned);
-        rotation.update(s.x - shake.x - anchor.x, s.y - shake.y - anchor.y, truth.position.x - anchor.x,
-                        truth.position.y - anchor.y);
+
+    void report(const tracegen::TraceSample& s, const tracegen::TrueState& truth, uint64_t scanned, double scan_s,
+                bool touch_down) {
+      if (touch_down) {
+        rotation.touch_down();
+        anchor = truth.position;
+      } else {
+        rotation.predict(scan_s - last_scan_s);
       }
-      if (!touching || !judged_moving(tick.state, moving_speed_px_s)) continue;
-      const double e = posterior_mean_amplitude(*c.heightmap, to_vec(tick.state.position), true_direction(tick.state),
-                                                rotation.kappa(), rotation.mu()) -
-                       static_cast<double>(tick.heightmap_ideal);
-      sum += e * e;
-      ++moving;
+      if (standing_still(truth)) {
+        rotation.new_stroke();
+        anchor = truth.position;
+      }
+      last_scan_s = scan_s;
+      const tracegen::Point shake = c.trace.tremor_at(scanned);
+      rotation.update(s.x - shake.x - anchor.x, s.y - shake.y - anchor.y, truth.position.x - anchor.x,
+                      truth.position.y - anchor.y);
     }
-  }
-  return moving > 0 ? std::sqrt(sum / static_cast<double>(moving)) : 0.0;
+    double amplitude(const ScenePlan& heightmap, const TickTruth& tick) const {
+      return posterior_mean_amplitude(heightmap, to_vec(tick.state.position), true_direction(tick.state),
+                                      rotation.kappa(), rotation.mu());
+    }
+  };
+  return observer_heightmap_rms(cases, moving_speed_px_s,
+                                [&](const PreparedCase& c) { return Observer{StrokeRotation(noise), c, 0.0, {}}; });
 }
 
 double class_direction_bound(const tracegen::TraceClass& trace_class, const std::vector<PreparedCase>& cases,

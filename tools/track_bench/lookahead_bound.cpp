@@ -1,5 +1,7 @@
 #include "lookahead_bound.hpp"
 
+#include "heading_bound.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <ostream>
@@ -126,9 +128,9 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
       out << (ms == 0.0 ? std::string(" causal, 0 ms ahead |") : std::string(cell));
     }
   }
-  out << " causal, anchored at rest | told all but each stroke's direction |";
+  out << " causal, anchored at rest | told when each stroke starts | told all but each stroke's direction |";
   out << "\n|---|--:|--:|";
-  for (size_t i = 0; i <= std::size(kLookaheadsMs) + 1; ++i) out << "--:|";
+  for (size_t i = 0; i <= std::size(kLookaheadsMs) + 2; ++i) out << "--:|";
   out << "\n";
   for (const LookaheadRow& r : rows) {
     const double base = r.thesis_heightmap_rms;
@@ -142,12 +144,15 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
     }
     std::snprintf(cell, sizeof cell, " %.3f (%.2f×, q %.0e) |", r.anchored_rms, ratio(r.anchored_rms), r.anchored_accel_noise);
     out << cell;
-    if (std::isnan(r.direction_bound_rms)) {
-      out << " - |\n";
-    } else {
-      std::snprintf(cell, sizeof cell, " %.3f (%.2f×) |\n", r.direction_bound_rms, ratio(r.direction_bound_rms));
-      out << cell;
+    for (double v : {r.heading_bound_rms, r.direction_bound_rms}) {
+      if (std::isnan(v)) {
+        out << " - |";
+      } else {
+        std::snprintf(cell, sizeof cell, " %.3f (%.2f×) |", v, ratio(v));
+        out << cell;
+      }
     }
+    out << "\n";
   }
   out << "\nWhat knowing the future would buy: a constant-velocity Kalman smoother that at each tick has seen "
          "every report up to 0, 10, 30 or 100 ms after it, or the whole stroke, its direction at full length "
@@ -159,7 +164,12 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
          "filter also told when the finger stands still (below " << kStandstillPxS << " px/s, by the truth): its "
          "velocity held at 0 and its position averaged there, its velocity unknown again at each start (1 sigma "
          << kStartSpeedSigmaPxS << " px/s): the best of a tracker with a resting mode and a perfect start "
-         "detector, starting from a settled anchor. The very last: an observer told everything but where each "
+         "detector, starting from a settled anchor. Next: an observer told only when the finger stands still (by the "
+         "truth), which learns each stroke's heading from the reports, a heading that turns per px travelled "
+         "rather than per second, the distance from a constant-velocity filter's speed (sqrt q "
+         << HeadingBoundOptions{}.speed_accel_noise_px_s2 << " px/s²), the heading unknown again at each standstill, "
+         "rendering the amplitude's posterior mean at the true position (`tools/track_bench/heading_bound.*`): what "
+         "a tracker that found every start and stop would be left with. The very last: an observer told everything but where each "
          "stroke goes (the stroke's true path up to a rotation about where the finger last stood still, when it "
          "starts, the tremor, the drift, the latency, the noise's model; the rotation uniform a priori), rendering "
          "the amplitude's posterior mean (`tools/track_bench/direction_bound.*`): the least error with that knowledge "

@@ -67,6 +67,7 @@ struct LookaheadRow {
   double best_accel_noise[std::size(kLookaheadsMs)] = {};
   double anchored_rms = 0.0;  // BoundModel::AnchoredAtRest, causal, at its best acceleration noise
   double anchored_accel_noise = 0.0;
+  double heading_bound_rms = NAN;    // heading_bound.hpp: told when each stroke starts; NaN: not measured
   double direction_bound_rms = NAN;  // direction_bound.hpp: told all but where each stroke goes; NaN: not measured
 };
 // Every lookahead, and the anchored causal bound, at its best acceleration noise; the measurement noise is

@@ -20,6 +20,7 @@
 #include "class_report.hpp"
 #include "fade_frontier.hpp"
 #include "direction_bound.hpp"
+#include "heading_bound.hpp"
 #include "lookahead_bound.hpp"
 #include "proposed_config.hpp"
 #include "sensor_calibration.hpp"
@@ -295,6 +296,7 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
                                        static_cast<double>(sensor.correlated_noise_px), sensor.latency_us * 1e-6);
     bound.thesis_heightmap_rms = floor.thesis_heightmap_rms;
     bound.tracker_heightmap_rms = floor.tracker_heightmap_rms;
+    bound.heading_bound_rms = heading_bound_heightmap_rms(cases, options.moving_speed_px_s, ReportNoise::of(sensor));
     bound.direction_bound_rms = class_direction_bound(trace_class, cases, duration_s, options.moving_speed_px_s);
     lookahead.push_back(bound);
   }

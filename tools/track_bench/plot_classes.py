@@ -37,7 +37,7 @@ SHIPPING = "recommended(profile)"
 TRACKERS = ("recommended()", SHIPPING)
 REQUIRED = ("class", "tracker", "lag_ms", "heightmap_vs_thesis", "frictionmap_vs_thesis", "rest_rms",
             "rest_steady_rms", "floor_1.0px_rms", "unfaded_heightmap_rms", "heightmap_rms", "lookahead_0ms_rms",
-            "lookahead_30ms_rms", "anchored_0ms_rms", "direction_bound_rms")
+            "lookahead_30ms_rms", "anchored_0ms_rms", "heading_bound_rms", "direction_bound_rms")
 
 
 class InputError(Exception):
@@ -161,6 +161,8 @@ def plot(metadata, rows, output):
                                        ("lookahead_30ms_rms", "x", "#7f8c8d", "the same, seeing 30 ms ahead"),
                                        ("anchored_0ms_rms", "+", "#8e44ad",
                                         "the same, held at rest, perfect start detector"),
+                                       ("heading_bound_rms", "^", "#1f618d",
+                                        "heading model, told every standstill"),
                                        ("direction_bound_rms", "*", "#145a32",
                                         "told all but each stroke's direction (a floor)")):
         bound = [number(s, key) / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]

@@ -29,21 +29,27 @@ struct FingerKalman {
   }
 
   // dt_s later, q the acceleration's spectral density (px^2/s^3).
-  inline __attribute__((always_inline)) void predict(float dt, float q, const ReportNoise& n) {
-    p.x += v.x * dt;
-    p.y += v.y * dt;
-    const float dt2 = dt * dt;
-    P00 += dt * (2.0f * P01 + dt * P11) + q * dt2 * dt * (1.0f / 3.0f);
+  inline __attribute__((always_inline)) void predict(float dt, float q, const ReportNoise& n) { advance(dt, dt, q, n); }
+
+  // p moves by v per unit of `step` (>= 0), v wanders by white noise of
+  // density q per unit of it; the report's wander decays over dt seconds.
+  // predict() steps in time; the heading filter (heading_filter.hpp) steps
+  // in distance travelled.
+  inline __attribute__((always_inline)) void advance(float step, float dt, float q, const ReportNoise& n) {
+    p.x += v.x * step;
+    p.y += v.y * step;
+    const float step2 = step * step;
+    P00 += step * (2.0f * P01 + step * P11) + q * step2 * step * (1.0f / 3.0f);
     if (wander) {
       const float phi = n.correlation(dt);
       e.x *= phi;
       e.y *= phi;
-      P02 = phi * (P02 + dt * P12);
+      P02 = phi * (P02 + step * P12);
       P12 *= phi;
       P22 = phi * phi * P22 + n.wander_variance * (1.0f - phi * phi);
     }
-    P01 += dt * P11 + q * dt2 * 0.5f;
-    P11 += q * dt;
+    P01 += step * P11 + q * step2 * 0.5f;
+    P11 += q * step;
   }
 
   // The innovation's variance per axis (z = p + e + white).

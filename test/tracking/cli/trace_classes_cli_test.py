@@ -124,10 +124,15 @@ class TrackBenchClasses(unittest.TestCase):
             self.assertGreater(float(r["direction_bound_rms"]), 0.0, r["class"])
             self.assertLess(float(r["direction_bound_rms"]), float(r["anchored_0ms_rms"]), r["class"])
             self.assertLess(float(r["direction_bound_rms"]), float(r["heightmap_rms"]), r["class"])
+            # Told only the standstills: above nothing, under the shipping tracker (heading_bound.hpp).
+            self.assertGreater(float(r["heading_bound_rms"]), 0.0, r["class"])
+            if r["tracker"] == "recommended(profile)":
+                self.assertLess(float(r["heading_bound_rms"]), float(r["heightmap_rms"]), r["class"])
         self.assertIn("| white-200hz | %.3f |" % float(rows[0]["heightmap_rms"]), res.stdout)  # the bound's table
         self.assertIn("whole stroke (RTS)", res.stdout)
         self.assertIn("causal, anchored at rest", res.stdout)
         self.assertIn("told all but each stroke's direction", res.stdout)
+        self.assertIn("told when each stroke starts", res.stdout)
 
     def test_bad_usage_exits_2(self):
         res = run(BENCH, "--csv", "x.csv")

@@ -1,0 +1,148 @@
+// The heading bound's filter against a batch regression written out
+// independently, its claims (a misread speed rescales the heading, not its
+// direction; a standstill forgets it), and the bound on generated traces.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "class_report.hpp"
+#include "heading_bound.hpp"
+#include "lookahead_bound.hpp"
+#include "support/models/trace_classes.hpp"
+#include "support/random.hpp"
+
+namespace ff::bench {
+namespace {
+
+ReportNoise white(float sigma_px) {
+  ReportNoise n;
+  n.white_variance = sigma_px * sigma_px;
+  return n;
+}
+
+struct Report {
+  float travelled_px;  // since the previous report
+  Vec2 z;
+};
+
+// A straight stroke from (200, 150) along `angle`, its speed rising and
+// falling, reported every 5 ms with white noise.
+std::vector<Report> straight_stroke(double angle, double sigma_px, uint64_t seed) {
+  support::Random rng(seed);
+  std::vector<Report> out;
+  double s = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    const double step = k == 0 ? 0.0 : 0.2 + 3.0 * std::sin(M_PI * k / 40.0);
+    s += step;
+    out.push_back({static_cast<float>(step),
+                   {static_cast<float>(200.0 + s * std::cos(angle) + sigma_px * rng.gaussian()),
+                    static_cast<float>(150.0 + s * std::sin(angle) + sigma_px * rng.gaussian())}});
+  }
+  return out;
+}
+
+// Without turning, the heading is a regression of each axis on the distance
+// travelled: z_k = p0 + s_k u + noise, p0 and u unknown, the prior on u
+// N(0, kUnknownSigma^2) and none on p0. Per axis the information is
+// A = sum [1 s_k]^T [1 s_k] / sigma^2 + diag(0, 1 / kUnknownSigma^2) and
+// A [p0 u]^T = sum [1 s_k]^T z_k / sigma^2; u's variance is (A^-1)_11.
+TEST(HeadingBound, WithoutTurningTheFilterIsTheBatchRegression) {
+  const float sigma = 1.0f;
+  const std::vector<Report> reports = straight_stroke(0.7, static_cast<double>(sigma), 3);
+  StrokeHeading heading(white(sigma), 0.0f);
+  const double unknown = static_cast<double>(StrokeHeading::kUnknownSigma);
+  double a00 = 0, a01 = 0, a11 = 1.0 / (unknown * unknown);
+  double bx0 = 0, bx1 = 0, by0 = 0, by1 = 0, s = 0;
+  for (size_t k = 0; k < reports.size(); ++k) {
+    const Report& r = reports[k];
+    if (k == 0) heading.touch_down(r.z);
+    else heading.update(r.z, r.travelled_px, 0.005f);
+    s += static_cast<double>(r.travelled_px);
+    const double w = 1.0 / static_cast<double>(sigma * sigma);
+    a00 += w;
+    a01 += w * s;
+    a11 += w * s * s;
+    bx0 += w * static_cast<double>(r.z.x);
+    bx1 += w * s * static_cast<double>(r.z.x);
+    by0 += w * static_cast<double>(r.z.y);
+    by1 += w * s * static_cast<double>(r.z.y);
+    if (k < 2) continue;
+    const double det = a00 * a11 - a01 * a01;
+    const double ux = (a00 * bx1 - a01 * bx0) / det, uy = (a00 * by1 - a01 * by0) / det;
+    const double var_u = a00 / det;
+    const FingerKalman& f = heading.filter();
+    EXPECT_NEAR(static_cast<double>(f.P11), var_u, 2e-3 * var_u) << k;
+    EXPECT_NEAR(static_cast<double>(f.v.x), ux, 2e-3 * std::hypot(ux, uy) + 1e-4) << k;
+    EXPECT_NEAR(static_cast<double>(f.v.y), uy, 2e-3 * std::hypot(ux, uy) + 1e-4) << k;
+    EXPECT_NEAR(heading.kappa(), std::hypot(ux, uy) / var_u, 5e-3 * std::hypot(ux, uy) / var_u) << k;
+  }
+  EXPECT_NEAR(heading.mu(), 0.7, 0.02);
+}
+
+TEST(HeadingBound, ASpeedReadTooLowRescalesTheHeadingNotItsDirection) {
+  const std::vector<Report> reports = straight_stroke(-2.2, 0.0, 4);  // noise-free
+  StrokeHeading exact(white(1.0f), 1e-4f), halved(white(1.0f), 1e-4f);
+  exact.touch_down(reports[0].z);
+  halved.touch_down(reports[0].z);
+  for (size_t k = 1; k < reports.size(); ++k) {
+    exact.update(reports[k].z, reports[k].travelled_px, 0.005f);
+    halved.update(reports[k].z, 0.5f * reports[k].travelled_px, 0.005f);
+  }
+  EXPECT_NEAR(exact.mu(), -2.2, 1e-3);
+  EXPECT_NEAR(halved.mu(), -2.2, 1e-3);
+  const Vec2 u = exact.filter().v, v = halved.filter().v;
+  EXPECT_NEAR(static_cast<double>(length(u)), 1.0, 0.01);
+  EXPECT_NEAR(static_cast<double>(length(v)), 2.0, 0.02);
+}
+
+TEST(HeadingBound, AStandstillForgetsTheHeadingAndTheNextStrokeIsLearnt) {
+  StrokeHeading heading(white(1.0f), 1e-4f);
+  const std::vector<Report> first = straight_stroke(0.0, 0.5, 5);
+  heading.touch_down(first[0].z);
+  for (size_t k = 1; k < first.size(); ++k) heading.update(first[k].z, first[k].travelled_px, 0.005f);
+  EXPECT_GT(heading.kappa(), 100.0);
+  heading.new_stroke();
+  EXPECT_EQ(heading.kappa(), 0.0);
+  // Forgotten: the heading as unknown as at touch-down, and no longer tied to the position.
+  EXPECT_EQ(heading.filter().P11, StrokeHeading::kUnknownSigma * StrokeHeading::kUnknownSigma);
+  EXPECT_EQ(heading.filter().P01, 0.0f);
+  // The second stroke leaves from where the first ended, at a right angle,
+  // and is learnt as fast as the first: from a few px of it.
+  const Vec2 end = heading.filter().p;
+  const std::vector<Report> second = straight_stroke(M_PI / 2, 0.5, 6);
+  for (size_t k = 0; k < second.size(); ++k) {
+    const Report& r = second[k];
+    heading.update({end.x + r.z.x - 200.0f, end.y + r.z.y - 150.0f}, r.travelled_px, 0.005f);
+    if (k == 5) {  // 4.5 px into it
+      EXPECT_NEAR(heading.mu(), M_PI / 2, 0.3);
+      EXPECT_GT(heading.kappa(), 10.0);
+      EXPECT_NEAR(static_cast<double>(length(heading.filter().v)), 1.0, 0.3);  // not shrunk by the old certainty
+    }
+  }
+  EXPECT_GT(heading.kappa(), 100.0);
+  EXPECT_NEAR(heading.mu(), M_PI / 2, 0.05);
+}
+
+TEST(HeadingBound, OnTracesItLiesBetweenTheFloorAndTheTrackers) {
+  const tracegen::TraceClass* realistic = tracegen::find_trace_class("realistic-200hz");
+  ASSERT_NE(realistic, nullptr);
+  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*realistic, 4.0));
+  const SensorProfile sensor = tracegen::nominal_profile(cases.front().spec.options);
+  const double bound = heading_bound_heightmap_rms(cases, kClassMovingSpeedPxS, ReportNoise::of(sensor));
+  EvalOptions options;
+  options.moving_speed_px_s = kClassMovingSpeedPxS;
+  options.lag = false;
+  options.cost = false;
+  const double shipping = evaluate(TrackerConfig::recommended(sensor), cases, options).heightmap_rms;
+  EXPECT_GT(bound, 0.0);
+  EXPECT_LT(bound, 0.8 * shipping);
+  // Told nothing of the standstills it would keep each heading across
+  // reversals and new strokes: the starts are what it is told.
+  HeadingBoundOptions never_still;
+  never_still.told_standstills = false;
+  EXPECT_GT(heading_bound_heightmap_rms(cases, kClassMovingSpeedPxS, ReportNoise::of(sensor), never_still), 1.2 * bound);
+}
+
+}  // namespace
+}  // namespace ff::bench
