@@ -161,7 +161,7 @@ def plot(metadata, rows, output):
                                        ("lookahead_30ms_rms", "x", "#7f8c8d", "the same, seeing 30 ms ahead"),
                                        ("anchored_0ms_rms", "+", "#8e44ad",
                                         "the same, held at rest, perfect start detector"),
-                                       ("heading_bound_rms", "^", "#1f618d",
+                                       ("heading_bound_rms", "^", "#f1c40f",
                                         "heading model, told every standstill"),
                                        ("direction_bound_rms", "*", "#145a32",
                                         "told all but each stroke's direction (a floor)")):
