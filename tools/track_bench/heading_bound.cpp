@@ -1,5 +1,6 @@
 #include "heading_bound.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "direction_bound.hpp"
@@ -47,7 +48,9 @@ double heading_bound_heightmap_rms(const std::vector<PreparedCase>& cases, doubl
         heading.touch_down(z);
         speed.start(z, noise, kUnknownSpeedPxS);
       } else {
-        const float dt = static_cast<float>(scan_s - last_scan_s);
+        // Scan times are the stamps less each report's own latency: at 1 kHz
+        // with 1-3 ms of it they need not increase. Out of order: no time.
+        const float dt = std::max(0.0f, static_cast<float>(scan_s - last_scan_s));
         speed.predict(dt, speed_q, noise);
         speed.update(z, speed.inverse_innovation(noise));
         float travelled = length(speed.v) * dt;
@@ -57,7 +60,7 @@ double heading_bound_heightmap_rms(const std::vector<PreparedCase>& cases, doubl
         }
         heading.update(z, travelled, dt);
       }
-      last_scan_s = scan_s;
+      last_scan_s = std::max(last_scan_s, scan_s);
     }
     double amplitude(const ScenePlan& heightmap, const TickTruth& tick) const {
       return posterior_mean_amplitude(heightmap, to_vec(tick.state.position), Vec2{1.0f, 0.0f}, heading.kappa(),
