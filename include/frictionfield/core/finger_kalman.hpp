@@ -33,8 +33,8 @@ struct FingerKalman {
 
   // p moves by v per unit of `step` (>= 0), v wanders by white noise of
   // density q per unit of it; the report's wander decays over dt seconds.
-  // predict() steps in time; the heading filter (heading_filter.hpp) steps
-  // in distance travelled.
+  // predict() steps in time; the benchmark's heading model
+  // (tools/track_bench/heading_bound.hpp) steps in distance travelled.
   inline __attribute__((always_inline)) void advance(float step, float dt, float q, const ReportNoise& n) {
     p.x += v.x * step;
     p.y += v.y * step;
