@@ -1,11 +1,11 @@
 #include "lookahead_bound.hpp"
 
-#include "heading_bound.hpp"
-
 #include <algorithm>
 #include <cstdio>
 #include <ostream>
 #include <utility>
+
+#include "heading_bound.hpp"
 
 namespace ff::bench {
 
@@ -166,7 +166,8 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
          << kStartSpeedSigmaPxS << " px/s): the best of a tracker with a resting mode and a perfect start "
          "detector, starting from a settled anchor. Next: an observer told only when the finger stands still (by the "
          "truth), which learns each stroke's heading from the reports, a heading that turns per px travelled "
-         "rather than per second, the distance from a constant-velocity filter's speed (sqrt q "
+         "rather than per second (white noise of " << HeadingBoundOptions{}.turn_variance_per_px << " per px), the "
+         "distance from a constant-velocity filter's speed (sqrt q "
          << HeadingBoundOptions{}.speed_accel_noise_px_s2 << " px/s²), the heading unknown again at each standstill, "
          "rendering the amplitude's posterior mean at the true position (`tools/track_bench/heading_bound.*`): what "
          "a tracker that found every start and stop would be left with. The very last: an observer told everything but where each "
