@@ -58,8 +58,12 @@ def refuse_overwrite(args):
         raise InputError("-o %s would overwrite the input" % args.output)
 
 
-def save_figure(fig, output, software, metadata, dpi):
-    """Write the PNG with the CSV's metadata in it, and close the figure."""
+def save_figure(fig, output, software, metadata, title, dpi, top):
+    """Title the figure with the CSV's traces and tool, lay it out under the title (up to `top` of the
+    height), write the PNG with the CSV's metadata in it, and close the figure."""
+    fig.suptitle("%s; %s; %s" % (title, metadata.get("traces", "generated traces"), metadata.get("tool", "")),
+                 fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, top))
     fig.savefig(output, dpi=dpi, metadata={
         "Software": software, "Description": "; ".join("%s: %s" % kv for kv in metadata.items())})
     plt.close(fig)
@@ -179,10 +183,8 @@ def plot(metadata, rows, output):
         handles, labels = ax.get_legend_handles_labels()
         unique = dict(zip(labels, handles))
         ax.legend(unique.values(), unique.keys(), fontsize=8, loc="upper left", ncol=2)
-    fig.suptitle("ff-track-bench --classes against issue 14's goals: %s; %s" % (
-        metadata.get("traces", "generated traces"), metadata.get("tool", "")), fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.96))
-    save_figure(fig, output, "plot_classes.py", metadata, dpi=110)
+    save_figure(fig, output, "plot_classes.py", metadata, "ff-track-bench --classes against issue 14's goals",
+                dpi=110, top=0.96)
 
 
 def main(argv=None):

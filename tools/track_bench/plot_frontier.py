@@ -104,10 +104,8 @@ def plot(metadata, classes, output):
         ax.legend(fontsize=6.5, loc="upper right")
     for ax in list(axes.flat)[n:]:
         ax.axis("off")
-    fig.suptitle("ff-track-bench --frontier: the fade's trade per class; %s; %s" % (
-        metadata.get("traces", "generated traces"), metadata.get("tool", "")), fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.95))
-    save_figure(fig, output, "plot_frontier.py", metadata, dpi=100)
+    save_figure(fig, output, "plot_frontier.py", metadata, "ff-track-bench --frontier: the fade's trade per class",
+                dpi=100, top=0.95)
 
 
 def main(argv=None):
