@@ -1,10 +1,9 @@
 """plot_classes.py on a hand-made --classes CSV: which goals each class meets
 (worked out by hand below), the figure, and bad input refused with exit 2."""
-import os
-
 import pytest
 
 import plot_classes
+import plot_test_support
 
 HEADER = ("class,tracker,lag_ms,position_rmse_px,direction_mean_deg,heightmap_rms,heightmap_vs_thesis,frictionmap_rms,"
           "frictionmap_vs_thesis,rest_rms,rest_vs_thesis,rest_first_share,rest_steady_rms,stops,settle_median_ms,"
@@ -20,12 +19,7 @@ def row(cls, tracker, lag, hm_ratio, fm_ratio, rest, unfaded=""):
 
 
 def write_csv(path, rows, metadata=("tool: ff-track-bench --classes 0.1.0", "traces: 2 classes, made by hand")):
-    with open(path, "w") as f:
-        for m in metadata:
-            f.write("# %s\n" % m)
-        f.write(HEADER + "\n")
-        for r in rows:
-            f.write(r + "\n")
+    plot_test_support.write_csv(path, HEADER, rows, metadata)
 
 
 ROWS = [
@@ -56,10 +50,7 @@ def test_writes_the_figure_and_prints_the_goals(tmp_path, capsys):
     write_csv(path, ROWS)
     out = tmp_path / "classes.png"
     assert plot_classes.main([str(path), "-o", str(out)]) == 0
-    with open(out, "rb") as f:
-        png = f.read()
-    assert png[:8] == b"\x89PNG\r\n\x1a\n"
-    assert b"ff-track-bench --classes 0.1.0" in png  # the CSV's metadata travels into the PNG
+    plot_test_support.assert_png_with_metadata(out, "ff-track-bench --classes 0.1.0")
     printed = capsys.readouterr().out
     assert "goals met (recommended(profile)): lag 1/2, heightmap 1/2, frictionmap 2/2, chatter 1/2" in printed
 
@@ -74,11 +65,7 @@ def test_writes_the_figure_and_prints_the_goals(tmp_path, capsys):
 def test_bad_input_exits_2_with_one_line(tmp_path, capsys, content, message):
     path = tmp_path / "bad.csv"
     path.write_text(content)
-    assert plot_classes.main([str(path), "-o", str(tmp_path / "x.png")]) == 2
-    err = capsys.readouterr().err
-    assert message in err
-    assert err.count("\n") == 1
-    assert not os.path.exists(tmp_path / "x.png")
+    plot_test_support.assert_refused(plot_classes.main, path, tmp_path / "x.png", capsys, message)
 
 
 def test_missing_file_and_overwriting_the_input_exit_2(tmp_path, capsys):

@@ -1,11 +1,10 @@
 """plot_frontier.py on a hand-made --frontier CSV: the front and the verdict
 per class (worked out by hand below), the figure, and bad input refused with
 exit 2."""
-import os
-
 import pytest
 
 import plot_frontier
+import plot_test_support
 
 HEADER = "class,rest_sigmas,moving_sigmas,heightmap_vs_thesis,rest_rms,pareto,shipping,heightmap_goal,rest_goal"
 
@@ -24,12 +23,7 @@ ROWS = [
 
 
 def write_csv(path, rows, metadata=("tool: ff-track-bench --frontier 0.1.0", "traces: made by hand")):
-    with open(path, "w") as f:
-        for m in metadata:
-            f.write("# %s\n" % m)
-        f.write(HEADER + "\n")
-        for r in rows:
-            f.write(r + "\n")
+    plot_test_support.write_csv(path, HEADER, rows, metadata)
 
 
 def test_front_and_verdict_by_hand(tmp_path):
@@ -52,10 +46,7 @@ def test_writes_the_figure_and_prints_the_verdict(tmp_path, capsys):
     write_csv(path, ROWS)
     out = tmp_path / "frontier.png"
     assert plot_frontier.main([str(path), "-o", str(out)]) == 0
-    with open(out, "rb") as f:
-        png = f.read()
-    assert png[:8] == b"\x89PNG\r\n\x1a\n"
-    assert b"ff-track-bench --frontier 0.1.0" in png  # the CSV's metadata travels into the PNG
+    plot_test_support.assert_png_with_metadata(out, "ff-track-bench --frontier 0.1.0")
     printed = capsys.readouterr().out
     assert "classes where some fade meets both goals: 1/2" in printed
     assert "0.47x (2.5 / 5.0 sigma)" in printed
@@ -71,11 +62,7 @@ def test_writes_the_figure_and_prints_the_verdict(tmp_path, capsys):
 def test_bad_input_exits_2_with_one_line(tmp_path, capsys, rows, message):
     path = tmp_path / "bad.csv"
     write_csv(path, rows)
-    assert plot_frontier.main([str(path), "-o", str(tmp_path / "x.png")]) == 2
-    err = capsys.readouterr().err
-    assert message in err
-    assert err.count("\n") == 1
-    assert not os.path.exists(tmp_path / "x.png")
+    plot_test_support.assert_refused(plot_frontier.main, path, tmp_path / "x.png", capsys, message)
 
 
 def test_a_classes_csv_and_overwriting_the_input_exit_2(tmp_path, capsys):
