@@ -140,8 +140,31 @@ TEST(HeadingBound, OnTracesItLiesBetweenTheFloorAndTheTrackers) {
   // Told nothing of the standstills it would keep each heading across
   // reversals and new strokes: the starts are what it is told.
   HeadingBoundOptions never_still;
-  never_still.told_standstills = false;
+  never_still.boundaries = StrokeBoundaries::None;
   EXPECT_GT(heading_bound_heightmap_rms(cases, kClassMovingSpeedPxS, ReportNoise::of(sensor), never_still), 1.2 * bound);
+}
+
+// Told nothing, its strokes ended where a minimum-jerk fit predicts: on the
+// generator's strokes (exactly minimum-jerk) it finds almost every end, on
+// time, and stays near the bound told the standstills.
+TEST(HeadingBound, StrokesEndedWherePredictedComeCloseToTheStandstillsTold) {
+  const tracegen::TraceClass* white = tracegen::find_trace_class("white-200hz");
+  ASSERT_NE(white, nullptr);
+  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white, 4.0));
+  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  const double told = heading_bound_heightmap_rms(cases, kClassMovingSpeedPxS, noise);
+  HeadingBoundOptions predicted;
+  predicted.boundaries = StrokeBoundaries::PredictedEnds;
+  const HeadingBoundResult r = heading_bound(cases, kClassMovingSpeedPxS, noise, predicted);
+  EXPECT_LT(r.heightmap_rms, 1.15 * told);
+  ASSERT_GT(r.ends.standstills, 10u);
+  EXPECT_GE(r.ends.found, r.ends.standstills * 9 / 10);
+  EXPECT_LE(std::fabs(r.ends.median_delay_ms), 10.0);
+  EXPECT_LE(r.ends.other_ends, r.ends.standstills / 5);
+  // It never decides the finger rests: at rest it renders a heading learnt from the noise,
+  // where the bound told the standstills renders 0.5.
+  EXPECT_LT(heading_bound(cases, kClassMovingSpeedPxS, noise).rest_rms, 1e-6);
+  EXPECT_GT(r.rest_rms, 0.05);
 }
 
 }  // namespace

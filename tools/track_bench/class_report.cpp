@@ -103,7 +103,7 @@ void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const
   for (double d : kStartFloorDistancesPx) out << ",floor_" << fixed(d, 1) << "px_rms";
   out << ",unfaded_heightmap_rms";
   for (double ms : kLookaheadsMs) out << ",lookahead_" << (std::isinf(ms) ? std::string("whole") : fixed(ms, 0) + "ms") << "_rms";
-  out << ",anchored_0ms_rms,heading_bound_rms,direction_bound_rms\n";
+  out << ",anchored_0ms_rms,heading_bound_rms,direction_bound_rms,predicted_ends_rms,predicted_ends_rest_rms\n";
   auto number = [](double v) { return fixed(v, 6); };
   auto over = [&](double value, double baseline) { return baseline > 0.0 ? number(value / baseline) : std::string(); };
   const ClassRow* baseline = nullptr;
@@ -131,7 +131,9 @@ void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const
       out << "," << (bound != nullptr ? number(bound->best_rms[i]) : std::string());
     out << "," << (bound != nullptr ? number(bound->anchored_rms) : std::string());
     for (double v : {bound != nullptr ? bound->heading_bound_rms : double{NAN},
-                     bound != nullptr ? bound->direction_bound_rms : double{NAN}})
+                     bound != nullptr ? bound->direction_bound_rms : double{NAN},
+                     bound != nullptr ? bound->predicted_ends.heightmap_rms : double{NAN},
+                     bound != nullptr ? bound->predicted_ends.rest_rms : double{NAN}})
       out << "," << (!std::isnan(v) ? number(v) : std::string());
     out << "\n";
   }

@@ -176,8 +176,9 @@ double direction_bound_heightmap_rms(const std::vector<PreparedCase>& cases, dou
                                       rotation.kappa(), rotation.mu());
     }
   };
-  return observer_heightmap_rms(cases, moving_speed_px_s,
-                                [&](const PreparedCase& c) { return Observer{StrokeRotation(noise), c, 0.0, {}}; });
+  return observer_errors(cases, moving_speed_px_s,
+                         [&](const PreparedCase& c) { return Observer{StrokeRotation(noise), c, 0.0, {}}; })
+      .heightmap_rms;
 }
 
 double class_direction_bound(const tracegen::TraceClass& trace_class, const std::vector<PreparedCase>& cases,

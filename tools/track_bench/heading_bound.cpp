@@ -5,10 +5,13 @@
 
 #include "direction_bound.hpp"
 #include "observer_replay.hpp"
+#include "stroke_end_predictor.hpp"
 
 namespace ff::bench {
 
 void StrokeHeading::touch_down(Vec2 z) { k_.start(z, noise_, kUnknownSigma); }
+
+void StrokeHeading::forget(float variance) { k_.P11 += variance; }
 
 void StrokeHeading::new_stroke() {
   k_.v = {};
@@ -29,24 +32,78 @@ double StrokeHeading::kappa() const {
 
 double StrokeHeading::mu() const { return std::atan2(static_cast<double>(k_.v.y), static_cast<double>(k_.v.x)); }
 
-double heading_bound_heightmap_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
-                                   const ReportNoise& noise, const HeadingBoundOptions& options) {
+namespace {
+
+// Per case: the truth's standstills (first and last report's scan time; not
+// those a touch begins with, which end no stroke) and the predicted ends.
+struct EndLog {
+  std::vector<std::pair<double, double>> standstills;
+  std::vector<double> ends;
+};
+
+constexpr double kEndToleranceS = kPredictedEndToleranceMs * 1e-3;
+
+StrokeEndStats end_stats(const std::vector<EndLog>& logs) {
+  StrokeEndStats stats;
+  std::vector<double> delays;
+  for (const EndLog& log : logs) {
+    for (const auto& [first, last] : log.standstills) {
+      ++stats.standstills;
+      double best = INFINITY;
+      for (double e : log.ends)
+        if (e >= first - kEndToleranceS && e <= last + kEndToleranceS && std::fabs(e - first) < std::fabs(best))
+          best = e - first;
+      if (std::isfinite(best)) {
+        ++stats.found;
+        delays.push_back(best * 1e3);
+      }
+    }
+  }
+  for (const EndLog& log : logs) {
+    for (double e : log.ends) {
+      bool near = false;
+      for (const auto& [first, last] : log.standstills)
+        near = near || (e >= first - kEndToleranceS && e <= last + kEndToleranceS);
+      if (!near) ++stats.other_ends;
+    }
+  }
+  if (!delays.empty()) {
+    std::sort(delays.begin(), delays.end());
+    const size_t n = delays.size();
+    stats.median_delay_ms = n % 2 ? delays[n / 2] : 0.5 * (delays[n / 2 - 1] + delays[n / 2]);
+  }
+  return stats;
+}
+
+}  // namespace
+
+HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
+                                 const ReportNoise& noise, const HeadingBoundOptions& options) {
   constexpr float kUnknownSpeedPxS = 1000.0f;  // the speed filter at touch-down, as the tracker's
   const float speed_q = options.speed_accel_noise_px_s2 * options.speed_accel_noise_px_s2;
+  std::vector<EndLog> logs;
+  logs.reserve(cases.size());
   struct Observer {
     StrokeHeading heading;
     FingerKalman speed;
+    StrokeEndPredictor predictor;
     const ReportNoise& noise;
+    const HeadingBoundOptions& options;
     float speed_q;
-    bool told_standstills;
+    EndLog* log;
     double last_scan_s = 0.0;
+    bool in_standstill = false, touch_began_still = false;
 
     void report(const tracegen::TraceSample& s, const tracegen::TrueState& truth, uint64_t, double scan_s,
                 bool touch_down) {
       const Vec2 z{static_cast<float>(s.x), static_cast<float>(s.y)};
+      const bool still = standing_still(truth);
       if (touch_down) {
         heading.touch_down(z);
         speed.start(z, noise, kUnknownSpeedPxS);
+        predictor.restart();
+        predictor.report(scan_s, s.x, s.y);
+        touch_began_still = still;
       } else {
         // Scan times are the stamps less each report's own latency: at 1 kHz
         // with 1-3 ms of it they need not increase. Out of order: no time.
@@ -54,12 +111,30 @@ double heading_bound_heightmap_rms(const std::vector<PreparedCase>& cases, doubl
         speed.predict(dt, speed_q, noise);
         speed.update(z, speed.inverse_innovation(noise));
         float travelled = length(speed.v) * dt;
-        if (told_standstills && standing_still(truth)) {
+        bool new_stroke = false;
+        switch (options.boundaries) {
+          case StrokeBoundaries::ToldStandstills:
+            new_stroke = still;
+            break;
+          case StrokeBoundaries::PredictedEnds:
+            new_stroke = predictor.report(scan_s, s.x, s.y);
+            if (new_stroke) log->ends.push_back(scan_s);
+            if (length(speed.v) < options.forget_below_px_s) heading.forget(options.forget_variance_per_s * dt);
+            break;
+          case StrokeBoundaries::None:
+            break;
+        }
+        if (new_stroke) {
           heading.new_stroke();
           travelled = 0.0f;
         }
         heading.update(z, travelled, dt);
       }
+      // The truth's standstills, for StrokeEndStats.
+      if (still && !in_standstill && !(touch_down || touch_began_still)) log->standstills.push_back({scan_s, scan_s});
+      if (still && in_standstill && !touch_began_still) log->standstills.back().second = scan_s;
+      if (!still) touch_began_still = false;
+      in_standstill = still;
       last_scan_s = std::max(last_scan_s, scan_s);
     }
     double amplitude(const ScenePlan& heightmap, const TickTruth& tick) const {
@@ -67,10 +142,19 @@ double heading_bound_heightmap_rms(const std::vector<PreparedCase>& cases, doubl
                                       heading.mu());
     }
   };
-  return observer_heightmap_rms(cases, moving_speed_px_s, [&](const PreparedCase&) {
-    return Observer{StrokeHeading(noise, options.turn_variance_per_px), FingerKalman{}, noise, speed_q,
-                    options.told_standstills};
+  const ObserverErrors errors = observer_errors(cases, moving_speed_px_s, [&](const PreparedCase&) {
+    logs.emplace_back();
+    return Observer{StrokeHeading(noise, options.turn_variance_per_px),
+                    FingerKalman{},
+                    StrokeEndPredictor{},
+                    noise,
+                    options,
+                    speed_q,
+                    &logs.back()};
   });
+  HeadingBoundResult result{errors.heightmap_rms, errors.rest_rms, {}};
+  if (options.boundaries == StrokeBoundaries::PredictedEnds) result.ends = end_stats(logs);
+  return result;
 }
 
 }  // namespace ff::bench

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "heading_bound.hpp"
+#include "stroke_end_predictor.hpp"
 
 namespace ff::bench {
 
@@ -176,6 +177,42 @@ void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& 
          "the amplitude's posterior mean (`tools/track_bench/direction_bound.*`): the least error with that knowledge "
          "on average over strokes turned at random, a floor for trackers that assume nothing about where a stroke "
          "goes.\n";
+}
+
+void write_predicted_ends_report(std::ostream& out, const std::vector<LookaheadRow>& rows) {
+  char cell[160];
+  out << "| class | thesis HM amp RMS | recommended(profile) | heading model, told the standstills | "
+         "told nothing, strokes ended where predicted | its HM at rest RMS | standstills | predicted within "
+      << kPredictedEndToleranceMs << " ms | median delay ms | other predicted ends |\n";
+  out << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const LookaheadRow& r : rows) {
+    const double base = r.thesis_heightmap_rms;
+    auto ratio = [base](double v) { return base > 0.0 ? v / base : 0.0; };
+    const HeadingBoundResult& p = r.predicted_ends;
+    std::snprintf(cell, sizeof cell, "| %s | %.3f | %.3f (%.2f×) | %.3f (%.2f×) | %.3f (%.2f×) | %.3f |", r.trace_class.c_str(),
+                  base, r.tracker_heightmap_rms, ratio(r.tracker_heightmap_rms), r.heading_bound_rms,
+                  ratio(r.heading_bound_rms), p.heightmap_rms, ratio(p.heightmap_rms), p.rest_rms);
+    out << cell;
+    std::snprintf(cell, sizeof cell, " %zu | %zu | %.0f | %zu |\n", p.ends.standstills, p.ends.found,
+                  p.ends.median_delay_ms, p.ends.other_ends);
+    out << cell;
+  }
+  const HeadingBoundOptions d;
+  out << "\nWhere strokes end, predicted: the heading model of the table above told nothing of the standstills; "
+         "instead each stroke starts afresh where a minimum-jerk profile fitted to the reports since the last one "
+         "says it has ended (`tools/track_bench/stroke_end_predictor.*`: the stroke's start, duration and "
+         "displacement by least squares, ended once it is at least "
+      << StrokeEndPredictor::Options{}.min_distance_px
+      << " px long), and the heading forgotten at " << d.forget_variance_per_s
+      << " per s while the speed reads below " << d.forget_below_px_s
+      << " px/s (for strokes too short or slow to fit). It never decides that the finger rests, so it renders "
+         "the heading it learnt from the noise there: its chatter at rest is not a tracker's. Standstills: the "
+         "truth's (below "
+      << kStandstillPxS
+      << " px/s; not those a touch begins with), found when a predicted end falls within "
+      << kPredictedEndToleranceMs << " ms of one (the delay "
+         "from its first report); other ends: predicted near none. Generated traces, whose strokes are exactly "
+         "minimum-jerk: a finger's are only close to it.\n";
 }
 
 }  // namespace ff::bench

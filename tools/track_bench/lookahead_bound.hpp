@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "heading_bound.hpp"
 #include "reference_path.hpp"
 #include "tracking_evaluation.hpp"
 
@@ -69,6 +70,7 @@ struct LookaheadRow {
   double anchored_accel_noise = 0.0;
   double heading_bound_rms = NAN;    // heading_bound.hpp: told when each stroke starts; NaN: not measured
   double direction_bound_rms = NAN;  // direction_bound.hpp: told all but where each stroke goes; NaN: not measured
+  HeadingBoundResult predicted_ends{NAN, NAN, {}};  // heading_bound.hpp, StrokeBoundaries::PredictedEnds
 };
 // Every lookahead, and the anchored causal bound, at its best acceleration noise; the measurement noise is
 // the profile's white and correlated noise together.
@@ -76,5 +78,7 @@ LookaheadRow lookahead_row(const std::string& trace_class, const std::vector<Pre
                            double moving_speed_px_s, double white_noise_px, double correlated_noise_px,
                            double latency_s);
 void write_lookahead_report(std::ostream& out, const std::vector<LookaheadRow>& rows);
+// The heading model told nothing, its strokes ended where a minimum-jerk fit predicts (issue 14).
+void write_predicted_ends_report(std::ostream& out, const std::vector<LookaheadRow>& rows);
 
 }  // namespace ff::bench

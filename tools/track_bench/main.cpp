@@ -299,12 +299,15 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
     bound.tracker_heightmap_rms = floor.tracker_heightmap_rms;
     bound.heading_bound_rms = heading_bound_heightmap_rms(cases, options.moving_speed_px_s, ReportNoise::of(sensor));
     bound.direction_bound_rms = class_direction_bound(trace_class, cases, duration_s, options.moving_speed_px_s);
+    HeadingBoundOptions predicted;
+    predicted.boundaries = StrokeBoundaries::PredictedEnds;
+    bound.predicted_ends = heading_bound(cases, options.moving_speed_px_s, ReportNoise::of(sensor), predicted);
     lookahead.push_back(bound);
   }
   return {rows, floors, lookahead};
 }
 
-// The four per-class tables.
+// The five per-class tables.
 std::string class_tables(const ClassResults& results, double duration_s, double moving_speed_px_s) {
   std::ostringstream table;
   write_class_report(table, results.rows, duration_s, moving_speed_px_s);
@@ -314,6 +317,8 @@ std::string class_tables(const ClassResults& results, double duration_s, double 
   write_rest_report(table, results.rows);
   table << "\n";
   write_lookahead_report(table, results.lookahead);
+  table << "\n";
+  write_predicted_ends_report(table, results.lookahead);
   return table.str();
 }
 
