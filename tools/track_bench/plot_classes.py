@@ -168,7 +168,10 @@ def plot(metadata, rows, output):
                                        ("heading_bound_rms", "^", "#f1c40f",
                                         "heading model, told every standstill"),
                                        ("direction_bound_rms", "*", "#145a32",
-                                        "told all but each stroke's direction (a floor)")):
+                                        "told all but each stroke's direction (a floor)"),
+                                       # Optional: CSVs before round 12 have no such column (NaN: not drawn).
+                                       ("predicted_ends_rms", "p", "#d35400",
+                                        "heading model, min-jerk ends predicted")):
         bound = [number(s, key) / t if s else float("nan") for s, t in zip(shipping, thesis_hm)]
         hm.plot([i + 0.5 * width for i in x], bound, marker, color=colour, markersize=14 if marker == "_" else 8,
                 markeredgewidth=2, label=label)
@@ -177,6 +180,9 @@ def plot(metadata, rows, output):
     steady = [number(s, "rest_steady_rms") if s else float("nan") for s in shipping]
     chatter.plot([i + 0.5 * width for i in x], steady, "o", color="#e67e22",
                  label=SHIPPING + ", after the first 100 ms of each rest")
+    predicted_rest = [number(s, "predicted_ends_rest_rms") if s else float("nan") for s in shipping]
+    chatter.plot([i + 0.5 * width for i in x], predicted_rest, "p", color="#d35400",
+                 label="heading model, ends predicted (not a tracker)")
     for ax in (hm, axes[0][1], axes[1][0], chatter):  # room above the bars for the legend
         low, high = ax.get_ylim()
         ax.set_ylim(low, high * 8.0 if ax is chatter else high * 1.5)
