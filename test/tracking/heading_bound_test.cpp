@@ -167,5 +167,30 @@ TEST(HeadingBound, StrokesEndedWherePredictedComeCloseToTheStandstillsTold) {
   EXPECT_GT(r.rest_rms, 0.05);
 }
 
+// A stroke too short or slow for the fit ends nowhere: forgetting the
+// heading while the speed reads low keeps it from outlasting the stop.
+TEST(HeadingBound, PredictedEndsForgetTheHeadingWhileTheFingerIsSlow) {
+  StrokeHeading heading(white(1.0f), 1e-4f);
+  const std::vector<Report> stroke = straight_stroke(0.3, 0.5, 8);
+  heading.touch_down(stroke[0].z);
+  for (size_t k = 1; k < stroke.size(); ++k) heading.update(stroke[k].z, stroke[k].travelled_px, 0.005f);
+  const double kappa = heading.kappa(), variance = static_cast<double>(heading.filter().P11);
+  heading.forget(10.0f);  // 1 s at the default rate
+  EXPECT_NEAR(heading.kappa(), kappa * variance / (variance + 10.0), 1e-6 * kappa);
+
+  // In the observer: a heading forgotten while the finger is slow renders
+  // closer to 0.5 where it rests.
+  const tracegen::TraceClass* white_class = tracegen::find_trace_class("white-200hz");
+  ASSERT_NE(white_class, nullptr);
+  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white_class, 4.0));
+  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  HeadingBoundOptions predicted;
+  predicted.boundaries = StrokeBoundaries::PredictedEnds;
+  HeadingBoundOptions never_forgets = predicted;
+  never_forgets.forget_variance_per_s = 0.0f;
+  EXPECT_LT(heading_bound(cases, kClassMovingSpeedPxS, noise, predicted).rest_rms,
+            0.9 * heading_bound(cases, kClassMovingSpeedPxS, noise, never_forgets).rest_rms);
+}
+
 }  // namespace
 }  // namespace ff::bench

@@ -86,5 +86,19 @@ TEST(StrokeEndPredictor, EndsEachStrokeWhereItStopsAndNeverOnNoise) {
   for (double t = 0.0; t < 5.0; t += 0.005) EXPECT_FALSE(predictor.report(t, 200.0 + rng.gaussian(), 100.0 + rng.gaussian())) << t;
 }
 
+TEST(StrokeEndPredictor, AStrokeShorterThanTheMinimumIsNotEnded) {
+  // Clean reports (0.1 px of noise): the fit is sure of both, only the length differs.
+  auto ends = [](double length_px) {
+    const Stroke s{0.1, 0.3, 50.0, 50.0, length_px * 0.6, length_px * 0.8};
+    support::Random rng(11);
+    StrokeEndPredictor predictor;  // 10 px at least
+    int n = 0;
+    for (double t = 0.0; t < 1.0; t += 0.005) n += predictor.report(t, s.x(t) + 0.1 * rng.gaussian(), s.y(t) + 0.1 * rng.gaussian());
+    return n;
+  };
+  EXPECT_EQ(ends(8.0), 0);
+  EXPECT_EQ(ends(14.0), 1);
+}
+
 }  // namespace
 }  // namespace ff::bench
