@@ -6,6 +6,7 @@
 #include "direction_bound.hpp"
 #include "observer_replay.hpp"
 #include "stroke_end_predictor.hpp"
+#include "support/statistics.hpp"
 
 namespace ff::bench {
 
@@ -67,11 +68,7 @@ StrokeEndStats end_stats(const std::vector<EndLog>& logs) {
       if (!near) ++stats.other_ends;
     }
   }
-  if (!delays.empty()) {
-    std::sort(delays.begin(), delays.end());
-    const size_t n = delays.size();
-    stats.median_delay_ms = n % 2 ? delays[n / 2] : 0.5 * (delays[n / 2 - 1] + delays[n / 2]);
-  }
+  if (!delays.empty()) stats.median_delay_ms = support::percentile(delays, 50.0);
   return stats;
 }
 
@@ -110,7 +107,8 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
         const float dt = std::max(0.0f, static_cast<float>(scan_s - last_scan_s));
         speed.predict(dt, speed_q, noise);
         speed.update(z, speed.inverse_innovation(noise));
-        float travelled = length(speed.v) * dt;
+        const float speed_px_s = length(speed.v);
+        float travelled = speed_px_s * dt;
         bool new_stroke = false;
         switch (options.boundaries) {
           case StrokeBoundaries::ToldStandstills:
@@ -119,7 +117,7 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
           case StrokeBoundaries::PredictedEnds:
             new_stroke = predictor.report(scan_s, s.x, s.y);
             if (new_stroke) log->ends.push_back(scan_s);
-            if (length(speed.v) < options.forget_below_px_s) heading.forget(options.forget_variance_per_s * dt);
+            if (speed_px_s < options.forget_below_px_s) heading.forget(options.forget_variance_per_s * dt);
             break;
           case StrokeBoundaries::None:
             break;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "support/statistics.hpp"
+
 namespace ff::bench {
 
 void RestChatter::resting(uint64_t t_us, double deviation) {
@@ -57,12 +59,7 @@ double RestChatter::transient_share() const {
 
 double RestChatter::settle_median_ms() const {
   if (settle_us_.empty()) return 0.0;
-  std::vector<uint64_t> sorted = settle_us_;
-  std::sort(sorted.begin(), sorted.end());
-  const size_t n = sorted.size();
-  const double middle = n % 2 == 1 ? static_cast<double>(sorted[n / 2])
-                                   : 0.5 * static_cast<double>(sorted[n / 2 - 1] + sorted[n / 2]);
-  return middle * 1e-3;
+  return support::percentile(std::vector<double>(settle_us_.begin(), settle_us_.end()), 50.0) * 1e-3;
 }
 
 double RestChatter::settle_max_ms() const {

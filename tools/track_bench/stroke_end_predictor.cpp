@@ -72,27 +72,23 @@ MinJerkFit fit_min_jerk(const std::vector<TimedReport>& reports, const MinJerkFi
 
 void StrokeEndPredictor::restart() {
   stroke_.clear();
+  first_motion_s_ = NAN;
   fit_ = MinJerkFit{};
 }
 
 bool StrokeEndPredictor::report(double t_s, double x, double y) {
   stroke_.push_back({t_s, x, y});
   const TimedReport& first = stroke_.front();
-  double first_motion_s = NAN;
-  for (const TimedReport& r : stroke_) {
-    if (std::hypot(r.x - first.x, r.y - first.y) >= options_.min_motion_px) {
-      first_motion_s = r.t_s;
-      break;
-    }
-  }
-  if (std::isnan(first_motion_s)) return false;  // not yet moved: nothing to fit
-  fit_ = fit_min_jerk(stroke_, fit_, first_motion_s);
+  if (std::isnan(first_motion_s_) && std::hypot(x - first.x, y - first.y) >= options_.min_motion_px) first_motion_s_ = t_s;
+  if (std::isnan(first_motion_s_)) return false;  // not yet moved: nothing to fit
+  fit_ = fit_min_jerk(stroke_, fit_, first_motion_s_);
   const double d = fit_.distance_px();
   if (!fit_.valid() || d < options_.min_distance_px || d * d < options_.min_sigmas * options_.min_sigmas * fit_.travel_variance ||
       t_s < fit_.end_s())
     return false;
   stroke_.assign(1, TimedReport{t_s, x, y});  // the next stroke begins here
   fit_ = MinJerkFit{};
+  first_motion_s_ = NAN;
   return true;
 }
 

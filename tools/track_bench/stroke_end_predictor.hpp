@@ -63,6 +63,7 @@ class StrokeEndPredictor {
  private:
   Options options_;
   std::vector<TimedReport> stroke_;  // the reports since the last end
+  double first_motion_s_ = NAN;      // its first report min_motion_px from the first; NaN: none yet
   MinJerkFit fit_;
 };
 
