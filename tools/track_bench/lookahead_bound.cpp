@@ -202,8 +202,8 @@ void write_predicted_ends_report(std::ostream& out, const std::vector<LookaheadR
          "instead each stroke starts afresh where a minimum-jerk profile fitted to the reports since the last one "
          "says it has ended (`tools/track_bench/stroke_end_predictor.*`: the stroke's start, duration and "
          "displacement by least squares, ended once it is at least "
-      << StrokeEndPredictor::Options{}.min_distance_px
-      << " px long), and the heading forgotten at " << d.forget_variance_per_s
+      << StrokeEndPredictor::Options{}.min_distance_px << " px and " << StrokeEndPredictor::Options{}.min_sigmas
+      << " standard errors long), and the heading forgotten at " << d.forget_variance_per_s
       << " per s while the speed reads below " << d.forget_below_px_s
       << " px/s (for strokes too short or slow to fit). It never decides that the finger rests, so it renders "
          "the heading it learnt from the noise there: its chatter at rest is not a tracker's. Standstills: the "
