@@ -77,7 +77,10 @@ void Tracker::configure(const TrackerConfig& config) {
   inverse_maneuver_time_s_ = config.maneuver_threshold > 0.0f && config.maneuver_time_ms > 0.0f
                                  ? 1e3f / config.maneuver_time_ms : 0.0f;
   maneuvers_ = 0;
+  stroke_ends_ = 0;
+  stroke_end_.configure(config.stroke_end);
   const bool kalman = config.estimator == Estimator::Kalman || config.estimator == Estimator::SplitKalman;
+  predict_stroke_ends_ = kalman && config.stroke_end_widening > 1.0f;
   const float low = config.rest_sigmas * config.rest_sigmas, high = config.moving_sigmas * config.moving_sigmas;
   fade_low_ = low;
   inverse_fade_span_ = 0.0f;
@@ -108,6 +111,8 @@ void Tracker::reset() {
   have_tick_ = false;
   have_tick_candidate_ = false;
   filters_fresh_ = false;
+  stroke_end_.restart();
+  refined_this_tick_ = false;
 }
 
 FF_TICK_INLINE void Tracker::learn_velocity_noise() {
@@ -145,6 +150,8 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   position_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
   recent_innovation_ = {};
   recent_innovation_variance_ = 0.0f;
+  stroke_end_.restart();
+  if (predict_stroke_ends_) stroke_end_.add(s.t_us, {s.x, s.y});
   learn_velocity_noise();
   filters_fresh_ = false;
 }
@@ -175,6 +182,7 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   const Vec2 z{s.x, s.y};
   direction_.predict(dt_s, direction_q_, noise_);
   float s_variance = direction_.innovation_variance(noise_);
+  float widen = 1.0f;
   if (inverse_maneuver_time_s_ > 0.0f) {
     // The innovations are independent, of variance S each, while the model
     // holds: so is their age-weighted sum, of variance sum(a^2k S).
@@ -184,11 +192,24 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
     const float sum_squared = dot(recent_innovation_, recent_innovation_);
     const float bound = recent_innovation_variance_ * config_.maneuver_threshold;
     if (sum_squared > bound) {  // the finger changed its motion (a division only then)
-      const float widen = sum_squared / bound;
-      direction_.widen(widen < kMaxWidening ? widen : kMaxWidening);
-      s_variance = direction_.innovation_variance(noise_);
+      const float ratio = sum_squared / bound;
+      widen = ratio < kMaxWidening ? ratio : kMaxWidening;
       ++maneuvers_;
     }
+  }
+  if (predict_stroke_ends_) {
+    stroke_end_.add(s.t_us, z);
+    if (!refined_this_tick_ && stroke_end_.refine_due()) {
+      refined_this_tick_ = true;
+      if (stroke_end_.refine()) {  // the finger stops now
+        if (widen < config_.stroke_end_widening) widen = config_.stroke_end_widening;
+        ++stroke_ends_;
+      }
+    }
+  }
+  if (widen > 1.0f) {
+    direction_.widen(widen);
+    s_variance = direction_.innovation_variance(noise_);
   }
   direction_.update(z, 1.0f / s_variance);
   learn_velocity_noise();
@@ -346,6 +367,7 @@ FF_FASTRUN const TrackState& Tracker::on_tick(uint32_t now_us, bool need_filter)
   have_tick_ = true;
   have_tick_candidate_ = false;
   last_tick_us_ = now_us;
+  refined_this_tick_ = false;
 
   if (have_last_ && lifting_ && elapsed_us(now_us, untouched_since_us_) >= static_cast<int32_t>(config_.lift_off_timeout_us)) {
     faults_.add(Fault::LiftOff);

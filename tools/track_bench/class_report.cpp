@@ -103,7 +103,9 @@ void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const
   for (double d : kStartFloorDistancesPx) out << ",floor_" << fixed(d, 1) << "px_rms";
   out << ",unfaded_heightmap_rms";
   for (double ms : kLookaheadsMs) out << ",lookahead_" << (std::isinf(ms) ? std::string("whole") : fixed(ms, 0) + "ms") << "_rms";
-  out << ",anchored_0ms_rms,heading_bound_rms,direction_bound_rms,predicted_ends_rms,predicted_ends_rest_rms\n";
+  out << ",anchored_0ms_rms,heading_bound_rms,direction_bound_rms,predicted_ends_rms,predicted_ends_rest_rms,"
+         "standstills,predicted_ends_found,predicted_ends_delay_ms,predicted_ends_other,tracker_ends_rms,"
+         "tracker_ends_found,tracker_ends_delay_ms,tracker_ends_other\n";
   auto number = [](double v) { return fixed(v, 6); };
   auto over = [&](double value, double baseline) { return baseline > 0.0 ? number(value / baseline) : std::string(); };
   const ClassRow* baseline = nullptr;
@@ -135,6 +137,15 @@ void write_class_csv(std::ostream& out, const std::vector<ClassRow>& rows, const
                      bound != nullptr ? bound->predicted_ends.heightmap_rms : double{NAN},
                      bound != nullptr ? bound->predicted_ends.rest_rms : double{NAN}})
       out << "," << (!std::isnan(v) ? number(v) : std::string());
+    if (bound != nullptr) {
+      const StrokeEndStats& p = bound->predicted_ends.ends;
+      const StrokeEndStats& t = bound->tracker_ends.ends;
+      out << "," << p.standstills << "," << p.found << "," << number(p.median_delay_ms) << "," << p.other_ends << ","
+          << number(bound->tracker_ends.heightmap_rms) << "," << t.found << "," << number(t.median_delay_ms) << ","
+          << t.other_ends;
+    } else {
+      out << ",,,,,,,,";
+    }
     out << "\n";
   }
 }

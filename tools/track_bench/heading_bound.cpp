@@ -44,6 +44,9 @@ struct EndLog {
 
 constexpr double kEndToleranceS = kPredictedEndToleranceMs * 1e-3;
 
+// The tracker's clock: wrapping microseconds.
+uint32_t stamp_us(double scan_s) { return static_cast<uint32_t>(std::llround(scan_s * 1e6)); }
+
 StrokeEndStats end_stats(const std::vector<EndLog>& logs) {
   StrokeEndStats stats;
   std::vector<double> delays;
@@ -84,6 +87,7 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
     StrokeHeading heading;
     FingerKalman speed;
     StrokeEndPredictor predictor;
+    ff::StrokeEndPredictor tracker_predictor;
     const ReportNoise& noise;
     const HeadingBoundOptions& options;
     float speed_q;
@@ -100,6 +104,8 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
         speed.start(z, noise, kUnknownSpeedPxS);
         predictor.restart();
         predictor.report(scan_s, s.x, s.y);
+        tracker_predictor.restart();
+        tracker_predictor.add(stamp_us(scan_s), z);
         touch_began_still = still;
       } else {
         // Scan times are the stamps less each report's own latency: at 1 kHz
@@ -115,7 +121,13 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
             new_stroke = still;
             break;
           case StrokeBoundaries::PredictedEnds:
-            new_stroke = predictor.report(scan_s, s.x, s.y);
+          case StrokeBoundaries::TrackerEnds:
+            if (options.boundaries == StrokeBoundaries::PredictedEnds) {
+              new_stroke = predictor.report(scan_s, s.x, s.y);
+            } else {
+              tracker_predictor.add(stamp_us(scan_s), z);
+              new_stroke = tracker_predictor.refine_due() && tracker_predictor.refine();
+            }
             if (new_stroke) log->ends.push_back(scan_s);
             if (speed_px_s < options.forget_below_px_s) heading.forget(options.forget_variance_per_s * dt);
             break;
@@ -145,13 +157,15 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
     return Observer{StrokeHeading(noise, options.turn_variance_per_px),
                     FingerKalman{},
                     StrokeEndPredictor{},
+                    ff::StrokeEndPredictor{},
                     noise,
                     options,
                     speed_q,
                     &logs.back()};
   });
   HeadingBoundResult result{errors.heightmap_rms, errors.rest_rms, {}};
-  if (options.boundaries == StrokeBoundaries::PredictedEnds) result.ends = end_stats(logs);
+  if (options.boundaries == StrokeBoundaries::PredictedEnds || options.boundaries == StrokeBoundaries::TrackerEnds)
+    result.ends = end_stats(logs);
   return result;
 }
 

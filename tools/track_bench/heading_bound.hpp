@@ -30,6 +30,7 @@ namespace ff::bench {
 enum class StrokeBoundaries : uint8_t {
   ToldStandstills,  // by the truth: wherever the finger stands still
   PredictedEnds,    // told nothing: where a minimum-jerk fit says the stroke ends (stroke_end_predictor.hpp)
+  TrackerEnds,      // the same, by the tracker's own predictor (core/stroke_end_predictor.hpp)
   None,             // never: each heading carried into the next stroke
 };
 
@@ -78,7 +79,7 @@ struct StrokeEndStats {
 
 struct HeadingBoundResult {
   double heightmap_rms = 0.0, rest_rms = 0.0;  // ObserverErrors
-  StrokeEndStats ends;                         // PredictedEnds only
+  StrokeEndStats ends;                         // PredictedEnds and TrackerEnds only
 };
 
 HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double moving_speed_px_s,

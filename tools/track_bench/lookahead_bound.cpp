@@ -5,6 +5,7 @@
 #include <ostream>
 #include <utility>
 
+#include "frictionfield/core/stroke_end_predictor.hpp"
 #include "heading_bound.hpp"
 #include "stroke_end_predictor.hpp"
 
@@ -183,8 +184,9 @@ void write_predicted_ends_report(std::ostream& out, const std::vector<LookaheadR
   char cell[160];
   out << "| class | thesis HM amp RMS | recommended(profile) | heading model, told the standstills | "
          "told nothing, strokes ended where predicted | its HM at rest RMS | standstills | predicted within "
-      << kPredictedEndToleranceMs << " ms | median delay ms | other predicted ends |\n";
-  out << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+      << kPredictedEndToleranceMs << " ms | median delay ms | other predicted ends | the tracker's predictor: within "
+      << kPredictedEndToleranceMs << " ms | median delay ms | other ends |\n";
+  out << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const LookaheadRow& r : rows) {
     const double base = r.thesis_heightmap_rms;
     auto ratio = [base](double v) { return base > 0.0 ? v / base : 0.0; };
@@ -193,8 +195,9 @@ void write_predicted_ends_report(std::ostream& out, const std::vector<LookaheadR
                   base, r.tracker_heightmap_rms, ratio(r.tracker_heightmap_rms), r.heading_bound_rms,
                   ratio(r.heading_bound_rms), p.heightmap_rms, ratio(p.heightmap_rms), p.rest_rms);
     out << cell;
-    std::snprintf(cell, sizeof cell, " %zu | %zu | %.0f | %zu |\n", p.ends.standstills, p.ends.found,
-                  p.ends.median_delay_ms, p.ends.other_ends);
+    const StrokeEndStats& t = r.tracker_ends.ends;
+    std::snprintf(cell, sizeof cell, " %zu | %zu | %.0f | %zu | %zu | %.0f | %zu |\n", p.ends.standstills,
+                  p.ends.found, p.ends.median_delay_ms, p.ends.other_ends, t.found, t.median_delay_ms, t.other_ends);
     out << cell;
   }
   const HeadingBoundOptions d;
@@ -212,7 +215,12 @@ void write_predicted_ends_report(std::ostream& out, const std::vector<LookaheadR
       << " px/s; not those a touch begins with), found when a predicted end falls within "
       << kPredictedEndToleranceMs << " ms of one (the delay "
          "from its first report); other ends: predicted near none. Generated traces, whose strokes are exactly "
-         "minimum-jerk: a finger's are only close to it.\n";
+         "minimum-jerk: a finger's are only close to it. The tracker's predictor (`core/stroke_end_predictor.*`, "
+         "what the shipping tracker widens its direction filter by at each end) fits the same profile in float "
+         "on at most "
+      << ff::StrokeEndPredictor::kCapacity << " decimated reports, one step of a compass search on the start and "
+         "the end per "
+      << ff::StrokeEndConfig{}.refine_interval_us / 1000.0 << " ms of reports instead of the full search.\n";
 }
 
 }  // namespace ff::bench

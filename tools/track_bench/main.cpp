@@ -303,6 +303,8 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
     HeadingBoundOptions predicted;
     predicted.boundaries = StrokeBoundaries::PredictedEnds;
     bound.predicted_ends = heading_bound(cases, options.moving_speed_px_s, ReportNoise::of(sensor), predicted);
+    predicted.boundaries = StrokeBoundaries::TrackerEnds;
+    bound.tracker_ends = heading_bound(cases, options.moving_speed_px_s, ReportNoise::of(sensor), predicted);
     lookahead.push_back(bound);
   }
   return {rows, floors, lookahead};

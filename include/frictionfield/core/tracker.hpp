@@ -11,6 +11,7 @@
 #include "frictionfield/core/report_noise.hpp"
 #include "frictionfield/core/sensor_profile.hpp"
 #include "frictionfield/core/sensor_sample.hpp"
+#include "frictionfield/core/stroke_end_predictor.hpp"
 
 namespace ff {
 
@@ -59,6 +60,13 @@ struct TrackerConfig {
   // improbable. Threshold 0: never.
   float maneuver_time_ms = 12.0f;
   float maneuver_threshold = 14.0f;
+  // Stroke ends: where a minimum-jerk fit to the stroke's reports says the
+  // finger stops (stroke_end_predictor.hpp), the direction filter is widened
+  // by this factor, as at a change of motion but on time, so that a finger
+  // come to rest renders 0.5 at once. 1 or less: not predicted (no cost).
+  // The Kalman estimators only.
+  float stroke_end_widening = 10.0f;
+  StrokeEndConfig stroke_end;
 
   uint32_t max_extrapolation_us = 15000;  // then hold the position
   uint32_t stale_timeout_us = 250000;     // no sample this long: lift-off
@@ -100,6 +108,9 @@ class Tracker {
   const FaultCounters& faults() const { return faults_; }
   // Reports that widened the direction filter (changes of motion), since configure().
   uint32_t maneuvers() const { return maneuvers_; }
+  // Predicted stroke ends that widened it, since configure().
+  uint32_t stroke_ends() const { return stroke_ends_; }
+  const StrokeEndPredictor& stroke_end_predictor() const { return stroke_end_; }
   FaultCounters& faults() { return faults_; }
   const TrackerConfig& config() const { return config_; }
 
@@ -149,6 +160,10 @@ class Tracker {
   float recent_innovation_variance_ = 0.0f;
   float inverse_maneuver_time_s_ = 0.0f;  // 0: never widen
   uint32_t maneuvers_ = 0;
+  StrokeEndPredictor stroke_end_;
+  bool predict_stroke_ends_ = false;
+  bool refined_this_tick_ = false;  // one refinement per tick at most: bounded work
+  uint32_t stroke_ends_ = 0;
   bool filters_fresh_ = false;  // filters restarted from the last sample on next use
   uint32_t last_tick_us_ = 0;
   bool have_tick_ = false;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "frictionfield/core/min_jerk.hpp"
 #include "support/reference/reference_scene.hpp"
 
 namespace ff::tracegen {
@@ -10,10 +11,7 @@ namespace ff::tracegen {
 double path_y(double x, double rise) { return reference::experiment_path_at(x, rise).y; }
 double path_slope(double x, double rise) { return reference::experiment_path_at(x, rise).slope; }
 
-double min_jerk(double tau) {
-  tau = std::clamp(tau, 0.0, 1.0);
-  return tau * tau * tau * (10.0 + tau * (-15.0 + 6.0 * tau));
-}
+double min_jerk(double tau) { return ff::min_jerk(tau); }
 
 double min_jerk_rate(double tau) {
   if (tau <= 0.0 || tau >= 1.0) return 0.0;

@@ -1,0 +1,217 @@
+#include "frictionfield/core/stroke_end_predictor.hpp"
+
+#include <cmath>
+
+#include "frictionfield/bus/clock.hpp"
+#include "frictionfield/core/fastrun.hpp"
+#include "frictionfield/core/min_jerk.hpp"
+
+namespace ff {
+
+namespace {
+
+constexpr float kMinDurationS = 0.04f;
+// The search's first guess when the stroke begins to move (a 4 px rise of a
+// stroke of a few hundred ms has run ~60 ms) and its steps' range.
+constexpr float kGuessLeadS = 0.06f, kGuessRestS = 0.25f;
+constexpr float kStartStepS = 0.02f, kEndStepS = 0.05f;
+constexpr float kMinStepS = 0.0005f, kMaxStartStepS = 0.1f, kMaxEndStepS = 0.5f;
+// Below this spread of the profile over the points it cannot tell from from travel.
+constexpr float kMinSpreadPerPoint = 1e-5f;
+
+}  // namespace
+
+void StrokeEndPredictor::configure(const StrokeEndConfig& config) {
+  config_ = config;
+  refine_interval_s_ = static_cast<float>(config.refine_interval_us) * 1e-6f;
+  refinements_ = 0;
+  restart();
+}
+
+void StrokeEndPredictor::restart() {
+  count_ = 0;
+  started_ = false;
+  moving_ = false;
+  newest_kept_ = false;
+}
+
+namespace {
+// Origins are whole pixels: a report less its origin is then exact, and the
+// points the same in two runs that kept the same reports.
+Vec2 whole(Vec2 p) { return {std::round(p.x), std::round(p.y)}; }
+}  // namespace
+
+void StrokeEndPredictor::reorigin_at_first() {
+  // Times and positions from the oldest kept point: small, and the same in
+  // two runs that kept the same points whatever came before.
+  const Point first = points_[0];
+  const Vec2 origin = whole(origin_ + Vec2{first.x, first.y});
+  const Vec2 shift = origin_ - origin;  // whole pixels: exact
+  origin_ = origin;
+  origin_us_ = first.t_us;
+  for (int i = 0; i < count_; ++i) {
+    points_[i].t = static_cast<float>(signed_elapsed(points_[i].t_us, origin_us_)) * 1e-6f;
+    points_[i].x += shift.x;
+    points_[i].y += shift.y;
+  }
+}
+
+void StrokeEndPredictor::begin_stroke_at(const Point& newest) {
+  count_ = 1;
+  points_[0] = newest;
+  reorigin_at_first();
+  newest_ = points_[0];
+  newest_kept_ = true;
+  moving_ = false;
+  spacing_us_ = kSpacingUs;
+}
+
+void StrokeEndPredictor::keep_resting(const Point& p) {
+  // Every report: the rest is the last kRestPoints reports, whatever came before.
+  points_[count_++] = p;
+  if (count_ > kRestPoints) {
+    for (int i = 1; i < count_; ++i) points_[i - 1] = points_[i];
+    --count_;
+    reorigin_at_first();
+  }
+}
+
+void StrokeEndPredictor::keep_moving(const Point& p) {
+  if (count_ == kCapacity) {  // every other point goes, and from now on twice the spacing
+    for (int i = 1; i < kCapacity / 2; ++i) points_[i] = points_[2 * i];
+    count_ = kCapacity / 2;
+    spacing_us_ *= 2u;
+  }
+  points_[count_++] = p;
+}
+
+FF_FASTRUN void StrokeEndPredictor::add(uint32_t t_us, Vec2 p) {
+  if (!started_) {
+    started_ = true;
+    origin_ = whole(p);
+    begin_stroke_at({0.0f, p.x - origin_.x, p.y - origin_.y, t_us});
+    return;
+  }
+  if (signed_elapsed(t_us, newest_.t_us) <= 0) return;  // not after the newest: no order, no fit
+  const Point q{static_cast<float>(signed_elapsed(t_us, origin_us_)) * 1e-6f, p.x - origin_.x, p.y - origin_.y, t_us};
+  newest_ = q;
+  if (moving_) {
+    // A report about spacing_us_ after the last kept (a period's jitter
+    // allowed) is kept: at any report rate the points lie alike.
+    newest_kept_ = t_us - points_[count_ - 1].t_us >= spacing_us_ - spacing_us_ / 5u;
+    if (newest_kept_) keep_moving(q);
+    return;
+  }
+  // Moved away from where the finger rested (the kept points' mean)?
+  Vec2 mean{};
+  for (int i = 0; i < count_; ++i) mean = mean + Vec2{points_[i].x, points_[i].y};
+  const Vec2 d = Vec2{q.x, q.y} - (1.0f / static_cast<float>(count_)) * mean;
+  const bool moved = dot(d, d) >= config_.motion_px * config_.motion_px;
+  keep_resting(q);
+  newest_kept_ = true;
+  newest_ = points_[count_ - 1];  // q, perhaps re-origined
+  if (!moved) return;
+  moving_ = true;
+  motion_s_ = newest_.t;
+  start_s_ = motion_s_ - kGuessLeadS;
+  end_s_ = motion_s_ + kGuessRestS;
+  start_step_s_ = kStartStepS;
+  end_step_s_ = kEndStepS;
+  last_refine_s_ = motion_s_ - refine_interval_s_;  // due now
+}
+
+bool StrokeEndPredictor::refine_due() const { return moving_ && newest_.t - last_refine_s_ >= refine_interval_s_; }
+
+FF_FASTRUN StrokeEndPredictor::Fit StrokeEndPredictor::evaluate(float start_s, float end_s, int n, Vec2 mean) const {
+  Fit f;
+  if (!(end_s - start_s >= kMinDurationS)) return f;
+  const float inverse_duration = 1.0f / (end_s - start_s);
+  // The points are in time order: before the start the profile is 0 and
+  // adds nothing, after the end it is 1.
+  int i = 0;
+  while (i < n && points_[i].t <= start_s) ++i;
+  float sm = 0.0f, smm = 0.0f, smx = 0.0f, smy = 0.0f;
+  for (; i < n && points_[i].t < end_s; ++i) {
+    const Point& p = points_[i];
+    const float m = min_jerk_within((p.t - start_s) * inverse_duration);
+    sm += m;
+    smm += m * m;
+    smx += m * p.x;
+    smy += m * p.y;
+  }
+  const float after = static_cast<float>(n - i);
+  sm += after;
+  smm += after;
+  for (; i < n; ++i) {
+    smx += points_[i].x;
+    smy += points_[i].y;
+  }
+  // x_i = from + travel m_i per axis: travel = S_mx / S_mm about the means,
+  // and the squares it explains S_mx^2 / S_mm.
+  const float spread = smm - sm * sm / static_cast<float>(n);
+  if (!(spread > kMinSpreadPerPoint * static_cast<float>(n))) return f;
+  const float cx = smx - sm * mean.x, cy = smy - sm * mean.y;
+  f.explained = (cx * cx + cy * cy) / spread;
+  f.profile_spread = spread;
+  return f;
+}
+
+FF_FASTRUN bool StrokeEndPredictor::refine() {
+  if (!moving_) return false;
+  ++refinements_;
+  last_refine_s_ = newest_.t;
+  int n = count_;
+  if (!newest_kept_) points_[n++] = newest_;
+  Vec2 mean{};
+  for (int i = 0; i < n; ++i) mean = mean + Vec2{points_[i].x, points_[i].y};
+  mean = (1.0f / static_cast<float>(n)) * mean;
+  float total = 0.0f;  // the squares about the mean, px^2: what the fit can explain
+  for (int i = 0; i < n; ++i) {
+    const Vec2 d = Vec2{points_[i].x, points_[i].y} - mean;
+    total += dot(d, d);
+  }
+  // A compass search, the optimum moving as reports come: the centre again,
+  // then a step either way on the start and on the end; steps grow after a
+  // move and shrink when the centre holds.
+  Fit best = evaluate(start_s_, end_s_, n, mean);
+  float best_start = start_s_, best_end = end_s_;
+  const float starts[4] = {start_s_ - start_step_s_, start_s_ + start_step_s_, start_s_, start_s_};
+  const float ends[4] = {end_s_, end_s_, end_s_ - end_step_s_, end_s_ + end_step_s_};
+  for (int k = 0; k < 4; ++k) {
+    const Fit f = evaluate(starts[k], ends[k], n, mean);
+    if (f.explained > best.explained) {
+      best = f;
+      best_start = starts[k];
+      best_end = ends[k];
+    }
+  }
+  const bool moved = best_start != start_s_ || best_end != end_s_;
+  const float scale = moved ? 2.0f : 0.5f;
+  start_step_s_ = clamp(start_step_s_ * scale, kMinStepS, kMaxStartStepS);
+  end_step_s_ = clamp(end_step_s_ * scale, kMinStepS, kMaxEndStepS);
+  start_s_ = best_start;
+  end_s_ = best_end;
+  if (newest_.t - motion_s_ > kMaxStrokeS) {  // no end found in time: begin again
+    begin_stroke_at(newest_);
+    return false;
+  }
+  if (newest_.t < end_s_) return false;
+  // Past the fitted end: a stroke that does not stand out of the noise is
+  // none, and given up once well past it, so that the finger at rest is
+  // watched for the next start.
+  // |travel|^2 = explained / spread; each component's variance sigma^2 / spread,
+  // sigma^2 from the residuals of 2n coordinates less 4 fitted values.
+  const float residual = total - best.explained;
+  const float sigma2 = (residual > 0.0f ? residual : 0.0f) / static_cast<float>(2 * n - 4);
+  const bool stroke = best.explained >= 0.0f && n >= 3 &&
+                      best.explained >= config_.min_travel_px * config_.min_travel_px * best.profile_spread &&
+                      best.explained >= config_.min_sigmas * config_.min_sigmas * sigma2;
+  if (!stroke) {
+    if (newest_.t > end_s_ + kGiveUpS) begin_stroke_at(newest_);
+    return false;
+  }
+  begin_stroke_at(newest_);
+  return true;
+}
+
+}  // namespace ff
