@@ -67,7 +67,6 @@ void StrokeEndPredictor::begin_stroke_at(const Point& newest) {
 }
 
 void StrokeEndPredictor::keep_resting(const Point& p) {
-  // Every report: the rest is the last kRestPoints reports, whatever came before.
   points_[count_++] = p;
   if (count_ > kRestPoints) {
     for (int i = 1; i < count_; ++i) points_[i - 1] = points_[i];
@@ -107,9 +106,13 @@ FF_FASTRUN void StrokeEndPredictor::add(uint32_t t_us, Vec2 p) {
   for (int i = 0; i < count_; ++i) mean = mean + Vec2{points_[i].x, points_[i].y};
   const Vec2 d = Vec2{q.x, q.y} - (1.0f / static_cast<float>(count_)) * mean;
   const bool moved = dot(d, d) >= config_.motion_px * config_.motion_px;
-  keep_resting(q);
-  newest_kept_ = true;
-  newest_ = points_[count_ - 1];  // q, perhaps re-origined
+  // At rest a report about kRestSpacingUs after the last kept is kept: the
+  // mean lags a slow start by half their span, so that it shows.
+  newest_kept_ = moved || t_us - points_[count_ - 1].t_us >= kRestSpacingUs - kRestSpacingUs / 5u;
+  if (newest_kept_) {
+    keep_resting(q);
+    newest_ = points_[count_ - 1];  // q, perhaps re-origined
+  }
   if (!moved) return;
   moving_ = true;
   motion_s_ = newest_.t;

@@ -29,7 +29,8 @@ struct StrokeEndConfig {
 class StrokeEndPredictor {
  public:
   static constexpr int kCapacity = 32;      // points of a stroke kept (decimated)
-  static constexpr int kRestPoints = 8;     // reports of the rest before it
+  static constexpr int kRestPoints = 8;     // of the rest before it
+  static constexpr uint32_t kRestSpacingUs = 20000;  // between those
   static constexpr uint32_t kSpacingUs = 5000;  // between kept points, doubled whenever they fill up
   static constexpr float kMaxStrokeS = 4.0f;     // longer without an end: given up, begun again
   static constexpr float kGiveUpS = 0.1f;        // this long past a fitted end too small to be a stroke: given up
