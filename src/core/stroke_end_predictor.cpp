@@ -1,6 +1,7 @@
 #include "frictionfield/core/stroke_end_predictor.hpp"
 
 #include <cmath>
+#include <initializer_list>
 
 #include "frictionfield/bus/clock.hpp"
 #include "frictionfield/core/fastrun.hpp"
@@ -174,24 +175,25 @@ FF_FASTRUN bool StrokeEndPredictor::refine() {
     total += dot(d, d);
   }
   // A compass search, the optimum moving as reports come: the centre again,
-  // then a step either way on the start and on the end; steps grow after a
-  // move and shrink when the centre holds.
+  // then a step either way on the start or (every other time) the end; a
+  // step grows after a move and shrinks when the centre holds. Three fits:
+  // half the cost of trying both every time, as good on the trace classes.
   Fit best = evaluate(start_s_, end_s_, n, mean);
   float best_start = start_s_, best_end = end_s_;
-  const float starts[4] = {start_s_ - start_step_s_, start_s_ + start_step_s_, start_s_, start_s_};
-  const float ends[4] = {end_s_, end_s_, end_s_ - end_step_s_, end_s_ + end_step_s_};
-  for (int k = 0; k < 4; ++k) {
-    const Fit f = evaluate(starts[k], ends[k], n, mean);
+  const bool on_end = (refinements_ & 1u) == 0u;
+  float& step = on_end ? end_step_s_ : start_step_s_;
+  for (const float sign : {-1.0f, 1.0f}) {
+    const float start = on_end ? start_s_ : start_s_ + sign * step;
+    const float end = on_end ? end_s_ + sign * step : end_s_;
+    const Fit f = evaluate(start, end, n, mean);
     if (f.explained > best.explained) {
       best = f;
-      best_start = starts[k];
-      best_end = ends[k];
+      best_start = start;
+      best_end = end;
     }
   }
   const bool moved = best_start != start_s_ || best_end != end_s_;
-  const float scale = moved ? 2.0f : 0.5f;
-  start_step_s_ = clamp(start_step_s_ * scale, kMinStepS, kMaxStartStepS);
-  end_step_s_ = clamp(end_step_s_ * scale, kMinStepS, kMaxEndStepS);
+  step = clamp(step * (moved ? 2.0f : 0.5f), kMinStepS, on_end ? kMaxEndStepS : kMaxStartStepS);
   start_s_ = best_start;
   end_s_ = best_end;
   if (newest_.t - motion_s_ > kMaxStrokeS) {  // no end found in time: begin again

@@ -9,7 +9,8 @@
 //
 // Bounded and allocation-free: the stroke's reports are kept decimated to
 // kCapacity points, and refine() takes one step of a compass search on the
-// start and the end (from and travel in closed form at each), O(kCapacity).
+// start or the end (from and travel in closed form at each): three fits of
+// O(kCapacity).
 #include <cstdint>
 
 #include "frictionfield/core/geometry.hpp"
