@@ -38,11 +38,16 @@ void StrokeEndPredictor::restart() {
 
 namespace {
 // Origins are whole pixels: a report less its origin is then exact, and the
-// points the same in two runs that kept the same reports.
-Vec2 whole(Vec2 p) { return {std::round(p.x), std::round(p.y)}; }
+// points the same in two runs that kept the same reports. Rounded here, not
+// by newlib's roundf in flash; beyond 2^23 a float is whole already.
+FF_FASTRUN float whole(float v) {
+  if (!(std::fabs(v) < 8388608.0f)) return v;
+  return static_cast<float>(static_cast<int32_t>(v + (v < 0.0f ? -0.5f : 0.5f)));
+}
+FF_FASTRUN Vec2 whole(Vec2 p) { return {whole(p.x), whole(p.y)}; }
 }  // namespace
 
-void StrokeEndPredictor::reorigin_at_first() {
+FF_FASTRUN void StrokeEndPredictor::reorigin_at_first() {
   // Times and positions from the oldest kept point: small, and the same in
   // two runs that kept the same points whatever came before.
   const Point first = points_[0];
@@ -57,7 +62,7 @@ void StrokeEndPredictor::reorigin_at_first() {
   }
 }
 
-void StrokeEndPredictor::begin_stroke_at(const Point& newest) {
+FF_FASTRUN void StrokeEndPredictor::begin_stroke_at(const Point& newest) {
   count_ = 1;
   points_[0] = newest;
   reorigin_at_first();
@@ -67,7 +72,7 @@ void StrokeEndPredictor::begin_stroke_at(const Point& newest) {
   spacing_us_ = kSpacingUs;
 }
 
-void StrokeEndPredictor::keep_resting(const Point& p) {
+FF_FASTRUN void StrokeEndPredictor::keep_resting(const Point& p) {
   points_[count_++] = p;
   if (count_ > kRestPoints) {
     for (int i = 1; i < count_; ++i) points_[i - 1] = points_[i];
@@ -76,7 +81,7 @@ void StrokeEndPredictor::keep_resting(const Point& p) {
   }
 }
 
-void StrokeEndPredictor::keep_moving(const Point& p) {
+FF_FASTRUN void StrokeEndPredictor::keep_moving(const Point& p) {
   if (count_ == kCapacity) {  // every other point goes, and from now on twice the spacing
     for (int i = 1; i < kCapacity / 2; ++i) points_[i] = points_[2 * i];
     count_ = kCapacity / 2;
@@ -124,7 +129,7 @@ FF_FASTRUN void StrokeEndPredictor::add(uint32_t t_us, Vec2 p) {
   last_refine_s_ = motion_s_ - refine_interval_s_;  // due now
 }
 
-bool StrokeEndPredictor::refine_due() const { return moving_ && newest_.t - last_refine_s_ >= refine_interval_s_; }
+FF_FASTRUN bool StrokeEndPredictor::refine_due() const { return moving_ && newest_.t - last_refine_s_ >= refine_interval_s_; }
 
 FF_FASTRUN StrokeEndPredictor::Fit StrokeEndPredictor::evaluate(float start_s, float end_s, int n, Vec2 mean) const {
   Fit f;
