@@ -40,8 +40,9 @@ class StrokeEndPredictor {
   void configure(const StrokeEndConfig& config);
   // Nothing known (a touch-down, a jump, a gap).
   void restart();
-  // A report, seen at t_us (the tracker's clock), O(1). One not after the
-  // newest is ignored.
+  // A report, seen at t_us (the tracker's clock): O(kRestPoints), and
+  // O(kCapacity) when the kept points fill up. One not after the newest is
+  // ignored.
   void add(uint32_t t_us, Vec2 p);
   // A refinement is due: the stroke has begun and refine_interval_us of
   // reports have come since the last one.
