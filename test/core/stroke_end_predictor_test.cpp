@@ -12,22 +12,12 @@
 #include <vector>
 
 #include "support/random.hpp"
+#include "support/models/min_jerk_stroke.hpp"
 
 namespace ff {
 namespace {
 
-double profile(double tau) {
-  if (tau <= 0.0) return 0.0;
-  if (tau >= 1.0) return 1.0;
-  return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
-}
-
-struct Stroke {
-  double start_s, duration_s, from_x, from_y, travel_x, travel_y;
-  double end_s() const { return start_s + duration_s; }
-  double x(double t) const { return from_x + travel_x * profile((t - start_s) / duration_s); }
-  double y(double t) const { return from_y + travel_y * profile((t - start_s) / duration_s); }
-};
+using Stroke = testing::MinJerkStroke;
 
 // A path of strokes, each from where the last one ended, with rests between.
 struct Path {

@@ -9,21 +9,12 @@
 
 #include "stroke_end_predictor.hpp"
 #include "support/random.hpp"
+#include "support/models/min_jerk_stroke.hpp"
 
 namespace ff::bench {
 namespace {
 
-double profile(double tau) {
-  if (tau <= 0.0) return 0.0;
-  if (tau >= 1.0) return 1.0;
-  return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
-}
-
-struct Stroke {
-  double start_s, duration_s, from_x, from_y, travel_x, travel_y;
-  double x(double t) const { return from_x + travel_x * profile((t - start_s) / duration_s); }
-  double y(double t) const { return from_y + travel_y * profile((t - start_s) / duration_s); }
-};
+using Stroke = testing::MinJerkStroke;
 
 // Reports every 5 ms over [t0, t1), with white noise of sigma px per axis.
 std::vector<TimedReport> reports_of(const Stroke& s, double t0, double t1, double sigma_px, uint64_t seed) {
