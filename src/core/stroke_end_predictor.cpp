@@ -211,9 +211,10 @@ FF_FASTRUN bool StrokeEndPredictor::refine() {
   // watched for the next start.
   // |travel|^2 = explained / spread; each component's variance sigma^2 / spread,
   // sigma^2 from the residuals of 2n coordinates less 4 fitted values.
+  if (n < 3) return false;  // moving: at least a rest and the report that left it; a fit needs a third
   const float residual = total - best.explained;
   const float sigma2 = (residual > 0.0f ? residual : 0.0f) / static_cast<float>(2 * n - 4);
-  const bool stroke = best.explained >= 0.0f && n >= 3 &&
+  const bool stroke = best.explained >= 0.0f &&
                       best.explained >= config_.min_travel_px * config_.min_travel_px * best.profile_spread &&
                       best.explained >= config_.min_sigmas * config_.min_sigmas * sigma2;
   if (!stroke) {
