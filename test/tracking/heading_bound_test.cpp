@@ -167,6 +167,27 @@ TEST(HeadingBound, StrokesEndedWherePredictedComeCloseToTheStandstillsTold) {
   EXPECT_GT(r.rest_rms, 0.05);
 }
 
+// The tracker's own predictor (float, 32 points, one search step per
+// refinement) against the standstills and beside the double-precision full
+// search: on white-200hz it finds as many, as soon, and as few elsewhere.
+TEST(HeadingBound, TheTrackersPredictorFindsTheEndsTheFullSearchFinds) {
+  const tracegen::TraceClass* white_class = tracegen::find_trace_class("white-200hz");
+  ASSERT_NE(white_class, nullptr);
+  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white_class, 4.0));
+  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  HeadingBoundOptions full, tracker;
+  full.boundaries = StrokeBoundaries::PredictedEnds;
+  tracker.boundaries = StrokeBoundaries::TrackerEnds;
+  const StrokeEndStats f = heading_bound(cases, kClassMovingSpeedPxS, noise, full).ends;
+  const StrokeEndStats t = heading_bound(cases, kClassMovingSpeedPxS, noise, tracker).ends;
+  ASSERT_GT(t.standstills, 10u);
+  EXPECT_EQ(t.standstills, f.standstills);
+  EXPECT_GE(t.found + t.standstills / 20, f.found);  // within 5 % of the full search
+  EXPECT_GE(t.found, t.standstills * 9 / 10);
+  EXPECT_LE(std::fabs(t.median_delay_ms), 10.0);
+  EXPECT_LE(t.other_ends, t.standstills / 10);
+}
+
 // A stroke too short or slow for the fit ends nowhere: forgetting the
 // heading while the speed reads low keeps it from outlasting the stop.
 TEST(HeadingBound, PredictedEndsForgetTheHeadingWhileTheFingerIsSlow) {
