@@ -218,7 +218,7 @@ void write_predicted_ends_report(std::ostream& out, const std::vector<LookaheadR
          "minimum-jerk: a finger's are only close to it. The tracker's predictor (`core/stroke_end_predictor.*`, "
          "what the shipping tracker widens its direction filter by at each end) fits the same profile in float "
          "on at most "
-      << ff::StrokeEndPredictor::kCapacity << " decimated reports, one step of a compass search on the start and "
+      << ff::StrokeEndPredictor::kCapacity << " decimated reports, one step of a compass search on the start or "
          "the end per "
       << ff::StrokeEndConfig{}.refine_interval_us / 1000.0 << " ms of reports instead of the full search.\n";
 }
