@@ -1,11 +1,11 @@
 #include "frictionfield/core/stroke_end_predictor.hpp"
 
-#include <cmath>
 #include <initializer_list>
 
 #include "frictionfield/bus/clock.hpp"
 #include "frictionfield/core/fastrun.hpp"
 #include "frictionfield/core/min_jerk.hpp"
+#include "frictionfield/core/tick_math.hpp"
 
 namespace ff {
 
@@ -38,13 +38,8 @@ void StrokeEndPredictor::restart() {
 
 namespace {
 // Origins are whole pixels: a report less its origin is then exact, and the
-// points the same in two runs that kept the same reports. Rounded here, not
-// by newlib's roundf in flash; beyond 2^23 a float is whole already.
-FF_FASTRUN float whole(float v) {
-  if (!(std::fabs(v) < 8388608.0f)) return v;
-  return static_cast<float>(static_cast<int32_t>(v + (v < 0.0f ? -0.5f : 0.5f)));
-}
-FF_FASTRUN Vec2 whole(Vec2 p) { return {whole(p.x), whole(p.y)}; }
+// points the same in two runs that kept the same reports.
+FF_FASTRUN Vec2 whole(Vec2 p) { return {nearest_integer(p.x), nearest_integer(p.y)}; }
 }  // namespace
 
 FF_FASTRUN void StrokeEndPredictor::reorigin_at_first() {
