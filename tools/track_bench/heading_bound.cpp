@@ -44,6 +44,8 @@ struct EndLog {
 
 constexpr double kEndToleranceS = kPredictedEndToleranceMs * 1e-3;
 
+bool predicts_ends(StrokeBoundaries b) { return b == StrokeBoundaries::PredictedEnds || b == StrokeBoundaries::TrackerEnds; }
+
 // The tracker's clock: wrapping microseconds.
 uint32_t stamp_us(double scan_s) { return static_cast<uint32_t>(std::llround(scan_s * 1e6)); }
 
@@ -121,18 +123,18 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
             new_stroke = still;
             break;
           case StrokeBoundaries::PredictedEnds:
+            new_stroke = predictor.report(scan_s, s.x, s.y);
+            break;
           case StrokeBoundaries::TrackerEnds:
-            if (options.boundaries == StrokeBoundaries::PredictedEnds) {
-              new_stroke = predictor.report(scan_s, s.x, s.y);
-            } else {
-              tracker_predictor.add(stamp_us(scan_s), z);
-              new_stroke = tracker_predictor.refine_due() && tracker_predictor.refine();
-            }
-            if (new_stroke) log->ends.push_back(scan_s);
-            if (speed_px_s < options.forget_below_px_s) heading.forget(options.forget_variance_per_s * dt);
+            tracker_predictor.add(stamp_us(scan_s), z);
+            new_stroke = tracker_predictor.refine_due() && tracker_predictor.refine();
             break;
           case StrokeBoundaries::None:
             break;
+        }
+        if (predicts_ends(options.boundaries)) {
+          if (new_stroke) log->ends.push_back(scan_s);
+          if (speed_px_s < options.forget_below_px_s) heading.forget(options.forget_variance_per_s * dt);
         }
         if (new_stroke) {
           heading.new_stroke();
@@ -164,8 +166,7 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
                     &logs.back()};
   });
   HeadingBoundResult result{errors.heightmap_rms, errors.rest_rms, {}};
-  if (options.boundaries == StrokeBoundaries::PredictedEnds || options.boundaries == StrokeBoundaries::TrackerEnds)
-    result.ends = end_stats(logs);
+  if (predicts_ends(options.boundaries)) result.ends = end_stats(logs);
   return result;
 }
 
