@@ -1,5 +1,6 @@
 #include "frictionfield/core/stroke_end_predictor.hpp"
 
+#include <cmath>
 #include <initializer_list>
 
 #include "frictionfield/bus/clock.hpp"
@@ -30,6 +31,7 @@ void StrokeEndPredictor::configure(const StrokeEndConfig& config) {
 }
 
 void StrokeEndPredictor::restart() {
+  quiet_known_ = false;
   count_ = 0;
   started_ = false;
   moving_ = false;
@@ -64,6 +66,7 @@ FF_FASTRUN void StrokeEndPredictor::begin_stroke_at(const Point& newest) {
   newest_ = points_[0];
   newest_kept_ = true;
   moving_ = false;
+  quiet_known_ = false;
   spacing_us_ = kSpacingUs;
 }
 
@@ -122,6 +125,14 @@ FF_FASTRUN void StrokeEndPredictor::add(uint32_t t_us, Vec2 p) {
   start_step_s_ = kStartStepS;
   end_step_s_ = kEndStepS;
   last_refine_s_ = motion_s_ - refine_interval_s_;  // due now
+}
+
+FF_FASTRUN float StrokeEndPredictor::quiet_gain(uint32_t now_us) const {
+  const int32_t into = signed_elapsed(now_us, quiet_from_us_);
+  if (into <= 0) return 1.0f;
+  const float left = 1.0f - static_cast<float>(into) * inverse_quiet_us_;  // of the quiet span
+  if (!(left > 0.0f)) return 0.0f;
+  return left * left * (3.0f - 2.0f * left);  // smoothstep
 }
 
 FF_FASTRUN bool StrokeEndPredictor::refine_due() const { return moving_ && newest_.t - last_refine_s_ >= refine_interval_s_; }
@@ -200,18 +211,32 @@ FF_FASTRUN bool StrokeEndPredictor::refine() {
     begin_stroke_at(newest_);
     return false;
   }
+  // A stroke: it stands out of the noise. |travel|^2 = explained / spread;
+  // each component's variance sigma^2 / spread, sigma^2 from the residuals
+  // of 2n coordinates less 4 fitted values. Moving, a fit has at least a
+  // rest and the report that left it; it needs a third.
+  const float residual = total - best.explained;
+  const float sigma2 = n >= 3 && residual > 0.0f ? residual / static_cast<float>(2 * n - 4) : 0.0f;
+  const bool stroke = n >= 3 && best.explained >= 0.0f &&
+                      best.explained >= config_.min_travel_px * config_.min_travel_px * best.profile_spread &&
+                      best.explained >= config_.min_sigmas * config_.min_sigmas * sigma2;
+  quiet_known_ = stroke && config_.quiet_speed_px_s > 0.0f;
+  if (quiet_known_) {
+    // Near the end the speed is travel / T * 30 (1 - tau)^2 (min_jerk.hpp):
+    // quiet_speed that long before it, at most from the peak.
+    const float duration = end_s_ - start_s_;
+    const float travel = std::sqrt(best.explained / best.profile_spread);
+    float quiet_s = duration * std::sqrt(config_.quiet_speed_px_s * duration / (30.0f * travel));
+    if (quiet_s > 0.5f * duration) quiet_s = 0.5f * duration;
+    quiet_us_ = static_cast<uint32_t>(quiet_s * 1e6f) + 1u;
+    inverse_quiet_us_ = 1.0f / static_cast<float>(quiet_us_);
+    quiet_from_us_ = origin_us_ + static_cast<uint32_t>(static_cast<int32_t>((end_s_ - quiet_s) * 1e6f));
+  }
+  if (n < 3) return false;
   if (newest_.t < end_s_) return false;
   // Past the fitted end: a stroke that does not stand out of the noise is
   // none, and given up once well past it, so that the finger at rest is
   // watched for the next start.
-  // |travel|^2 = explained / spread; each component's variance sigma^2 / spread,
-  // sigma^2 from the residuals of 2n coordinates less 4 fitted values.
-  if (n < 3) return false;  // moving: at least a rest and the report that left it; a fit needs a third
-  const float residual = total - best.explained;
-  const float sigma2 = (residual > 0.0f ? residual : 0.0f) / static_cast<float>(2 * n - 4);
-  const bool stroke = best.explained >= 0.0f &&
-                      best.explained >= config_.min_travel_px * config_.min_travel_px * best.profile_spread &&
-                      best.explained >= config_.min_sigmas * config_.min_sigmas * sigma2;
   if (!stroke) {
     if (newest_.t > end_s_ + kGiveUpS) begin_stroke_at(newest_);
     return false;

@@ -1,8 +1,9 @@
 // The device's stroke end predictor against strokes built from the
 // minimum-jerk formula (10 tau^3 - 15 tau^4 + 6 tau^5, written out here):
 // it ends a stroke where the finger stops, at any report rate, not before
-// and never on a resting finger's noise; its work is bounded; and it
-// forgets: two runs that differ in one report agree again after a rest.
+// and never on a resting finger's noise; it quiets the direction over the
+// stop's last px/s and nowhere else; its work is bounded; and it forgets:
+// two runs that differ in one report agree again after a rest.
 #include "frictionfield/core/stroke_end_predictor.hpp"
 
 #include <gtest/gtest.h>
@@ -73,6 +74,76 @@ TEST(StrokeEndPredictorCore, EndsEachStrokeWhereItStopsAndNeverOnNoise) {
   StrokeEndPredictor rest;
   const Path still{{Stroke{10.0, 1.0, 200.0, 100.0, 0.0, 0.0}}};
   EXPECT_TRUE(feed(rest, still, 5.0, 5000, 1.0, 8).ends.empty());
+}
+
+// The stopping gain at every 500 us tick of the same feed (200 Hz reports).
+struct Gains {
+  std::vector<double> t;
+  std::vector<float> gain;
+  float min_within(double from_s, double to_s) const {
+    float m = 1.0f;
+    for (size_t i = 0; i < t.size(); ++i)
+      if (t[i] >= from_s && t[i] <= to_s && gain[i] < m) m = gain[i];
+    return m;
+  }
+  double first_at_most(float g, double from_s) const {  // s, or -1
+    for (size_t i = 0; i < t.size(); ++i)
+      if (t[i] >= from_s && gain[i] <= g) return t[i];
+    return -1.0;
+  }
+};
+Gains gains(StrokeEndPredictor& p, const Path& path, double duration_s, double sigma_px, uint64_t seed) {
+  support::Random rng(seed);
+  Gains g;
+  uint32_t k = 0;
+  constexpr uint32_t kPeriodUs = 5000;
+  for (uint32_t tick_us = 0; tick_us * 1e-6 < duration_s; tick_us += 500) {
+    for (; k * kPeriodUs <= tick_us; ++k) {
+      const double t = k * (kPeriodUs * 1e-6);
+      const Stroke& s = path.at(t);
+      p.add(kOriginUs + k * kPeriodUs, {static_cast<float>(s.x(t) + sigma_px * rng.gaussian()),
+                                        static_cast<float>(s.y(t) + sigma_px * rng.gaussian())});
+      if (p.refine_due()) p.refine();
+    }
+    g.t.push_back(tick_us * 1e-6);
+    g.gain.push_back(p.stopping_gain(kOriginUs + tick_us));
+  }
+  return g;
+}
+
+// When a stroke's speed, travel / duration * 30 tau^2 (1 - tau)^2, last
+// falls below v (px/s): by bisection on its decelerating half.
+double last_time_above(const Stroke& s, double v) {
+  const double travel = std::hypot(s.travel_x, s.travel_y);
+  double lo = 0.5, hi = 1.0;
+  for (int i = 0; i < 60; ++i) {
+    const double tau = 0.5 * (lo + hi);
+    (travel / s.duration_s * 30.0 * tau * tau * (1.0 - tau) * (1.0 - tau) > v ? lo : hi) = tau;
+  }
+  return s.start_s + lo * s.duration_s;
+}
+
+TEST(StrokeEndPredictorCore, TheDirectionIsQuietedOverTheStopOnly) {
+  // quiet_speed 10 px/s. Measured (seeds 1-5, 1 px noise): the gain first
+  // at or below 0.5 9-15 ms before kOut's end, 9 ms before to 15 ms after
+  // kBack's (whose fitted end is later); at 1 above 50 px/s.
+  for (uint64_t seed = 1; seed <= 5; ++seed) {
+    StrokeEndPredictor p;
+    const Gains g = gains(p, kOutAndBack, 1.3, 1.0, seed);
+    for (const Stroke& s : {kOut, kBack}) {
+      EXPECT_EQ(g.min_within(s.start_s, last_time_above(s, 50.0)), 1.0f) << seed;
+      EXPECT_NEAR(g.first_at_most(0.5f, s.start_s), s.end_s(), 0.02) << seed;
+    }
+    EXPECT_EQ(g.min_within(kBack.end_s() + 0.04, 1.3), 1.0f) << seed;  // ended: the tracker's widening takes over
+  }
+  // Off: 1 throughout; a resting finger's noise: never quieted.
+  StrokeEndConfig off_config;
+  off_config.quiet_speed_px_s = 0.0f;
+  StrokeEndPredictor off(off_config);
+  EXPECT_EQ(gains(off, kOutAndBack, 1.3, 1.0, 1).min_within(0.0, 1.3), 1.0f);
+  StrokeEndPredictor rest;
+  const Path still{{Stroke{10.0, 1.0, 200.0, 100.0, 0.0, 0.0}}};
+  EXPECT_EQ(gains(rest, still, 5.0, 1.0, 2).min_within(0.0, 5.0), 1.0f);
 }
 
 TEST(StrokeEndPredictorCore, AtAnyReportRate) {

@@ -25,6 +25,10 @@ struct StrokeEndConfig {
   float min_sigmas = 8.0f;
   float motion_px = 4.0f;  // a stroke begins once a report is this far from where the finger rested
   uint32_t refine_interval_us = 4000;  // at most one refinement per this much report time
+  // Before the fitted end: from where the fitted speed falls below this, the
+  // direction fades out with it (stopping_gain), so that a stop is quiet on
+  // time rather than a report or two after it. 0: not faded.
+  float quiet_speed_px_s = 20.0f;
 };
 
 class StrokeEndPredictor {
@@ -51,6 +55,12 @@ class StrokeEndPredictor {
   // by the newest report: the next stroke begins with it.
   bool refine();
 
+  // What the direction is worth at now_us: 1, or towards the fitted end of a
+  // stroke that stands out of the noise, falling from 1 where the fitted
+  // speed is quiet_speed_px_s to 0 at the end (and 0 after it, until the
+  // next refinement ends the stroke). O(1): for every tick.
+  float stopping_gain(uint32_t now_us) const { return quiet_known_ ? quiet_gain(now_us) : 1.0f; }
+
   bool moving() const { return moving_; }
   float fitted_end_s() const { return end_s_; }      // from the stroke's first kept report
   float fitted_start_s() const { return start_s_; }
@@ -71,6 +81,7 @@ class StrokeEndPredictor {
   void keep_moving(const Point& p);
   void keep_resting(const Point& p);
   void reorigin_at_first();
+  float quiet_gain(uint32_t now_us) const;
 
   StrokeEndConfig config_;
   Point points_[kCapacity + 1];  // + the newest report when not kept
@@ -88,6 +99,11 @@ class StrokeEndPredictor {
   float last_refine_s_ = 0.0f;
   float refine_interval_s_ = 0.0f;
   uint32_t refinements_ = 0;
+  // The fitted stroke's quiet end (stopping_gain): from quiet_from_us_ for quiet_us_.
+  bool quiet_known_ = false;
+  uint32_t quiet_from_us_ = 0;
+  uint32_t quiet_us_ = 0;
+  float inverse_quiet_us_ = 0.0f;
 };
 
 }  // namespace ff

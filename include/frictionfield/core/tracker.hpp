@@ -63,8 +63,9 @@ struct TrackerConfig {
   // Stroke ends: where a minimum-jerk fit to the stroke's reports says the
   // finger stops (stroke_end_predictor.hpp), the direction filter is widened
   // by this factor, as at a change of motion but on time, so that a finger
-  // come to rest renders 0.5 at once. 1 or less: not predicted (no cost).
-  // The Kalman estimators only.
+  // come to rest renders 0.5 at once; before that, the direction fades out
+  // as the fitted speed falls to 0 (StrokeEndConfig::quiet_speed_px_s). 1 or
+  // less: not predicted (no cost). The Kalman estimators only.
   float stroke_end_widening = 10.0f;
   StrokeEndConfig stroke_end;
 
