@@ -129,7 +129,6 @@ FF_FASTRUN void StrokeEndPredictor::add(uint32_t t_us, Vec2 p) {
 
 FF_FASTRUN float StrokeEndPredictor::quiet_gain(uint32_t now_us) const {
   const int32_t into = signed_elapsed(now_us, quiet_from_us_);
-  if (into <= 0) return 1.0f;
   const float left = 1.0f - static_cast<float>(into) * inverse_quiet_us_;  // of the quiet span
   if (!(left > 0.0f)) return 0.0f;
   return left * left * (3.0f - 2.0f * left);  // smoothstep

@@ -413,7 +413,10 @@ FF_FASTRUN const TrackState& Tracker::on_tick(uint32_t now_us, bool need_filter)
   state_.position = {clamp(p.x, 0.0f, kScreenMaxX), clamp(p.y, 0.0f, kScreenMaxY)};
   state_.velocity = velocity;
   state_.direction = faded_direction(velocity);
-  if (predict_stroke_ends_) state_.direction = stroke_end_.stopping_gain(now_us) * state_.direction;
+  if (predict_stroke_ends_) {
+    const float quiet = stroke_end_.stopping_gain(now_us);  // 1 but over a fitted stop
+    if (quiet < 1.0f) state_.direction = quiet * state_.direction;
+  }
   return state_;
 }
 

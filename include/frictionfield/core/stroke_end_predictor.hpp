@@ -13,6 +13,7 @@
 // O(kCapacity).
 #include <cstdint>
 
+#include "frictionfield/bus/clock.hpp"
 #include "frictionfield/core/geometry.hpp"
 
 namespace ff {
@@ -59,7 +60,9 @@ class StrokeEndPredictor {
   // stroke that stands out of the noise, falling from 1 where the fitted
   // speed is quiet_speed_px_s to 0 at the end (and 0 after it, until the
   // next refinement ends the stroke). O(1): for every tick.
-  float stopping_gain(uint32_t now_us) const { return quiet_known_ ? quiet_gain(now_us) : 1.0f; }
+  float stopping_gain(uint32_t now_us) const {
+    return quiet_known_ && signed_elapsed(now_us, quiet_from_us_) > 0 ? quiet_gain(now_us) : 1.0f;
+  }
 
   bool moving() const { return moving_; }
   float fitted_end_s() const { return end_s_; }      // from the stroke's first kept report
@@ -81,7 +84,7 @@ class StrokeEndPredictor {
   void keep_moving(const Point& p);
   void keep_resting(const Point& p);
   void reorigin_at_first();
-  float quiet_gain(uint32_t now_us) const;
+  float quiet_gain(uint32_t now_us) const;  // past quiet_from_us_
 
   StrokeEndConfig config_;
   Point points_[kCapacity + 1];  // + the newest report when not kept
