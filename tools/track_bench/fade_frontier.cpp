@@ -129,7 +129,7 @@ void write_frontier_csv(std::ostream& out, const std::vector<FrontierRow>& rows)
       bool on_front = false;
       for (const FrontierPoint& f : front) on_front = on_front || same(f.fade, p.fade);
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.6f,%.6f,%d,%d,%.2f,%.3f\n", r.trace_class.c_str(),
+      std::snprintf(line, sizeof line, "%s,%.2f,%.2f,%.9g,%.9g,%d,%d,%.2f,%.3f\n", r.trace_class.c_str(),
                     static_cast<double>(p.fade.rest_sigmas), static_cast<double>(p.fade.moving_sigmas),
                     p.heightmap_ratio, p.chatter, on_front ? 1 : 0, same(p.fade, r.shipping) ? 1 : 0, r.heightmap_goal,
                     r.chatter_goal);
