@@ -125,7 +125,7 @@ double last_time_above(const Stroke& s, double v) {
 
 TEST(StrokeEndPredictorCore, TheDirectionIsQuietedOverTheStopOnly) {
   // quiet_speed 10 px/s. Measured (seeds 1-5, 1 px noise): the gain first
-  // at or below 0.5 9-15 ms before kOut's end, 9 ms before to 15 ms after
+  // at or below 0.5 6-12 ms before kOut's end, 7 ms before to 15 ms after
   // kBack's (whose fitted end is later); at 1 above 50 px/s.
   for (uint64_t seed = 1; seed <= 5; ++seed) {
     StrokeEndPredictor p;

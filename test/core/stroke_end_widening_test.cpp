@@ -67,7 +67,7 @@ TrackerConfig without_ends() {
 
 TEST(StrokeEndWidening, AStoppedStrokeIsRenderedAtRestSooner) {
   // Measured (sum of |direction|^2 over the 100 ms after the stop, seeds
-  // 1-5): 0 / 0.04 / 0.007 / 0 / 0.065 with the prediction, 24 / 6.6 / 0.45 /
+  // 1-5): 0 / 0.04 / 0.007 / 0 / 0.22 with the prediction, 24 / 6.6 / 0.45 /
   // 28 / 13 without: never worse, 5x less in all (before the direction was
   // quieted over the stop: 0 / 5.2 / 0.007 / 0 / 7.9).
   double with_all = 0.0, without_all = 0.0;
@@ -86,7 +86,7 @@ TEST(StrokeEndWidening, TheDirectionIsQuietAtTheStopItself) {
   // The direction faded out over the fitted stop (StrokeEndConfig::
   // quiet_speed_px_s) instead of at the first refinement after it. Measured
   // (sum of |direction|^2 over the first 10 ms of the rest, seeds 1-5):
-  // 0 / 0.0001 / 0 / 0 / 0.065 quieted, 0 / 5.2 / 0 / 0 / 7.9 not.
+  // 0 / 0.0005 / 0 / 0 / 0.22 quieted, 0 / 5.2 / 0 / 0 / 7.9 not.
   double quiet_all = 0.0, without_all = 0.0;
   TrackerConfig loud = TrackerConfig::recommended();
   loud.stroke_end.quiet_speed_px_s = 0.0f;

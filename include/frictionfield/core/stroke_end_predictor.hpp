@@ -29,7 +29,7 @@ struct StrokeEndConfig {
   // Before the fitted end: from where the fitted speed falls below this, the
   // direction fades out with it (stopping_gain), so that a stop is quiet on
   // time rather than a report or two after it. 0: not faded.
-  float quiet_speed_px_s = 20.0f;
+  float quiet_speed_px_s = 10.0f;
 };
 
 class StrokeEndPredictor {
