@@ -128,10 +128,8 @@ FF_FASTRUN void StrokeEndPredictor::add(uint32_t t_us, Vec2 p) {
 }
 
 FF_FASTRUN float StrokeEndPredictor::quiet_gain(uint32_t now_us) const {
-  const int32_t into = signed_elapsed(now_us, quiet_from_us_);
-  const float left = 1.0f - static_cast<float>(into) * inverse_quiet_us_;  // of the quiet span
-  if (!(left > 0.0f)) return 0.0f;
-  return left * left * (3.0f - 2.0f * left);  // smoothstep
+  // The share of the quiet span still ahead, faded as the tracker's direction is.
+  return smoothstep(1.0f - static_cast<float>(signed_elapsed(now_us, quiet_from_us_)) * inverse_quiet_us_);
 }
 
 FF_FASTRUN bool StrokeEndPredictor::refine_due() const { return moving_ && newest_.t - last_refine_s_ >= refine_interval_s_; }
@@ -227,8 +225,7 @@ FF_FASTRUN bool StrokeEndPredictor::refine() {
     const float travel = std::sqrt(best.explained / best.profile_spread);
     float quiet_s = duration * std::sqrt(config_.quiet_speed_px_s * duration / (30.0f * travel));
     if (quiet_s > 0.5f * duration) quiet_s = 0.5f * duration;
-    quiet_us_ = static_cast<uint32_t>(quiet_s * 1e6f) + 1u;
-    inverse_quiet_us_ = 1.0f / static_cast<float>(quiet_us_);
+    inverse_quiet_us_ = 1.0f / static_cast<float>(static_cast<uint32_t>(quiet_s * 1e6f) + 1u);  // whole us, at least 1
     quiet_from_us_ = origin_us_ + static_cast<uint32_t>(static_cast<int32_t>((end_s_ - quiet_s) * 1e6f));
   }
   if (n < 3) return false;

@@ -15,11 +15,6 @@ namespace {
 // Stamps are the wrapping 32-bit micros(): differences by the clock's rule.
 constexpr int32_t elapsed_us(uint32_t later, uint32_t earlier) { return signed_elapsed(later, earlier); }
 
-FF_FASTRUN float smoothstep(float t) {
-  t = clamp(t, 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 // Helpers of on_sample and on_tick, compiled into them: a call and its
 // register saves cost more than the arithmetic on the M4 (docs/cycle-model.md).
 #define FF_TICK_INLINE inline __attribute__((always_inline))

@@ -29,6 +29,13 @@ inline bool is_finite(Vec2 a) { return is_finite(a.x) && is_finite(a.y); }
 
 constexpr float clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
+// 0 at t <= 0, 1 at t >= 1, and 3t^2 - 2t^3 between: an S-shaped fade (the
+// quintic smootherstep of field_element.hpp where the slope's ends matter too).
+constexpr float smoothstep(float t) {
+  t = clamp(t, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
 // NaN-safe clamp to [lo, hi]: NaN maps to `fallback`.
 inline float clamp_finite(float v, float lo, float hi, float fallback) {
   return std::isnan(v) ? fallback : clamp(v, lo, hi);

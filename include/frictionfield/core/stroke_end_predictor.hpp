@@ -102,10 +102,9 @@ class StrokeEndPredictor {
   float last_refine_s_ = 0.0f;
   float refine_interval_s_ = 0.0f;
   uint32_t refinements_ = 0;
-  // The fitted stroke's quiet end (stopping_gain): from quiet_from_us_ for quiet_us_.
+  // The fitted stroke's quiet end (stopping_gain): from quiet_from_us_, 1 / its length in us.
   bool quiet_known_ = false;
   uint32_t quiet_from_us_ = 0;
-  uint32_t quiet_us_ = 0;
   float inverse_quiet_us_ = 0.0f;
 };
 
