@@ -1,5 +1,9 @@
 #include "frictionfield/core/report_noise.hpp"
 
+#include <cmath>
+
+#include "frictionfield/core/geometry.hpp"
+
 namespace ff {
 
 ReportNoise ReportNoise::of(const SensorProfile& s) {
@@ -9,6 +13,20 @@ ReportNoise ReportNoise::of(const SensorProfile& s) {
     n.wander_variance = s.correlated_noise_px * s.correlated_noise_px;
     n.inverse_tau_s = 1e3f / s.correlation_time_ms;
   }
+  return n;
+}
+
+ReportNoise ReportNoise::with_tremor(const SensorProfile& s) {
+  ReportNoise n = of(s);
+  if (!(s.tremor_px > 0.0f)) return n;
+  TremorModel& t = n.tremor;
+  const float w = 2.0f * kPi * TremorModel::kTremorHz;
+  t.variance = 0.5f * s.tremor_px * s.tremor_px;
+  t.omega2 = w * w;
+  t.damping = 1.0f / TremorModel::kTremorDampingS;
+  t.damped_omega = std::sqrt(t.omega2 - t.damping * t.damping);
+  t.damped_hz = t.damped_omega / (2.0f * kPi);
+  t.inverse_damped_omega = 1.0f / t.damped_omega;
   return n;
 }
 

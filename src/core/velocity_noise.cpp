@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <complex>
+#include <utility>
 
 #include "frictionfield/core/tick_math.hpp"
 
@@ -18,9 +19,24 @@ bool settled(float now, float before) { return std::fabs(now - before) <= kSettl
 
 using Complex = std::complex<float>;
 
-Complex det3(const Complex a[3][3]) {
-  return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-         a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+// Solves a x = b (n <= 5) by Gaussian elimination with partial pivoting.
+void solve(Complex a[5][5], Complex b[5], int n) {
+  for (int col = 0; col < n; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < n; ++r)
+      if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
+    for (int j = 0; j < n; ++j) std::swap(a[col][j], a[pivot][j]);
+    std::swap(b[col], b[pivot]);
+    for (int r = col + 1; r < n; ++r) {
+      const Complex f = a[r][col] / a[col][col];
+      for (int j = col; j < n; ++j) a[r][j] -= f * a[col][j];
+      b[r] -= f * b[col];
+    }
+  }
+  for (int r = n - 1; r >= 0; --r) {
+    for (int j = r + 1; j < n; ++j) b[r] -= a[r][j] * b[j];
+    b[r] /= a[r][r];
+  }
 }
 
 }  // namespace
@@ -29,6 +45,8 @@ SteadyStateFilter steady_state_filter(float q, const ReportNoise& noise, const S
   SteadyStateFilter f;
   f.interval_s = 1.0f / sensor.report_rate_hz;
   f.wander_correlation = noise.correlation(f.interval_s);
+  f.tremor = noise.tremor.variance > 0.0f;
+  if (f.tremor) f.tremor_step = noise.tremor.step(f.interval_s);
   FingerKalman k;
   k.start({}, noise, kInitialSpeedPxS);
   for (int i = 0; i < kMaxIterations; ++i) {
@@ -36,7 +54,8 @@ SteadyStateFilter steady_state_filter(float q, const ReportNoise& noise, const S
     const float inverse_s = k.inverse_innovation(noise);
     const FingerKalman::Gains g = k.gains(inverse_s);
     k.update({}, inverse_s);
-    const bool done = settled(g.position, f.gains.position) && settled(g.velocity, f.gains.velocity);
+    const bool done = settled(g.position, f.gains.position) && settled(g.velocity, f.gains.velocity) &&
+                      settled(g.tremor, f.gains.tremor) && settled(g.tremor_rate, f.gains.tremor_rate);
     f.gains = g;
     f.velocity_variance = k.P11;
     if (done) break;
@@ -46,28 +65,42 @@ SteadyStateFilter steady_state_filter(float q, const ReportNoise& noise, const S
 
 float resting_velocity_variance(const SteadyStateFilter& f, const SensorProfile& sensor) {
   const float T = f.interval_s, phi_f = f.wander_correlation;
-  const float k0 = f.gains.position, k1 = f.gains.velocity, k2 = f.gains.wander;
   const float white = sensor.white_noise_px;
   const bool wander = sensor.correlated_noise_px > 0.0f && sensor.correlation_time_ms > 0.0f;
   const float phi = wander ? std::exp(-T / (1e-3f * sensor.correlation_time_ms)) : 0.0f;  // the sensor's, exact
   const float g = wander ? sensor.correlated_noise_px * std::sqrt(1.0f - phi * phi) : 0.0f;
-  // One report at rest, state (p^, v^, e^ the filter's; e the sensor's wander):
-  // e' = phi e + g n1, z = e' + white n2, then the filter's predict and update
-  // with its settled gains: innovation = z - (p^ + T v^) - phi_f e^.
-  constexpr int N = 4;
-  const float A[N][N] = {{1.0f - k0, (1.0f - k0) * T, -k0 * phi_f, k0 * phi},
-                         {-k1, 1.0f - k1 * T, -k1 * phi_f, k1 * phi},
-                         {-k2, -k2 * T, (1.0f - k2) * phi_f, k2 * phi},
-                         {0.0f, 0.0f, 0.0f, phi}};
-  const float B[N][2] = {{k0 * g, k0 * white}, {k1 * g, k1 * white}, {k2 * g, k2 * white}, {g, 0.0f}};
+  // The filter's states (p, v, e[, c, u]) over one report at rest: predicted
+  // by F, then updated with its settled gains K: x' = M x + K z, M = (I - K H) F,
+  // H = [1 0 1 1 0]. The sensor: e_s' = phi e_s + g n1, z = e_s' + white n2.
+  const int n = f.tremor ? 5 : 3, N = n + 1;
+  const TremorModel::Step& r = f.tremor_step;
+  float F[5][5] = {{1.0f, T}, {0.0f, 1.0f}, {0.0f, 0.0f, phi_f}, {0.0f, 0.0f, 0.0f, r.r00, r.r01},
+                   {0.0f, 0.0f, 0.0f, r.r10, r.r11}};
+  const float K[5] = {f.gains.position, f.gains.velocity, f.gains.wander, f.gains.tremor, f.gains.tremor_rate};
+  float M[5][5];
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const float hf = F[0][j] + F[2][j] + (f.tremor ? F[3][j] : 0.0f);  // (H F)_j
+      M[i][j] = F[i][j] - K[i] * hf;
+    }
+  // Filter and sensor wander together: A (N x N), B the two draws per report.
+  float A[6][6] = {}, B[6][2] = {};
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) A[i][j] = M[i][j];
+    A[i][n] = K[i] * phi;
+    B[i][0] = K[i] * g;
+    B[i][1] = K[i] * white;
+  }
+  A[n][n] = phi;
+  B[n][0] = g;
   // The stationary covariance S = sum_i A^i Q A^iT by doubling (S += A S A^T,
   // A = A^2): 2^k reports after k steps, so that poles near 1 (a slow wander
   // at a high rate, an oscillating filter) converge as surely as fast ones.
-  float S[N][N], An[N][N];
+  float S[6][6], An[6][6];
   for (int i = 0; i < N; ++i)
     for (int j = 0; j < N; ++j) S[i][j] = B[i][0] * B[j][0] + B[i][1] * B[j][1], An[i][j] = A[i][j];
   for (int step = 0; step < kDoublings; ++step) {
-    float AS[N][N], next[N][N], square[N][N];
+    float AS[6][6], next[6][6], square[6][6];
     for (int i = 0; i < N; ++i)
       for (int j = 0; j < N; ++j) {
         AS[i][j] = 0.0f;
@@ -85,20 +118,18 @@ float resting_velocity_variance(const SteadyStateFilter& f, const SensorProfile&
   float variance = S[1][1];
   if (sensor.tremor_px > 0.0f) {
     // A sinusoid of peak a through the filter: velocity variance (a^2 / 2) |H_v|^2,
-    // with (I - M / z) X = K at z = e^(i w T), M the filter's own transition
-    // (its rows of A above), solved by Cramer's rule.
-    const float M[3][3] = {{A[0][0], A[0][1], A[0][2]}, {A[1][0], A[1][1], A[1][2]}, {A[2][0], A[2][1], A[2][2]}};
-    const float K[3] = {k0, k1, k2};
+    // with (I - M / z) X = K at z = e^(i w T).
     float worst = 0.0f;
     for (float hz = 8.0f; hz <= 12.0f; hz += 1.0f) {
       const SinCos w = sincos_turns(hz * T);
       const Complex inverse_z(w.cos, -w.sin);
-      Complex a[3][3], b[3][3];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) a[i][j] = Complex(i == j ? 1.0f : 0.0f) - M[i][j] * inverse_z;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) b[i][j] = j == 1 ? Complex(K[i]) : a[i][j];
-      const float gain2 = std::norm(det3(b) / det3(a));
+      Complex a[5][5], x[5];
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) a[i][j] = Complex(i == j ? 1.0f : 0.0f) - M[i][j] * inverse_z;
+        x[i] = Complex(K[i]);
+      }
+      solve(a, x, n);
+      const float gain2 = std::norm(x[1]);
       if (gain2 > worst) worst = gain2;
     }
     variance += 0.5f * sensor.tremor_px * sensor.tremor_px * worst;
