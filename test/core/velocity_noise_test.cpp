@@ -26,9 +26,18 @@ TrackerConfig plain_kalman(const SensorProfile& sensor) {
 
 // Variance (per axis, px^2/s^2) of the tracker's velocity for a resting finger at (400, 240)
 // whose reports carry `noise(t_s)` (x, y), sampled once per report after 2 s of settling.
+// The shipping estimator's direction filter, with the tremor's states when the profile has a tremor.
+TrackerConfig split_kalman(const SensorProfile& sensor) {
+  TrackerConfig c = plain_kalman(sensor);
+  c.estimator = Estimator::SplitKalman;
+  c.stroke_end_widening = 1.0f;  // no predicted ends: nothing but the filter
+  return c;
+}
+
 template <typename Noise>
-double simulated_velocity_variance(const SensorProfile& sensor, double seconds, Noise noise) {
-  Tracker tracker(plain_kalman(sensor));
+double simulated_velocity_variance(const SensorProfile& sensor, double seconds, Noise noise,
+                                   const TrackerConfig& config) {
+  Tracker tracker(config);
   const double dt = 1.0 / static_cast<double>(sensor.report_rate_hz);
   double sum = 0.0;
   long n = 0;
@@ -46,6 +55,11 @@ double simulated_velocity_variance(const SensorProfile& sensor, double seconds, 
     n += 2;
   }
   return sum / static_cast<double>(n);
+}
+
+template <typename Noise>
+double simulated_velocity_variance(const SensorProfile& sensor, double seconds, Noise noise) {
+  return simulated_velocity_variance(sensor, seconds, noise, plain_kalman(sensor));
 }
 
 float accel_q(const TrackerConfig& c) { return c.kalman.accel_noise_px_s2 * c.kalman.accel_noise_px_s2; }
@@ -130,6 +144,59 @@ TEST(VelocityNoise, TremorMatchesASimulatedSinusoidAtTheWorstFrequency) {
     worst = std::max(worst, 2.0 * v);  // one axis carried it: per-axis variance is twice the mean
   }
   EXPECT_NEAR(tremor_part, worst, 0.03 * worst);
+}
+
+TEST(VelocityNoise, WithTheTremorsStatesNoiseAndTremorMatchASimulationOfTheTracker) {
+  for (float rate : {200.0f, 1000.0f}) {
+    SensorProfile sensor;
+    sensor.white_noise_px = 0.5f;
+    sensor.correlated_noise_px = 1.5f;
+    sensor.correlation_time_ms = 30.0f;
+    sensor.tremor_px = 1.5f;
+    sensor.report_rate_hz = rate;
+    SensorProfile quiet = sensor;  // the same filter, a finger without tremor
+    quiet.tremor_px = 0.0f;
+    const TrackerConfig c = split_kalman(sensor);
+    const SteadyStateFilter f = steady_state_filter(accel_q(c), ReportNoise::with_tremor(sensor), sensor);
+    ASSERT_TRUE(f.tremor);
+    // The noise alone.
+    support::Random rng(9, support::Stream::Noise);
+    tracegen::GaussMarkov wx(1.5, 0.03), wy(1.5, 0.03);
+    const double noise = simulated_velocity_variance(
+        sensor, 400.0,
+        [&](double t) {
+          return std::pair<double, double>{wx.at(t, rng) + 0.5 * rng.gaussian(), wy.at(t, rng) + 0.5 * rng.gaussian()};
+        },
+        c);
+    const double predicted_noise = static_cast<double>(resting_velocity_variance(f, quiet));
+    EXPECT_NEAR(predicted_noise, noise, 0.1 * noise) << rate;
+    // The tremor alone, at its worst frequency.
+    double worst = 0.0;
+    for (double hz = 8.0; hz <= 12.0; hz += 1.0) {
+      const double v = simulated_velocity_variance(
+          sensor, 30.0, [&](double t) { return std::pair<double, double>{1.5 * std::sin(2.0 * M_PI * hz * t), 0.0}; },
+          c);
+      worst = std::max(worst, 2.0 * v);  // one axis carried it
+    }
+    const double predicted_tremor = static_cast<double>(resting_velocity_variance(f, sensor)) - predicted_noise;
+    EXPECT_NEAR(predicted_tremor, worst, 0.05 * worst + 0.01 * predicted_noise) << rate;
+  }
+}
+
+TEST(VelocityNoise, TheTremorsStatesKeepMostOfItOutOfTheVelocity) {
+  // What the states are for: a trembling resting finger reads as much
+  // slower, so the direction confidence's band can sit lower.
+  SensorProfile sensor;
+  sensor.white_noise_px = 1.0f;
+  sensor.tremor_px = 1.5f;
+  const float q = accel_q(split_kalman(sensor));
+  const float without = resting_velocity_variance(steady_state_filter(q, ReportNoise::of(sensor), sensor), sensor);
+  const float with = resting_velocity_variance(steady_state_filter(q, ReportNoise::with_tremor(sensor), sensor), sensor);
+  SensorProfile still = sensor;
+  still.tremor_px = 0.0f;
+  const float white_only = resting_velocity_variance(steady_state_filter(q, ReportNoise::of(still), still), still);
+  EXPECT_LT(with, 0.25f * without);
+  EXPECT_LT(with, 2.0f * white_only);
 }
 
 }  // namespace

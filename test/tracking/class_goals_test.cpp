@@ -1,9 +1,9 @@
 // Issue 14's goals, per trace class, on what ships: recommended(profile) with
 // the profile a calibration of the class's sensor would give (its generator
 // parameters: nominal_profile). The goals the tracker meets are checked as
-// stated; the ones it does not yet meet (heightmap <= 0.45x the thesis
-// pipeline's, 0.35x on white-200hz; chatter at rest <= 0.01) are checked
-// against today's measured values plus a small margin, so that a change that
+// stated (chatter at rest <= 0.01 now on every class); the one it does not
+// yet meet everywhere (heightmap <= 0.45x the thesis pipeline's, 0.35x on
+// white-200hz) is checked against today's measured values plus a small margin, so that a change that
 // loses ground fails, and docs/tracking.md says how far each is from the goal.
 #include <gtest/gtest.h>
 
@@ -89,18 +89,18 @@ TEST_P(ClassGoals, AHeadingModelToldTheStartsMeetsTheHeightmapGoal) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Classes, ClassGoals,
-                         // Measured (10 s traces, stroke ends predicted, quiet at each stop): heightmap
-                         // 0.46 / 0.43 / 0.57 / 0.48 / 0.59 / 0.54 / 0.62 / 0.72x, chatter 0.0061 / 0.0091 /
-                         // 0.0034 / 0.0061 / 0.0011 / 0.0033 / 0.0104 / 0.0098 (30 s: all 8 within 0.01,
-                         // docs/tracking.md).
+                         // Measured (10 s traces, stroke ends predicted, quiet at each stop, the tremor
+                         // a state of the direction filter): heightmap 0.46 / 0.43 / 0.48 / 0.48 / 0.59 /
+                         // 0.53 / 0.61 / 0.70x, chatter 0.0061 / 0.0091 / 0.0011 / 0.0061 / 0.0011 / 0.0043 /
+                         // 0.0096 / 0.0062 (30 s: all 8 within 0.01 too, docs/tracking.md).
                          ::testing::Values(Bounds{"white-200hz", 0.52, kClassRestBound},
                                            Bounds{"slow-fingers", kClassMaxHeightmapRatio, kClassRestBound},
-                                           Bounds{"tremor", 0.62, kClassRestBound},
+                                           Bounds{"tremor", 0.53, kClassRestBound},
                                            Bounds{"latency", 0.53, kClassRestBound},
                                            Bounds{"correlated-noise", 0.65, kClassRestBound},
-                                           Bounds{"realistic-100hz", 0.59, kClassRestBound},
-                                           Bounds{"realistic-200hz", 0.67, 0.021},
-                                           Bounds{"realistic-1khz", 0.77, kClassRestBound}),
+                                           Bounds{"realistic-100hz", 0.58, kClassRestBound},
+                                           Bounds{"realistic-200hz", 0.66, kClassRestBound},
+                                           Bounds{"realistic-1khz", 0.75, kClassRestBound}),
                          [](const ::testing::TestParamInfo<Bounds>& info) {
                            std::string n = info.param.trace_class;
                            for (char& c : n)

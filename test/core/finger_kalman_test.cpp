@@ -1,0 +1,225 @@
+// The tracker's Kalman filter (finger_kalman.hpp), its hand-expanded float
+// covariance algebra, against a textbook Kalman filter written here with
+// whole matrices in double: F P F^T + Q, K = P H^T / S, P - K H P. The
+// tremor's step comes independently too: its transition from the matrix
+// exponential's series, its noise by integrating the continuous model
+// (Van Loan's integral, Simpson's rule), not from the stationary identity the
+// core uses.
+#include "frictionfield/core/finger_kalman.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/random.hpp"
+
+namespace ff {
+namespace {
+
+constexpr int kN = 5;  // p, v, e, c, u (one axis)
+using Matrix = double[kN][kN];
+
+void multiply(const Matrix a, const Matrix b, Matrix out) {
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) {
+      out[i][j] = 0.0;
+      for (int m = 0; m < kN; ++m) out[i][j] += a[i][m] * b[m][j];
+    }
+}
+
+void transpose(const Matrix a, Matrix out) {
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) out[i][j] = a[j][i];
+}
+
+// The tremor's continuous model x' = A x + (0, n), n white of intensity qc.
+struct Oscillator {
+  double w2, d, qc;
+  // e^(A t) by its series (t small enough for 30 terms: w t < 2).
+  void transition(double t, double r[2][2]) const {
+    const double a[2][2] = {{0.0, 1.0}, {-w2, -2.0 * d}};
+    double term[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
+    r[0][0] = r[1][1] = 1.0;
+    r[0][1] = r[1][0] = 0.0;
+    for (int k = 1; k < 30; ++k) {
+      double next[2][2];
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) next[i][j] = (term[i][0] * a[0][j] + term[i][1] * a[1][j]) * t / k;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) term[i][j] = next[i][j], r[i][j] += next[i][j];
+    }
+  }
+  // Q = integral over s in [0, dt] of e^(A s) (0 0; 0 qc) e^(A s)^T.
+  void noise(double dt, double q[2][2]) const {
+    constexpr int kSteps = 400;  // Simpson, even
+    q[0][0] = q[0][1] = q[1][0] = q[1][1] = 0.0;
+    for (int k = 0; k <= kSteps; ++k) {
+      double r[2][2];
+      transition(dt * k / kSteps, r);
+      const double weight = (k == 0 || k == kSteps) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) q[i][j] += weight * r[i][1] * r[j][1] * qc;
+    }
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) q[i][j] *= dt / (3.0 * kSteps);
+  }
+};
+
+struct Reference {
+  double x[kN] = {};
+  Matrix P = {};
+  double white, wander, accel_q;
+  bool has_wander, has_tremor;
+  Oscillator tremor;
+
+  void start(double z, double initial_speed, double tremor_variance) {
+    x[0] = z;
+    for (int i = 1; i < kN; ++i) x[i] = 0.0;
+    for (auto& row : P)
+      for (double& p : row) p = 0.0;
+    P[0][0] = white + wander + tremor_variance;
+    P[0][2] = P[2][0] = -wander;
+    P[0][3] = P[3][0] = -tremor_variance;
+    P[1][1] = initial_speed * initial_speed;
+    P[2][2] = wander;
+    P[3][3] = tremor_variance;
+    P[4][4] = tremor_variance * tremor.w2;
+  }
+  // phi: the core's decay() (its own test: velocity_noise_test), not exp(),
+  // so that what differs here is the algebra.
+  void predict(double dt, double phi) {
+    Matrix F = {}, Q = {};
+    F[0][0] = F[1][1] = 1.0;
+    F[0][1] = dt;
+    Q[0][0] = accel_q * dt * dt * dt / 3.0;
+    Q[0][1] = Q[1][0] = accel_q * dt * dt / 2.0;
+    Q[1][1] = accel_q * dt;
+    if (has_wander) {
+      F[2][2] = phi;
+      Q[2][2] = wander * (1.0 - phi * phi);
+    }
+    if (has_tremor) {
+      double r[2][2], q[2][2];
+      tremor.transition(dt, r);
+      tremor.noise(dt, q);
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) F[3 + i][3 + j] = r[i][j], Q[3 + i][3 + j] = q[i][j];
+    }
+    double next[kN] = {};
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) next[i] += F[i][j] * x[j];
+    for (int i = 0; i < kN; ++i) x[i] = next[i];
+    Matrix FP, Ft, FPFt;
+    multiply(F, P, FP);
+    transpose(F, Ft);
+    multiply(FP, Ft, FPFt);
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) P[i][j] = FPFt[i][j] + Q[i][j];
+  }
+  // The finger's and the wander's variances times w, the tremor's own left alone.
+  void widen(double w) {
+    const double f[kN] = {w, w, w, 1.0, 1.0};
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) P[i][j] *= std::sqrt(f[i] * f[j]);
+  }
+  void update(double z) {
+    const double H[kN] = {1.0, 0.0, has_wander ? 1.0 : 0.0, has_tremor ? 1.0 : 0.0, 0.0};
+    double PHt[kN] = {}, S = white, innovation = z;
+    for (int i = 0; i < kN; ++i) {
+      for (int j = 0; j < kN; ++j) PHt[i] += P[i][j] * H[j];
+      innovation -= H[i] * x[i];
+    }
+    for (int i = 0; i < kN; ++i) S += H[i] * PHt[i];
+    for (int i = 0; i < kN; ++i) x[i] += PHt[i] / S * innovation;
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) P[i][j] -= PHt[i] * PHt[j] / S;
+  }
+};
+
+struct Case {
+  const char* name;
+  float correlated_px, tremor_px;
+};
+
+class FingerKalmanAgainstReference : public ::testing::TestWithParam<Case> {};
+
+TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
+  const Case& c = GetParam();
+  SensorProfile sensor;
+  sensor.white_noise_px = 0.8f;
+  sensor.correlated_noise_px = c.correlated_px;
+  sensor.correlation_time_ms = c.correlated_px > 0.0f ? 30.0f : 0.0f;
+  sensor.tremor_px = c.tremor_px;
+  const ReportNoise noise = ReportNoise::with_tremor(sensor);
+  const float q = 45.0f * 45.0f;
+
+  Reference ref;
+  ref.white = 0.8 * 0.8;
+  ref.wander = static_cast<double>(c.correlated_px) * static_cast<double>(c.correlated_px);
+  ref.accel_q = static_cast<double>(q);
+  ref.has_wander = c.correlated_px > 0.0f;
+  ref.has_tremor = c.tremor_px > 0.0f;
+  const double w = 2.0 * M_PI * 10.0, d = 1.0 / 0.15, s = 0.5 * static_cast<double>(c.tremor_px * c.tremor_px);
+  ref.tremor = {w * w, d, 4.0 * d * w * w * s};  // stationary variance qc / (4 d w^2) = s
+
+  // A stroke at 200 Hz with jitter, a lost report, a trembling finger, noise.
+  support::Random rng(11, support::Stream::Noise);
+  FingerKalman k;
+  double t = 0.0;
+  auto finger = [&](double at) {
+    const double stroke = at < 0.3 ? 0.0 : 300.0 * std::min(1.0, (at - 0.3) / 0.6);
+    return 100.0 + stroke + static_cast<double>(c.tremor_px) * std::sin(2.0 * M_PI * 9.3 * at + 0.4) +
+           0.8 * rng.gaussian();
+  };
+  const double z0 = finger(t);
+  k.start({static_cast<float>(z0), 0.0f}, noise, 1000.0f);
+  ref.start(z0, 1000.0, ref.has_tremor ? s : 0.0);
+  for (int i = 1; i < 300; ++i) {
+    const double dt = (i == 150 ? 0.010 : 0.005) + 150e-6 * rng.gaussian();
+    t += dt;
+    const double z = finger(t);
+    k.predict(static_cast<float>(dt), q, noise);
+    ref.predict(dt, static_cast<double>(noise.correlation(static_cast<float>(dt))));
+    if (i % 37 == 0) {  // a change of motion now and then
+      k.widen(8.0f);
+      ref.widen(8.0);
+    }
+    k.update({static_cast<float>(z), 0.0f}, k.inverse_innovation(noise));
+    ref.update(z);
+    ASSERT_EQ(k.tremor, ref.has_tremor);
+    const double got[kN] = {k.p.x, k.v.x, k.e.x, k.c.x, k.u.x};
+    const double scale[kN] = {1.0, 30.0, 0.1, 0.1, 5.0};  // px, px/s: what a tenth of a percent is measured against
+    for (int j = 0; j < kN; ++j)
+      ASSERT_NEAR(got[j], ref.x[j], 1e-3 * (scale[j] + std::fabs(ref.x[j]))) << c.name << " report " << i << " state " << j;
+    const double cov[kN][kN] = {{k.P00, k.P01, k.P02, k.P03, k.P04},
+                                {k.P01, k.P11, k.P12, k.P13, k.P14},
+                                {k.P02, k.P12, k.P22, k.P23, k.P24},
+                                {k.P03, k.P13, k.P23, k.P33, k.P34},
+                                {k.P04, k.P14, k.P24, k.P34, k.P44}};
+    for (int a = 0; a < kN; ++a)
+      for (int b = a; b < kN; ++b) {
+        const double tolerance = 2e-3 * std::sqrt(ref.P[a][a] * ref.P[b][b]) + 1e-9;
+        ASSERT_NEAR(cov[a][b], ref.P[a][b], tolerance) << c.name << " report " << i << " P" << a << b;
+      }
+  }
+  // The tremor state has learnt the tremor: its rate swings as w times its displacement.
+  if (ref.has_tremor) {
+    EXPECT_GT(std::fabs(k.c.x) + std::fabs(k.u.x) / static_cast<float>(w), 0.1f * c.tremor_px);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Noise, FingerKalmanAgainstReference,
+                         ::testing::Values(Case{"white", 0.0f, 0.0f}, Case{"wander", 1.5f, 0.0f},
+                                           Case{"tremor", 0.0f, 1.2f}, Case{"wander_and_tremor", 1.5f, 1.2f}),
+                         [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+TEST(TremorModel, NoTremorNoState) {
+  SensorProfile sensor;
+  EXPECT_EQ(ReportNoise::with_tremor(sensor).tremor.variance, 0.0f);
+  sensor.tremor_px = 1.0f;
+  EXPECT_EQ(ReportNoise::of(sensor).tremor.variance, 0.0f);  // the position filter's: none
+  EXPECT_FLOAT_EQ(ReportNoise::with_tremor(sensor).tremor.variance, 0.5f);  // a sinusoid of peak 1
+}
+
+}  // namespace
+}  // namespace ff
