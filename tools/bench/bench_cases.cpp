@@ -195,12 +195,24 @@ const char* tracker_config_name(int index) {
     case 2: return "recommended()+thesis-ticks";
     case 3: return "recommended()+timed-extrapolation";
     case 4: return "recommended()+kalman";
+    case 5: return "recommended(realistic profile)";
   }
   return "?";
 }
 
 TrackerConfig tracker_config(int index) {
   if (index == 0) return TrackerConfig::thesis();
+  if (index == 5) {
+    // A sensor with every modelled effect (the realistic-200hz trace class's
+    // profile): the direction filter carries the wander and the tremor.
+    SensorProfile sensor;
+    sensor.white_noise_px = 0.6f;
+    sensor.correlated_noise_px = 1.5f;
+    sensor.correlation_time_ms = 30.0f;
+    sensor.tremor_px = 1.0f;
+    sensor.latency_us = 2000;
+    return TrackerConfig::recommended(sensor);
+  }
   TrackerConfig c = TrackerConfig::recommended();
   if (index == 2) c.estimator = Estimator::ThesisTicks;
   if (index == 3) c.estimator = Estimator::TimedExtrapolation;

@@ -62,8 +62,9 @@ void strategy_label(const Strategy& s, Rendering rendering, char* out, size_t ca
 void case_id(const BenchCase& c, char* out, size_t capacity);
 
 // Tracker configurations whose per-update cost is measured: thesis(),
-// recommended(), and recommended() with each Estimator (names without commas).
-constexpr int kTrackerConfigCount = 5;
+// recommended(), recommended() with each Estimator, and recommended() for a
+// sensor with every modelled effect (names without commas).
+constexpr int kTrackerConfigCount = 6;
 const char* tracker_config_name(int index);
 TrackerConfig tracker_config(int index);
 
