@@ -55,6 +55,15 @@ TEST(LongRun, ARunShorterThanAMinuteIsOneWholeMinute) {
 }
 
 TEST(LongRun, ThreeHoursRecommendedTracker) { check_long_run(TrackerConfig::recommended(), "recommended"); }
+// The direction filter at its largest: the wander and the tremor as states.
+TEST(LongRun, ThreeHoursRecommendedTrackerForASensorWithWanderAndTremor) {
+  SensorProfile sensor;
+  sensor.white_noise_px = 0.6f;
+  sensor.correlated_noise_px = 1.5f;
+  sensor.correlation_time_ms = 30.0f;
+  sensor.tremor_px = 1.0f;
+  check_long_run(TrackerConfig::recommended(sensor), "recommended(wander and tremor)");
+}
 TEST(LongRun, ThreeHoursThesisTracker) { check_long_run(TrackerConfig::thesis(), "thesis (ticks + 1-euro)"); }
 
 }  // namespace

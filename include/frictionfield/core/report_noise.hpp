@@ -5,7 +5,7 @@
 // a state of their own, so that reports closer together than tau, which
 // share most of their wander, count for less than independent ones. The
 // finger's tremor, which moves the reports but not the stroke, the direction
-// filter carries as two more states: a damped oscillator (tremor_model()).
+// filter carries as two more states: a damped oscillator (TremorModel).
 #include "frictionfield/core/sensor_profile.hpp"
 #include "frictionfield/core/tick_math.hpp"
 
