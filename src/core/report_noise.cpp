@@ -6,6 +6,10 @@
 
 namespace ff {
 
+namespace {
+constexpr float kMinWhiteShareOfTremor = 1e-6f;
+}  // namespace
+
 ReportNoise ReportNoise::of(const SensorProfile& s) {
   ReportNoise n;
   n.white_variance = s.white_noise_px * s.white_noise_px;
@@ -27,6 +31,13 @@ ReportNoise ReportNoise::with_tremor(const SensorProfile& s) {
   t.damped_omega = std::sqrt(t.omega2 - t.damping * t.damping);
   t.damped_hz = t.damped_omega / (2.0f * kPi);
   t.inverse_damped_omega = 1.0f / t.damped_omega;
+  // A tremor far larger than the white noise (the profile allows 50 px of
+  // tremor on 0.001 px of noise) leaves the float covariance's updates to
+  // cancel to nothing and below: the white noise is taken as at least a
+  // millionth of the tremor's variance (0.035 px at the limit), far below
+  // any sensor's resolution.
+  const float floor = kMinWhiteShareOfTremor * t.variance;
+  if (n.white_variance < floor) n.white_variance = floor;
   return n;
 }
 

@@ -168,6 +168,56 @@ TEST(SensorProfile, ValidWithinItsLimits) {
   }
 }
 
+// Every corner of the profile's limits (the device takes any profile within
+// them over the protocol): the noise the fade is measured against is finite
+// and positive, and a stroke with noise tracks to finite states with a
+// direction no longer than 1, the filters with every state they can carry.
+TEST(Tracker, EveryProfileAtItsLimitsTracksFinitely) {
+  const float whites[] = {0.001f, SensorProfileLimits::kMaxNoisePx};
+  const float wanders[] = {0.0f, SensorProfileLimits::kMaxNoisePx};
+  const float taus[] = {0.01f, SensorProfileLimits::kMaxCorrelationTimeMs};
+  const float tremors[] = {0.0f, 0.001f, SensorProfileLimits::kMaxNoisePx};
+  const float rates[] = {SensorProfileLimits::kMinRateHz, 200.0f, SensorProfileLimits::kMaxRateHz};
+  int profiles = 0;
+  for (float white : whites)
+    for (float wander : wanders)
+      for (float tau : taus)
+        for (float tremor : tremors)
+          for (float rate : rates) {
+            SensorProfile sensor;
+            sensor.white_noise_px = white;
+            sensor.correlated_noise_px = wander;
+            sensor.correlation_time_ms = wander > 0.0f ? tau : 0.0f;
+            sensor.tremor_px = tremor;
+            sensor.report_rate_hz = rate;
+            ASSERT_TRUE(is_valid(sensor));
+            const TrackerConfig c = TrackerConfig::recommended(sensor);
+            const float q = c.kalman.accel_noise_px_s2 * c.kalman.accel_noise_px_s2;
+            const float rest = resting_velocity_variance(
+                steady_state_filter(q, ReportNoise::with_tremor(sensor), sensor), sensor);
+            EXPECT_TRUE(std::isfinite(rest) && rest > 0.0f) << white << " " << wander << " " << tremor << " " << rate;
+            bool finite = true;
+            Tracker tracker(c);
+            const uint32_t interval_us = static_cast<uint32_t>(1e6f / rate);
+            uint32_t next_report = 1000000u, noise = 12345u;
+            for (uint32_t t = 1000000u; t < 3000000u; t += kTickPeriodUs) {
+              while (static_cast<int32_t>(t - next_report) >= 0) {
+                noise = noise * 1664525u + 1013904223u;  // a cheap deterministic jitter of the position
+                const float jitter = (static_cast<float>(noise >> 8) / 16777216.0f - 0.5f) * 2.0f * white;
+                const float x = 100.0f + 300.0f * static_cast<float>(next_report - 1000000u) * 1e-6f;
+                tracker.on_sample({next_report, x + jitter, 240.0f - jitter, true});
+                next_report += interval_us;
+              }
+              const TrackState& st = tracker.on_tick(t);
+              finite = finite && is_finite(st.position) && is_finite(st.velocity) && is_finite(st.direction) &&
+                       length(st.direction) <= 1.0f + 1e-5f;
+            }
+            EXPECT_TRUE(finite) << white << " " << wander << " " << tau << " " << tremor << " " << rate;
+            ++profiles;
+          }
+  EXPECT_EQ(profiles, 2 * 2 * 2 * 3 * 3);
+}
+
 TEST(Tracker, RestingFingerHasNoDirection) {
   TrackerRun run(TrackerConfig::recommended());
   const auto states = run.replay(line(0, {300, 300}, {0, 0}, 100), 0, 990);
