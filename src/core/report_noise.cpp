@@ -28,9 +28,9 @@ ReportNoise ReportNoise::with_tremor(const SensorProfile& s) {
   t.variance = 0.5f * s.tremor_px * s.tremor_px;
   t.omega2 = w * w;
   t.damping = 1.0f / TremorModel::kTremorDampingS;
-  t.damped_omega = std::sqrt(t.omega2 - t.damping * t.damping);
-  t.damped_hz = t.damped_omega / (2.0f * kPi);
-  t.inverse_damped_omega = 1.0f / t.damped_omega;
+  const float damped_omega = std::sqrt(t.omega2 - t.damping * t.damping);
+  t.damped_hz = damped_omega / (2.0f * kPi);
+  t.inverse_damped_omega = 1.0f / damped_omega;
   // A tremor far larger than the white noise (the profile allows 50 px of
   // tremor on 0.001 px of noise) leaves the float covariance's updates to
   // cancel to nothing and below: the white noise is taken as at least a

@@ -77,12 +77,10 @@ float resting_velocity_variance(const SteadyStateFilter& f, const SensorProfile&
   float F[5][5] = {{1.0f, T}, {0.0f, 1.0f}, {0.0f, 0.0f, phi_f}, {0.0f, 0.0f, 0.0f, r.r00, r.r01},
                    {0.0f, 0.0f, 0.0f, r.r10, r.r11}};
   const float K[5] = {f.gains.position, f.gains.velocity, f.gains.wander, f.gains.tremor, f.gains.tremor_rate};
-  float M[5][5];
+  float HF[5], M[5][5];
+  for (int j = 0; j < n; ++j) HF[j] = F[0][j] + F[2][j] + (f.tremor ? F[3][j] : 0.0f);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const float hf = F[0][j] + F[2][j] + (f.tremor ? F[3][j] : 0.0f);  // (H F)_j
-      M[i][j] = F[i][j] - K[i] * hf;
-    }
+    for (int j = 0; j < n; ++j) M[i][j] = F[i][j] - K[i] * HF[j];
   // Filter and sensor wander together: A (N x N), B the two draws per report.
   float A[6][6] = {}, B[6][2] = {};
   for (int i = 0; i < n; ++i) {

@@ -27,9 +27,8 @@ struct TremorModel {
   float variance = 0.0f;     // of the displacement, px^2 per axis; 0: no tremor state
   float omega2 = 0.0f;       // w^2, (rad/s)^2
   float damping = 0.0f;      // d, 1/s
-  float damped_hz = 0.0f;    // sqrt(w^2 - d^2) / 2 pi
-  float damped_omega = 0.0f; // sqrt(w^2 - d^2)
-  float inverse_damped_omega = 0.0f;
+  float damped_hz = 0.0f;    // sqrt(w^2 - d^2) / 2 pi: the frequency it swings at
+  float inverse_damped_omega = 0.0f;  // 1 / sqrt(w^2 - d^2)
 
   // Over dt seconds: the displacement and its rate (c, u) become R (c, u)
   // plus noise of covariance Q, which keeps the swing stationary.
