@@ -62,6 +62,29 @@ double simulated_velocity_variance(const SensorProfile& sensor, double seconds, 
   return simulated_velocity_variance(sensor, seconds, noise, plain_kalman(sensor));
 }
 
+// A resting finger's reports, per axis: 1.5 px of wander (tau 30 ms) and 0.5 px of white noise.
+struct WanderAndWhite {
+  support::Random rng;
+  tracegen::GaussMarkov wx{1.5, 0.03}, wy{1.5, 0.03};
+  explicit WanderAndWhite(uint64_t seed) : rng(seed, support::Stream::Noise) {}
+  std::pair<double, double> operator()(double t) {
+    return {wx.at(t, rng) + 0.5 * rng.gaussian(), wy.at(t, rng) + 0.5 * rng.gaussian()};
+  }
+};
+
+// The tremor alone, a sinusoid of peak `peak` px on one axis through the tracker: its per-axis
+// velocity variance at the worst frequency of 8-12 Hz (no noise draws).
+double worst_tremor_variance(const SensorProfile& sensor, double peak, const TrackerConfig& config) {
+  double worst = 0.0;
+  for (double hz = 8.0; hz <= 12.0; hz += 1.0) {
+    const double v = simulated_velocity_variance(
+        sensor, 30.0, [&](double t) { return std::pair<double, double>{peak * std::sin(2.0 * M_PI * hz * t), 0.0}; },
+        config);
+    worst = std::max(worst, 2.0 * v);  // one axis carried it: per-axis variance is twice the mean
+  }
+  return worst;
+}
+
 float accel_q(const TrackerConfig& c) { return c.kalman.accel_noise_px_s2 * c.kalman.accel_noise_px_s2; }
 
 TEST(VelocityNoise, WhiteNoiseMatchesTheAlphaBetaClosedForm) {
@@ -89,11 +112,7 @@ TEST(VelocityNoise, WanderMatchesASimulationOfTheTracker) {
     const TrackerConfig c = plain_kalman(sensor);
     const double predicted = static_cast<double>(
         resting_velocity_variance(steady_state_filter(accel_q(c), ReportNoise::of(sensor), sensor), sensor));
-    support::Random rng(7, support::Stream::Noise);
-    tracegen::GaussMarkov wx(1.5, 0.03), wy(1.5, 0.03);
-    const double simulated = simulated_velocity_variance(sensor, 400.0, [&](double t) {
-      return std::pair<double, double>{wx.at(t, rng) + 0.5 * rng.gaussian(), wy.at(t, rng) + 0.5 * rng.gaussian()};
-    });
+    const double simulated = simulated_velocity_variance(sensor, 400.0, WanderAndWhite(7));
     EXPECT_NEAR(predicted, simulated, 0.1 * simulated) << rate;
   }
 }
@@ -135,14 +154,7 @@ TEST(VelocityNoise, TremorMatchesASimulatedSinusoidAtTheWorstFrequency) {
   SensorProfile quiet = sensor;
   quiet.tremor_px = 0.0f;
   const double tremor_part = static_cast<double>(resting_velocity_variance(f, sensor) - resting_velocity_variance(f, quiet));
-  double worst = 0.0;
-  for (double hz = 8.0; hz <= 12.0; hz += 1.0) {
-    // The sinusoid alone (no noise draws): its velocity variance through the tracker.
-    const double v = simulated_velocity_variance(sensor, 30.0, [&](double t) {
-      return std::pair<double, double>{1.5 * std::sin(2.0 * M_PI * hz * t), 0.0};
-    });
-    worst = std::max(worst, 2.0 * v);  // one axis carried it: per-axis variance is twice the mean
-  }
+  const double worst = worst_tremor_variance(sensor, 1.5, c);
   EXPECT_NEAR(tremor_part, worst, 0.03 * worst);
 }
 
@@ -160,24 +172,11 @@ TEST(VelocityNoise, WithTheTremorsStatesNoiseAndTremorMatchASimulationOfTheTrack
     const SteadyStateFilter f = steady_state_filter(accel_q(c), ReportNoise::with_tremor(sensor), sensor);
     ASSERT_TRUE(f.tremor);
     // The noise alone.
-    support::Random rng(9, support::Stream::Noise);
-    tracegen::GaussMarkov wx(1.5, 0.03), wy(1.5, 0.03);
-    const double noise = simulated_velocity_variance(
-        sensor, 400.0,
-        [&](double t) {
-          return std::pair<double, double>{wx.at(t, rng) + 0.5 * rng.gaussian(), wy.at(t, rng) + 0.5 * rng.gaussian()};
-        },
-        c);
+    const double noise = simulated_velocity_variance(sensor, 400.0, WanderAndWhite(9), c);
     const double predicted_noise = static_cast<double>(resting_velocity_variance(f, quiet));
     EXPECT_NEAR(predicted_noise, noise, 0.1 * noise) << rate;
     // The tremor alone, at its worst frequency.
-    double worst = 0.0;
-    for (double hz = 8.0; hz <= 12.0; hz += 1.0) {
-      const double v = simulated_velocity_variance(
-          sensor, 30.0, [&](double t) { return std::pair<double, double>{1.5 * std::sin(2.0 * M_PI * hz * t), 0.0}; },
-          c);
-      worst = std::max(worst, 2.0 * v);  // one axis carried it
-    }
+    const double worst = worst_tremor_variance(sensor, 1.5, c);
     const double predicted_tremor = static_cast<double>(resting_velocity_variance(f, sensor)) - predicted_noise;
     EXPECT_NEAR(predicted_tremor, worst, 0.05 * worst + 0.01 * predicted_noise) << rate;
   }
