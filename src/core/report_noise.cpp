@@ -20,14 +20,25 @@ ReportNoise ReportNoise::of(const SensorProfile& s) {
   return n;
 }
 
+TremorBand TremorBand::of(const SensorProfile& s) {
+  TremorBand b;
+  b.measured = s.tremor_hz > 0.0f;
+  if (b.measured) {
+    b.centre_hz = s.tremor_hz;
+    b.half_width_hz = kMeasuredHalfWidthHz;
+  }
+  return b;
+}
+
 ReportNoise ReportNoise::with_tremor(const SensorProfile& s) {
   ReportNoise n = of(s);
   if (!(s.tremor_px > 0.0f)) return n;
   TremorModel& t = n.tremor;
-  const float w = 2.0f * kPi * TremorModel::kTremorHz;
+  const TremorBand band = TremorBand::of(s);
+  const float w = 2.0f * kPi * band.centre_hz;
   t.variance = 0.5f * s.tremor_px * s.tremor_px;
   t.omega2 = w * w;
-  t.damping = 1.0f / TremorModel::kTremorDampingS;
+  t.damping = 1.0f / (band.measured ? TremorModel::kMeasuredDampingS : TremorModel::kUnmeasuredDampingS);
   const float damped_omega = std::sqrt(t.omega2 - t.damping * t.damping);
   t.damped_hz = damped_omega / (2.0f * kPi);
   t.inverse_damped_omega = 1.0f / damped_omega;

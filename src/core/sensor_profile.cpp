@@ -12,7 +12,8 @@ bool is_valid(const SensorProfile& p) {
          within(p.correlation_time_ms, 0.0f, L::kMaxCorrelationTimeMs) &&
          (p.correlated_noise_px == 0.0f || p.correlation_time_ms > 0.0f) &&
          within(p.tremor_px, 0.0f, L::kMaxNoisePx) && within(p.report_rate_hz, L::kMinRateHz, L::kMaxRateHz) &&
-         within(p.jitter_us, 0.0f, L::kMaxJitterUs) && p.latency_us <= L::kMaxLatencyUs;
+         within(p.jitter_us, 0.0f, L::kMaxJitterUs) && p.latency_us <= L::kMaxLatencyUs &&
+         (p.tremor_hz == 0.0f || within(p.tremor_hz, L::kMinTremorHz, L::kMaxTremorHz));
 }
 
 }  // namespace ff

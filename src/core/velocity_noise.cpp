@@ -117,9 +117,10 @@ float resting_velocity_variance(const SteadyStateFilter& f, const SensorProfile&
   if (sensor.tremor_px > 0.0f) {
     // A sinusoid of peak a through the filter: velocity variance (a^2 / 2) |H_v|^2,
     // with (I - M / z) X = K at z = e^(i w T).
+    const TremorBand band = TremorBand::of(sensor);
     float worst = 0.0f;
-    for (float hz = 8.0f; hz <= 12.0f; hz += 1.0f) {
-      const SinCos w = sincos_turns(hz * T);
+    for (int k = -2; k <= 2; ++k) {  // the band's edges, centre and quarters
+      const SinCos w = sincos_turns((band.centre_hz + 0.5f * static_cast<float>(k) * band.half_width_hz) * T);
       const Complex inverse_z(w.cos, -w.sin);
       Complex a[5][5], x[5];
       for (int i = 0; i < n; ++i) {

@@ -16,6 +16,8 @@ void add_sensor_profile_options(CLI::App& app, SensorProfile& p) {
       ->check(CLI::Range(0.0f, L::kMaxCorrelationTimeMs))->capture_default_str()->group(group);
   app.add_option("--tremor-px", p.tremor_px, "8-12 Hz tremor of a resting finger, peak per axis")
       ->check(CLI::Range(0.0f, L::kMaxNoisePx))->capture_default_str()->group(group);
+  app.add_option("--tremor-hz", p.tremor_hz, "the tremor's measured frequency (0: not measured, 8-12 Hz)")
+      ->check(CLI::IsMember({0.0f}) | CLI::Range(L::kMinTremorHz, L::kMaxTremorHz))->capture_default_str()->group(group);
   app.add_option("--report-rate-hz", p.report_rate_hz, "mean sensor reports per second")
       ->check(CLI::Range(L::kMinRateHz, L::kMaxRateHz))->capture_default_str()->group(group);
   app.add_option("--jitter-us", p.jitter_us, "1 sigma of the report interval")
@@ -28,9 +30,9 @@ std::string sensor_profile_flags(const SensorProfile& p) {
   char buf[320];
   std::snprintf(buf, sizeof buf,
                 "--white-noise-px %.3g --correlated-noise-px %.3g --correlation-time-ms %.3g --tremor-px %.3g "
-                "--report-rate-hz %.4g --jitter-us %.3g --latency-us %u",
+                "--tremor-hz %.3g --report-rate-hz %.4g --jitter-us %.3g --latency-us %u",
                 double{p.white_noise_px}, double{p.correlated_noise_px}, double{p.correlation_time_ms},
-                double{p.tremor_px}, double{p.report_rate_hz}, double{p.jitter_us},
+                double{p.tremor_px}, double{p.tremor_hz}, double{p.report_rate_hz}, double{p.jitter_us},
                 static_cast<unsigned>(p.latency_us));
   return buf;
 }

@@ -255,10 +255,12 @@ void put_profile(WireWriter& w, const SensorProfile& p) {
   w.f32(p.report_rate_hz);
   w.f32(p.jitter_us);
   w.u32(p.latency_us);
+  w.f32(p.tremor_hz);
 }
 
 // Any finite values: whether the tracker can use them is the device's to
-// judge (is_valid), answered with Ack refused, as a scene's ranges are.
+// judge (is_valid), answered with Ack refused, as a scene's ranges are. The
+// tremor's frequency came later: a profile without it has not measured it.
 void get_profile(WireReader& r, SensorProfile& p) {
   p.white_noise_px = r.f32();
   p.correlated_noise_px = r.f32();
@@ -267,6 +269,7 @@ void get_profile(WireReader& r, SensorProfile& p) {
   p.report_rate_hz = r.f32();
   p.jitter_us = r.f32();
   p.latency_us = r.u32();
+  p.tremor_hz = r.at_end() ? 0.0f : r.f32();
 }
 
 // --- payloads ----------------------------------------------------------------

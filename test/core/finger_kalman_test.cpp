@@ -139,6 +139,7 @@ struct Reference {
 struct Case {
   const char* name;
   float correlated_px, tremor_px;
+  float tremor_hz = 0.0f;  // measured; 0: not (the model at 10 Hz, damped over 150 ms)
 };
 
 class FingerKalmanAgainstReference : public ::testing::TestWithParam<Case> {};
@@ -150,6 +151,7 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
   sensor.correlated_noise_px = c.correlated_px;
   sensor.correlation_time_ms = c.correlated_px > 0.0f ? 30.0f : 0.0f;
   sensor.tremor_px = c.tremor_px;
+  sensor.tremor_hz = c.tremor_hz;
   const ReportNoise noise = ReportNoise::with_tremor(sensor);
   const float q = 45.0f * 45.0f;
 
@@ -159,7 +161,10 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
   ref.accel_q = static_cast<double>(q);
   ref.has_wander = c.correlated_px > 0.0f;
   ref.has_tremor = c.tremor_px > 0.0f;
-  const double w = 2.0 * M_PI * 10.0, d = 1.0 / 0.15, s = 0.5 * static_cast<double>(c.tremor_px * c.tremor_px);
+  // Around a measured frequency the resonance is narrower: damped over 500 ms.
+  const bool measured = c.tremor_hz > 0.0f;
+  const double w = 2.0 * M_PI * (measured ? static_cast<double>(c.tremor_hz) : 10.0);
+  const double d = 1.0 / (measured ? 0.5 : 0.15), s = 0.5 * static_cast<double>(c.tremor_px * c.tremor_px);
   ref.tremor = {w * w, d, 4.0 * d * w * w * s};  // stationary variance qc / (4 d w^2) = s
 
   // A stroke at 200 Hz with jitter, a lost report, a trembling finger, noise.
@@ -210,7 +215,8 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
 
 INSTANTIATE_TEST_SUITE_P(Noise, FingerKalmanAgainstReference,
                          ::testing::Values(Case{"white", 0.0f, 0.0f}, Case{"wander", 1.5f, 0.0f},
-                                           Case{"tremor", 0.0f, 1.2f}, Case{"wander_and_tremor", 1.5f, 1.2f}),
+                                           Case{"tremor", 0.0f, 1.2f}, Case{"wander_and_tremor", 1.5f, 1.2f},
+                                           Case{"measured_tremor", 1.5f, 1.2f, 9.3f}),
                          [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(TremorModel, NoTremorNoState) {

@@ -188,11 +188,11 @@ TEST(HapticPipeline, BadStrengthIsCountedAndRepaired) {
 
 bool same(const SensorProfile& a, const SensorProfile& b) {
   return a.white_noise_px == b.white_noise_px && a.correlated_noise_px == b.correlated_noise_px &&
-         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px &&
+         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px && a.tremor_hz == b.tremor_hz &&
          a.report_rate_hz == b.report_rate_hz && a.jitter_us == b.jitter_us && a.latency_us == b.latency_us;
 }
 
-SensorProfile measured() { return {1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u}; }
+SensorProfile measured() { return {1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u, 9.5f}; }
 
 TEST(HapticPipeline, ASensorProfileReachesTheTrackerAtTheStartOfTheNextTick) {
   auto p = std::make_unique<HapticPipeline>();

@@ -156,12 +156,18 @@ TEST(SensorProfile, ValidWithinItsLimits) {
   EXPECT_FALSE(is_valid(p));
   p.correlation_time_ms = 30.0f;
   EXPECT_TRUE(is_valid(p));
+  for (float hz : {0.0f, SensorProfileLimits::kMinTremorHz, SensorProfileLimits::kMaxTremorHz}) {
+    p.tremor_hz = hz;  // measured, or 0: not measured
+    EXPECT_TRUE(is_valid(p)) << hz;
+  }
   for (auto breaks : std::vector<void (*)(SensorProfile&)>{
            [](SensorProfile& s) { s.white_noise_px = 0.0f; }, [](SensorProfile& s) { s.white_noise_px = -1.0f; },
            [](SensorProfile& s) { s.white_noise_px = 50.5f; }, [](SensorProfile& s) { s.report_rate_hz = 9.0f; },
            [](SensorProfile& s) { s.report_rate_hz = 5001.0f; }, [](SensorProfile& s) { s.tremor_px = std::nanf(""); },
            [](SensorProfile& s) { s.jitter_us = 50001.0f; }, [](SensorProfile& s) { s.latency_us = 50001; },
-           [](SensorProfile& s) { s.correlation_time_ms = 10001.0f; }}) {
+           [](SensorProfile& s) { s.correlation_time_ms = 10001.0f; }, [](SensorProfile& s) { s.tremor_hz = 2.9f; },
+           [](SensorProfile& s) { s.tremor_hz = 20.5f; }, [](SensorProfile& s) { s.tremor_hz = -10.0f; },
+           [](SensorProfile& s) { s.tremor_hz = std::nanf(""); }}) {
     SensorProfile q;
     breaks(q);
     EXPECT_FALSE(is_valid(q));
@@ -178,24 +184,29 @@ TEST(Tracker, EveryProfileAtItsLimitsTracksFinitely) {
   const float taus[] = {0.01f, SensorProfileLimits::kMaxCorrelationTimeMs};
   const float tremors[] = {0.0f, 0.001f, SensorProfileLimits::kMaxNoisePx};
   const float rates[] = {SensorProfileLimits::kMinRateHz, 200.0f, SensorProfileLimits::kMaxRateHz};
+  const float tremor_hzs[] = {0.0f, SensorProfileLimits::kMinTremorHz, SensorProfileLimits::kMaxTremorHz};
   int profiles = 0;
   for (float white : whites)
     for (float wander : wanders)
       for (float tau : taus)
         for (float tremor : tremors)
+          for (float tremor_hz : tremor_hzs)
           for (float rate : rates) {
+            if (tremor == 0.0f && tremor_hz > 0.0f) continue;  // no tremor: its frequency is never read
             SensorProfile sensor;
             sensor.white_noise_px = white;
             sensor.correlated_noise_px = wander;
             sensor.correlation_time_ms = wander > 0.0f ? tau : 0.0f;
             sensor.tremor_px = tremor;
+            sensor.tremor_hz = tremor_hz;
             sensor.report_rate_hz = rate;
             ASSERT_TRUE(is_valid(sensor));
             const TrackerConfig c = TrackerConfig::recommended(sensor);
             const float q = c.kalman.accel_noise_px_s2 * c.kalman.accel_noise_px_s2;
             const float rest = resting_velocity_variance(
                 steady_state_filter(q, ReportNoise::with_tremor(sensor), sensor), sensor);
-            EXPECT_TRUE(std::isfinite(rest) && rest > 0.0f) << white << " " << wander << " " << tremor << " " << rate;
+            EXPECT_TRUE(std::isfinite(rest) && rest > 0.0f)
+                << white << " " << wander << " " << tremor << " " << tremor_hz << " " << rate;
             bool finite = true;
             Tracker tracker(c);
             const uint32_t interval_us = static_cast<uint32_t>(1e6f / rate);
@@ -212,10 +223,10 @@ TEST(Tracker, EveryProfileAtItsLimitsTracksFinitely) {
               finite = finite && is_finite(st.position) && is_finite(st.velocity) && is_finite(st.direction) &&
                        length(st.direction) <= 1.0f + 1e-5f;
             }
-            EXPECT_TRUE(finite) << white << " " << wander << " " << tau << " " << tremor << " " << rate;
+            EXPECT_TRUE(finite) << white << " " << wander << " " << tau << " " << tremor << " " << tremor_hz << " " << rate;
             ++profiles;
           }
-  EXPECT_EQ(profiles, 2 * 2 * 2 * 3 * 3);
+  EXPECT_EQ(profiles, 2 * 2 * 2 * (1 + 2 * 3) * 3);
 }
 
 TEST(Tracker, RestingFingerHasNoDirection) {

@@ -660,7 +660,7 @@ TEST(FirmwareApp, RebootRestsThePlateFirst) {
 
 bool same(const SensorProfile& a, const SensorProfile& b) {
   return a.white_noise_px == b.white_noise_px && a.correlated_noise_px == b.correlated_noise_px &&
-         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px &&
+         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px && a.tremor_hz == b.tremor_hz &&
          a.report_rate_hz == b.report_rate_hz && a.jitter_us == b.jitter_us && a.latency_us == b.latency_us;
 }
 
@@ -670,7 +670,7 @@ Message sensor_profile(const SensorProfile& p, uint8_t sequence) {
   return m;
 }
 
-const SensorProfile kMeasured{1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u};
+const SensorProfile kMeasured{1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u, 9.5f};
 
 TEST(FirmwareApp, ASensorProfileReachesTheTrackerAtTheNextTickNotInTheLoop) {
   Device d;

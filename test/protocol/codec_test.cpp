@@ -423,20 +423,22 @@ TEST(Codec, EncodeRefusesASmallBufferAndNonFiniteNumbers) {
   EXPECT_EQ(encode(q, buf.data(), kHeaderBytes + kCrcBytes - 1), 0u);
 }
 
-// {1.5 px, 0.5 px over 250 ms, 0.25 px, 200 Hz, 150 us, 3000 us}: every float exact in binary.
-SensorProfile example_profile() { return {1.5f, 0.5f, 250.0f, 0.25f, 200.0f, 150.0f, 3000u}; }
+// {1.5 px, 0.5 px over 250 ms, 0.25 px, 200 Hz, 150 us, 3000 us, 9.5 Hz}: every float exact in binary.
+SensorProfile example_profile() { return {1.5f, 0.5f, 250.0f, 0.25f, 200.0f, 150.0f, 3000u, 9.5f}; }
 
 TEST(Codec, SensorProfileIsTheHandDerivedFrame) {
   Message m;
   m.type = MessageType::SetSensorProfile;
   m.sequence = 3;
   m.sensor_profile = example_profile();
-  // 28 bytes: 1.5f = 0x3FC00000, 0.5f = 0x3F000000, 250.0f = 0x437A0000, 0.25f = 0x3E800000,
-  // 200.0f = 0x43480000, 150.0f = 0x43160000 (each little-endian), 3000 = 0x00000BB8. CRC 0xA596:
-  // binascii.crc_hqx(bytes([2, 9, 3, 28, 0]) + payload, 0xFFFF), computed outside the project.
-  const std::vector<uint8_t> expected = {'F',  'F',  2,    0x09, 3,    0x1C, 0x00, 0x00, 0x00, 0xC0, 0x3F, 0x00, 0x00,
-                                         0x00, 0x3F, 0x00, 0x00, 0x7A, 0x43, 0x00, 0x00, 0x80, 0x3E, 0x00, 0x00, 0x48,
-                                         0x43, 0x00, 0x00, 0x16, 0x43, 0xB8, 0x0B, 0x00, 0x00, 0x96, 0xA5};
+  // 32 bytes: 1.5f = 0x3FC00000, 0.5f = 0x3F000000, 250.0f = 0x437A0000, 0.25f = 0x3E800000,
+  // 200.0f = 0x43480000, 150.0f = 0x43160000 (each little-endian), 3000 = 0x00000BB8, 9.5f =
+  // 0x41180000. CRC 0x4A64: binascii.crc_hqx(bytes([2, 9, 3, 32, 0]) + payload, 0xFFFF), computed
+  // outside the project.
+  const std::vector<uint8_t> expected = {'F',  'F',  2,    0x09, 3,    0x20, 0x00, 0x00, 0x00, 0xC0, 0x3F, 0x00,
+                                         0x00, 0x00, 0x3F, 0x00, 0x00, 0x7A, 0x43, 0x00, 0x00, 0x80, 0x3E, 0x00,
+                                         0x00, 0x48, 0x43, 0x00, 0x00, 0x16, 0x43, 0xB8, 0x0B, 0x00, 0x00, 0x00,
+                                         0x00, 0x18, 0x41, 0x64, 0x4A};
   EXPECT_EQ(frame_of(m), expected);
   Message out;
   ASSERT_EQ(decode(expected.data(), expected.size(), out), DecodeStatus::Ok);
@@ -448,6 +450,7 @@ TEST(Codec, SensorProfileIsTheHandDerivedFrame) {
   EXPECT_EQ(out.sensor_profile.report_rate_hz, 200.0f);
   EXPECT_EQ(out.sensor_profile.jitter_us, 150.0f);
   EXPECT_EQ(out.sensor_profile.latency_us, 3000u);
+  EXPECT_EQ(out.sensor_profile.tremor_hz, 9.5f);
 }
 
 TEST(Codec, TheQueryAndTheReplyOfASensorProfileRoundTrip) {
@@ -463,6 +466,7 @@ TEST(Codec, TheQueryAndTheReplyOfASensorProfileRoundTrip) {
   const Message out = round_trip(r);
   EXPECT_EQ(out.sensor_profile.latency_us, 0xFEDCBA98u);
   EXPECT_EQ(out.sensor_profile.tremor_px, 0.25f);
+  EXPECT_EQ(out.sensor_profile.tremor_hz, 9.5f);
   Message ack;
   ack.type = MessageType::Ack;
   ack.ack = {MessageType::SetSensorProfile, AckStatus::Refused, 0};
@@ -471,23 +475,33 @@ TEST(Codec, TheQueryAndTheReplyOfASensorProfileRoundTrip) {
 
 TEST(Codec, ASensorProfileNeedsItsWholePayloadAndFiniteNumbersButNotValidOnes) {
   auto payload = [](const SensorProfile& p) {
-    std::vector<uint8_t> b(28);
+    std::vector<uint8_t> b(32);
     const float f[6] = {p.white_noise_px, p.correlated_noise_px, p.correlation_time_ms,
                         p.tremor_px,      p.report_rate_hz,      p.jitter_us};
     std::memcpy(b.data(), f, 24);  // the test host is little-endian, like the wire
     std::memcpy(b.data() + 24, &p.latency_us, 4);
+    std::memcpy(b.data() + 28, &p.tremor_hz, 4);
     return b;
   };
   const std::vector<uint8_t> good = payload(example_profile());
   EXPECT_EQ(status_of(frame_with_payload(MessageType::SetSensorProfile, good)), DecodeStatus::Ok);
+  // A host from before the tremor's frequency sends 28 bytes: read as not measured.
+  const std::vector<uint8_t> before = frame_with_payload(MessageType::SetSensorProfile, {good.begin(), good.end() - 4});
+  Message old;
+  ASSERT_EQ(decode(before.data(), before.size(), old), DecodeStatus::Ok);
+  EXPECT_EQ(old.sensor_profile.latency_us, 3000u);
+  EXPECT_EQ(old.sensor_profile.tremor_hz, 0.0f);
+  for (size_t cut = 1; cut < 4; ++cut)
+    EXPECT_EQ(status_of(frame_with_payload(MessageType::SetSensorProfile, {good.begin(), good.end() - cut})),
+              DecodeStatus::Malformed) << cut;
   EXPECT_EQ(status_of(frame_with_payload(MessageType::SetSensorProfile, {good.begin(), good.end() - 1})),
             DecodeStatus::Malformed);
   std::vector<uint8_t> longer = good;
   longer.push_back(0);
   EXPECT_EQ(status_of(frame_with_payload(MessageType::SetSensorProfile, longer)), DecodeStatus::Malformed);
   EXPECT_EQ(status_of(frame_with_payload(MessageType::QuerySensorProfile, {0})), DecodeStatus::Malformed);
-  // A NaN (0x7FC00000) or an infinity (0x7F800000) in any of the six floats: malformed.
-  for (size_t field = 0; field < 6; ++field) {
+  // A NaN (0x7FC00000) or an infinity (0x7F800000) in any of the seven floats: malformed.
+  for (size_t field : {0, 1, 2, 3, 4, 5, 7}) {
     for (uint32_t bits : {0x7FC00000u, 0x7F800000u, 0xFF800000u}) {
       std::vector<uint8_t> bad = good;
       std::memcpy(bad.data() + 4 * field, &bits, 4);

@@ -238,12 +238,14 @@ std::string describe(const protocol::ConditionMessage& c) {
 }
 
 std::string describe(const SensorProfile& p) {
-  char buf[240];
+  char hz[32] = "";  // the frequency only where it was measured
+  if (p.tremor_hz > 0.0f) std::snprintf(hz, sizeof hz, " at %.3g Hz", static_cast<double>(p.tremor_hz));
+  char buf[280];
   std::snprintf(buf, sizeof buf,
-                "white noise %.3g px, wander %.3g px over %.3g ms, tremor %.3g px, %.4g reports/s +- %.3g us, "
+                "white noise %.3g px, wander %.3g px over %.3g ms, tremor %.3g px%s, %.4g reports/s +- %.3g us, "
                 "latency %u us",
                 static_cast<double>(p.white_noise_px), static_cast<double>(p.correlated_noise_px),
-                static_cast<double>(p.correlation_time_ms), static_cast<double>(p.tremor_px),
+                static_cast<double>(p.correlation_time_ms), static_cast<double>(p.tremor_px), hz,
                 static_cast<double>(p.report_rate_hz), static_cast<double>(p.jitter_us),
                 static_cast<unsigned>(p.latency_us));
   return buf;

@@ -60,7 +60,8 @@ FrontierRow fade_frontier(const std::string& trace_class, const std::vector<Prep
     ProposedConstants constants = base;
     constants.rest_sigmas = fade.rest_sigmas;
     constants.moving_sigmas = fade.moving_sigmas;
-    const Metrics m = evaluate(proposed_tracker(constants, sensor), cases, fast);
+    const Metrics m = evaluate([&](const PreparedCase& c) { return proposed_tracker(constants, nominal_profile(c)); },
+                               cases, fast);
     row.points.push_back({fade, thesis > 0.0 ? m.heightmap_rms / thesis : 0.0, m.heightmap_rest_rms});
   }
   return row;

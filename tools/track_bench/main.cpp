@@ -277,16 +277,15 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
     if (!dump_path.empty() && rows.empty()) {
       for (size_t i = 0; i < cases.size(); ++i) {
         std::ofstream dump(i == 0 ? dump_path : dump_path + "." + std::to_string(i));
-        dump_ticks(dump, proposed_tracker(candidate, sensor), cases[i]);
+        dump_ticks(dump, proposed_tracker(candidate, nominal_profile(cases[i])), cases[i]);
       }
     }
-    for (const auto& [name, config] : {std::pair<const char*, TrackerConfig>{"thesis", TrackerConfig::thesis()},
-                                       {"recommended()", TrackerConfig::recommended()},
-                                       {"recommended(profile)", proposed_tracker(candidate, sensor)}}) {
-      EvalOptions row_options = options;
-      row_options.unfaded = std::string(name) == "recommended(profile)";
-      rows.push_back({trace_class.name, name, evaluate(config, cases, row_options), slow});
-    }
+    rows.push_back({trace_class.name, "thesis", evaluate(TrackerConfig::thesis(), cases, options), slow});
+    rows.push_back({trace_class.name, "recommended()", evaluate(TrackerConfig::recommended(), cases, options), slow});
+    EvalOptions profile_options = options;
+    profile_options.unfaded = true;
+    auto calibrated = [&candidate](const PreparedCase& c) { return proposed_tracker(candidate, nominal_profile(c)); };
+    rows.push_back({trace_class.name, "recommended(profile)", evaluate(calibrated, cases, profile_options), slow});
     StartFloorRow floor{trace_class.name, rows[rows.size() - 3].metrics.heightmap_rms, {}};
     floor.tracker_heightmap_rms = rows.back().metrics.heightmap_rms;
     floor.unfaded_heightmap_rms = rows.back().metrics.heightmap_unfaded_rms;
@@ -438,6 +437,7 @@ void print_calibration(std::ostream& out, const std::string& path, const Calibra
     std::snprintf(how, sizeof how, "no peak in %.0f-%.0f Hz (strongest %.1f x its neighbourhood; needs > %.0f): 0",
                   o.tremor_min_hz, o.tremor_max_hz, c.tremor_peak_ratio, o.tremor_peak_ratio);
   row("tremor, peak per axis", p.tremor_px, 2, "px", how);
+  row("tremor frequency", p.tremor_hz, 2, "Hz", p.tremor_hz > 0.0f ? "the spectral peak" : "no tremor found: 0");
   row("report rate", p.report_rate_hz, 1, "Hz", "1 / mean interval");
   row("jitter, 1 sigma of the report interval", p.jitter_us, 0, "us", "standard deviation of the intervals");
   row("latency", static_cast<double>(p.latency_us), 0, "us",

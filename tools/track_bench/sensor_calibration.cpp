@@ -312,6 +312,7 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   cal.profile.correlated_noise_px = static_cast<float>(std::sqrt(fit.corr2));
   cal.profile.correlation_time_ms = static_cast<float>(fit.corr2 > 0.0 ? fit.tau_s * 1e3 : 0.0);
   cal.profile.tremor_px = static_cast<float>(std::sqrt(2.0 * fit.tremor2_half));
+  cal.profile.tremor_hz = static_cast<float>(cal.tremor_hz);
   if (!is_valid(cal.profile)) {
     std::snprintf(line, sizeof line, "the estimate (noise %.1f px, jitter %.0f us) is outside the profile's limits",
                   cal.total_noise_px, double{cal.profile.jitter_us});

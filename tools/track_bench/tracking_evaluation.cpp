@@ -8,6 +8,7 @@
 #include <ostream>
 
 #include "rest_chatter.hpp"
+#include "support/models/trace_classes.hpp"
 #include "support/statistics.hpp"
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scenes.hpp"
@@ -262,7 +263,14 @@ void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCa
   });
 }
 
+SensorProfile nominal_profile(const PreparedCase& c) { return tracegen::nominal_profile(c.spec.options, c.trace); }
+
 Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& cases, const EvalOptions& options,
+                 const TrackerConfig* direction_from) {
+  return evaluate([&config](const PreparedCase&) { return config; }, cases, options, direction_from);
+}
+
+Metrics evaluate(const ConfigOfCase& config_of, const std::vector<PreparedCase>& cases, const EvalOptions& options,
                  const TrackerConfig* direction_from) {
   Metrics m;
   std::vector<double> position_error, direction_error, heightmap_error, frictionmap_error, unfaded_error;
@@ -275,6 +283,7 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
   std::vector<Estimate> estimates;  // moving ticks, for the lag
 
   for (const PreparedCase& c : cases) {
+    const TrackerConfig config = config_of(c);
     Tracker tracker(config);
     Tracker direction_tracker(direction_from != nullptr ? *direction_from : config);
     auto deliver = [&](const SensorSample& sample) {
@@ -357,6 +366,7 @@ Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& c
   }
   if (options.cost && !cases.empty()) {
     const PreparedCase& c = cases.front();
+    const TrackerConfig config = config_of(c);
     m.ns_per_tick = best_ns_per_tick(c, [&] { return std::make_unique<PipelineRunner>(config, c.spec.target); });
     if (direction_from != nullptr) {
       m.ns_per_tick += best_ns_per_tick(c, [&] { return std::make_unique<TrackerRunner>(*direction_from); });

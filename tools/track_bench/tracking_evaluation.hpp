@@ -130,4 +130,14 @@ void dump_ticks(std::ostream& out, const TrackerConfig& config, const PreparedCa
 Metrics evaluate(const TrackerConfig& config, const std::vector<PreparedCase>& cases, const EvalOptions& options,
                  const TrackerConfig* direction_from = nullptr);
 
+// What calibrating a generated case's finger on its sensor would give
+// (tracegen::nominal_profile with the trace's own tremor frequency).
+SensorProfile nominal_profile(const PreparedCase& c);
+
+// Each case with a configuration of its own: a tracker tuned to each trace's
+// sensor and finger (e.g. recommended(nominal_profile(case))).
+using ConfigOfCase = std::function<TrackerConfig(const PreparedCase&)>;
+Metrics evaluate(const ConfigOfCase& config_of, const std::vector<PreparedCase>& cases, const EvalOptions& options,
+                 const TrackerConfig* direction_from = nullptr);
+
 }  // namespace ff::bench

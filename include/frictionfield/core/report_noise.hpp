@@ -15,15 +15,30 @@ namespace ff {
 // 1 / the exponential series to x^3 (one division, no libm on the tick path).
 inline float decay(float x) { return 1.0f / (1.0f + x * (1.0f + x * (0.5f + x * (1.0f / 6.0f)))); }
 
+// Where the tremor's frequency may lie: around the profile's measured
+// frequency, or anywhere in physiological tremor's 8-12 Hz if it was not
+// measured. The tremor's model resonates at its centre; the fade's resting
+// noise is taken at its worst frequency.
+struct TremorBand {
+  static constexpr float kUnmeasuredHz = 10.0f, kUnmeasuredHalfWidthHz = 2.0f;
+  // A calibration finds a steady tremor's peak to within 0.1 Hz; a finger's
+  // wanders about it, and a session may follow the calibration by hours.
+  static constexpr float kMeasuredHalfWidthHz = 1.0f;
+  float centre_hz = kUnmeasuredHz;
+  float half_width_hz = kUnmeasuredHalfWidthHz;
+  bool measured = false;
+  static TremorBand of(const SensorProfile& sensor);
+};
+
 // The tremor as a state: x'' = -w^2 x - 2 d x' + white noise, a resonance at
-// kTremorHz (the middle of physiological tremor's 8-12 Hz) whose damping
-// lets it follow any frequency of that band and a tremor that comes and goes
-// (its correlation time 1/d = kTremorDampingS). The noise is sized so that
+// the band's centre whose damping lets it follow any frequency of the band
+// and a tremor that comes and goes (its correlation time 1/d: 150 ms across
+// 8-12 Hz, 500 ms around a measured frequency). The noise is sized so that
 // it swings as far as the profile's tremor: a sinusoid of peak a has
 // variance a^2 / 2.
 struct TremorModel {
-  static constexpr float kTremorHz = 10.0f;
-  static constexpr float kTremorDampingS = 0.15f;
+  static constexpr float kUnmeasuredDampingS = 0.15f;
+  static constexpr float kMeasuredDampingS = 0.5f;
   float variance = 0.0f;     // of the displacement, px^2 per axis; 0: no tremor state
   float omega2 = 0.0f;       // w^2, (rad/s)^2
   float damping = 0.0f;      // d, 1/s

@@ -17,6 +17,7 @@ struct SensorProfile {
   float report_rate_hz = 200.0f;      // mean reports per second
   float jitter_us = 150.0f;           // 1 sigma of the report interval around its mean
   uint32_t latency_us = 0;            // from the sensor's scan to the report's stamp
+  float tremor_hz = 0.0f;             // the tremor's frequency as measured (0: not measured, somewhere in 8-12 Hz)
 };
 
 // The ranges a profile must lie in (a message outside them is refused).
@@ -27,9 +28,12 @@ struct SensorProfileLimits {
   static constexpr float kMaxRateHz = 5000.0f;
   static constexpr float kMaxJitterUs = 50000.0f;
   static constexpr uint32_t kMaxLatencyUs = 50000;
+  static constexpr float kMinTremorHz = 3.0f;   // parkinsonian rest tremor is 4-6 Hz
+  static constexpr float kMaxTremorHz = 20.0f;
 };
 
-// Finite, within SensorProfileLimits, white noise > 0, and a wander has a time constant.
+// Finite, within SensorProfileLimits, white noise > 0, a wander has a time
+// constant, and a tremor frequency is 0 (not measured) or within its limits.
 bool is_valid(const SensorProfile& profile);
 
 }  // namespace ff

@@ -26,7 +26,7 @@ SteadyStateFilter steady_state_filter(float accel_q, const ReportNoise& noise, c
 // Per axis, px^2/s^2: the variance of that filter's velocity for a finger at
 // rest: the white noise and the wander (exact: the stationary covariance of
 // filter and wander together) plus the tremor (its sinusoid through the
-// filter's frequency response, at the worst frequency of 8-12 Hz), whether
+// filter's frequency response, at the worst frequency of its TremorBand), whether
 // or not the filter carries the tremor as a state.
 float resting_velocity_variance(const SteadyStateFilter& filter, const SensorProfile& sensor);
 

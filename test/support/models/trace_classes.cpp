@@ -92,4 +92,10 @@ SensorProfile nominal_profile(const TraceOptions& o) {
   return p;
 }
 
+SensorProfile nominal_profile(const TraceOptions& o, const GeneratedTrace& trace) {
+  SensorProfile p = nominal_profile(o);
+  if (trace.tremor.enabled()) p.tremor_hz = static_cast<float>(trace.tremor.frequency_hz());
+  return p;
+}
+
 }  // namespace ff::tracegen

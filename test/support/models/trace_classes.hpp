@@ -28,5 +28,9 @@ const TraceClass* find_trace_class(const std::string& name);
 // tremor, the rate, the interval's jitter (stamp jitter counts twice, period
 // jitter once) and the mean latency. The drift (tau of seconds) is left out.
 SensorProfile nominal_profile(const TraceOptions& options);
+// The same with the tremor's frequency, drawn per trace, as a calibration of
+// that finger measures it (within 0.1 Hz of a generated tremor,
+// sensor_calibration_test): what a lab that calibrates each participant has.
+SensorProfile nominal_profile(const TraceOptions& options, const GeneratedTrace& trace);
 
 }  // namespace ff::tracegen

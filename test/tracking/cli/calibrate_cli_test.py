@@ -15,7 +15,7 @@ import tempfile
 import unittest
 
 BENCH = TRACEGEN = None
-FLAGS = ["--white-noise-px", "--correlated-noise-px", "--correlation-time-ms", "--tremor-px",
+FLAGS = ["--white-noise-px", "--correlated-noise-px", "--correlation-time-ms", "--tremor-px", "--tremor-hz",
          "--report-rate-hz", "--jitter-us", "--latency-us"]
 
 
@@ -66,6 +66,7 @@ class Calibrate(unittest.TestCase):
         p = parse_flags(ffctl[0][len("ffctl sensor-profile "):])
         self.assertAlmostEqual(p["--white-noise-px"], math.sqrt(1 + 0.5 ** 2 / 12), delta=0.1)
         self.assertAlmostEqual(p["--tremor-px"], 1.5, delta=0.15)
+        self.assertAlmostEqual(p["--tremor-hz"], 10, delta=0.1)
         self.assertEqual(p["--correlated-noise-px"], 0)
         self.assertAlmostEqual(p["--report-rate-hz"], 200, delta=2)
         self.assertAlmostEqual(p["--jitter-us"], 150 * math.sqrt(2), delta=21)

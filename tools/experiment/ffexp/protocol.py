@@ -222,7 +222,8 @@ def query_condition(seq):
 
 
 STATUS_FIXED = struct.Struct("<HBBfIIIIIIfBf7IB")  # docs/protocol.md Status
-SENSOR_PROFILE_FORMAT = struct.Struct("<6fI")        # docs/protocol.md Sensor profile
+SENSOR_PROFILE_FORMAT = struct.Struct("<6fIf")       # docs/protocol.md Sensor profile
+SENSOR_PROFILE_BEFORE_TREMOR_HZ = struct.Struct("<6fI")  # a firmware from before the tremor's frequency
 
 
 @dataclass
@@ -235,13 +236,14 @@ class SensorProfile:
     report_rate_hz: float = 200.0
     jitter_us: float = 150.0
     latency_us: int = 0
+    tremor_hz: float = 0.0  # 0: not measured
 
 
 def _sensor_profile_payload(profile):
     floats = b"".join(_f32(getattr(profile, n)) for n in ("white_noise_px", "correlated_noise_px",
                                                           "correlation_time_ms", "tremor_px", "report_rate_hz",
                                                           "jitter_us"))
-    return floats + struct.pack("<I", int(profile.latency_us))
+    return floats + struct.pack("<I", int(profile.latency_us)) + _f32(profile.tremor_hz)
 
 
 def set_sensor_profile(seq, profile):
@@ -281,9 +283,10 @@ def decode(data):
         if t == CONDITION:
             decode_condition(p)  # checks it
             return seq, ConditionEcho(p)
-        if t == SENSOR_PROFILE and len(p) == SENSOR_PROFILE_FORMAT.size:
-            v = SENSOR_PROFILE_FORMAT.unpack(p)
-            if all(math.isfinite(x) for x in v[:6]):
+        if t == SENSOR_PROFILE and len(p) in (SENSOR_PROFILE_FORMAT.size, SENSOR_PROFILE_BEFORE_TREMOR_HZ.size):
+            fmt = SENSOR_PROFILE_FORMAT if len(p) == SENSOR_PROFILE_FORMAT.size else SENSOR_PROFILE_BEFORE_TREMOR_HZ
+            v = fmt.unpack(p)
+            if all(math.isfinite(x) for x in v[:6] + v[7:]):
                 return seq, SensorProfile(*v)
         if t == SAMPLES:
             return seq, None  # not used by the experiment

@@ -73,9 +73,9 @@ def test_fault_names_are_the_cores_in_its_order():
 
 
 def test_set_sensor_profile_is_the_docs_example():
-    doc = bytes.fromhex("46 46 02 09 03 1C 00 00 00 C0 3F 00 00 00 3F 00 00 7A 43 00 00 80 3E 00 00 48 43"
-                        " 00 00 16 43 B8 0B 00 00 96 A5")
-    p = protocol.SensorProfile(1.5, 0.5, 250.0, 0.25, 200.0, 150.0, 3000)
+    doc = bytes.fromhex("46 46 02 09 03 20 00 00 00 C0 3F 00 00 00 3F 00 00 7A 43 00 00 80 3E 00 00 48 43"
+                        " 00 00 16 43 B8 0B 00 00 00 00 18 41 64 4A")
+    p = protocol.SensorProfile(1.5, 0.5, 250.0, 0.25, 200.0, 150.0, 3000, 9.5)
     assert protocol.set_sensor_profile(3, p) == doc
     assert protocol.query_sensor_profile(4) == protocol.frame(protocol.QUERY_SENSOR_PROFILE, 4)
 
@@ -84,10 +84,18 @@ def test_a_sensor_profile_reply_decodes_and_a_non_finite_one_is_malformed():
     p = protocol.SensorProfile(1.02, 1.5, 30.0, 1.0, 1000.0, 205.0, 2000)
     _, _, payload = protocol.unframe(protocol.set_sensor_profile(7, p))
     seq, m = protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 7, payload))
-    assert seq == 7 and m == protocol.SensorProfile(*struct.unpack("<6fI", payload))
-    assert abs(m.white_noise_px - 1.02) < 1e-6 and m.latency_us == 2000
-    bad = struct.pack("<6fI", float("nan"), 0, 0, 0, 200, 150, 0)
+    assert seq == 7 and m == protocol.SensorProfile(*struct.unpack("<6fIf", payload))
+    assert abs(m.white_noise_px - 1.02) < 1e-6 and m.latency_us == 2000 and m.tremor_hz == 0.0
+    # a firmware from before the tremor's frequency answers 28 bytes: not measured
+    seq, m = protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 7, payload[:28]))
+    assert m.latency_us == 2000 and m.tremor_hz == 0.0
+    tremor_hz = struct.pack("<6fIf", 1, 0, 0, 1, 200, 150, 0, 9.25)
+    assert protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 7, tremor_hz))[1].tremor_hz == 9.25
     with pytest.raises(protocol.ProtocolError):
-        protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 8, bad))
+        protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 8, tremor_hz[:-1]))
+    for bad in (struct.pack("<6fI", float("nan"), 0, 0, 0, 200, 150, 0),
+                struct.pack("<6fIf", 1, 0, 0, 0, 200, 150, 0, float("inf"))):
+        with pytest.raises(protocol.ProtocolError):
+            protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 8, bad))
     with pytest.raises(protocol.ProtocolError):
         protocol.set_sensor_profile(9, protocol.SensorProfile(white_noise_px=float("inf")))

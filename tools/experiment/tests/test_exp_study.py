@@ -182,7 +182,8 @@ def test_the_devices_sensor_profile_is_in_the_session_and_a_change_is_logged(tmp
     session = json.loads((tmp_path / "P04" / "session.json").read_text())
     assert session["sensor_profile"] == {"white_noise_px": 1.0, "correlated_noise_px": 0.0,
                                          "correlation_time_ms": 0.0, "tremor_px": 0.0, "report_rate_hz": 200.0,
-                                         "jitter_us": 150.0, "latency_us": 0}
+                                         "jitter_us": 150.0, "latency_us": 0,
+                                         "tremor_hz": 0.0}
     # resumed on a device told another sensor: logged, and said
     def calibrated(spec, root, speed, clock):
         d = device.FakeDevice(clock)

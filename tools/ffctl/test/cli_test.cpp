@@ -344,9 +344,9 @@ TEST(FfctlCli, SensorProfileIsSentReadBackShownAndKeptByARecording) {
   UdpDevice device(strokes);
   const std::string flags =
       "--white-noise-px 1.5 --correlated-noise-px 0.5 --correlation-time-ms 250 --tremor-px 0.25 "
-      "--report-rate-hz 180 --jitter-us 400 --latency-us 3000";
-  const std::string words =
-      "white noise 1.5 px, wander 0.5 px over 250 ms, tremor 0.25 px, 180 reports/s +- 400 us, latency 3000 us";
+      "--tremor-hz 9.5 --report-rate-hz 180 --jitter-us 400 --latency-us 3000";
+  const std::string words = "white noise 1.5 px, wander 0.5 px over 250 ms, tremor 0.25 px at 9.5 Hz, 180 reports/s "
+                            "+- 400 us, latency 3000 us";
   CliRun r = ffctl(udp(device) + "sensor-profile --show");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("white noise 1 px, wander 0 px over 0 ms, tremor 0 px, 200 reports/s +- 150 us, latency 0 us"),
@@ -362,7 +362,8 @@ TEST(FfctlCli, SensorProfileIsSentReadBackShownAndKeptByARecording) {
   // Bad usage, before the device is touched: the profile stays.
   for (const char* bad : {"sensor-profile", "sensor-profile --show --default", "sensor-profile --show --tremor-px 1",
                           "sensor-profile --correlated-noise-px 2", "sensor-profile --report-rate-hz 5",
-                          "sensor-profile --latency-us 50001", "sensor-profile --white-noise-px nan"}) {
+                          "sensor-profile --latency-us 50001", "sensor-profile --white-noise-px nan",
+                          "sensor-profile --tremor-hz 2", "sensor-profile --tremor-hz 25"}) {
     r = ffctl(udp(device) + bad);
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.out << r.err;
   }

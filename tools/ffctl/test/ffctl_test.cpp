@@ -261,7 +261,7 @@ TEST(Ffctl, ARecordingKeepsItsSensorProfileBesideItAndDropsAStaleOne) {
   std::stringstream text;
   text << in.rdbuf();
   EXPECT_NE(text.str().find("# ffctl sensor-profile --white-noise-px 1.25 --correlated-noise-px 0.75 "
-                            "--correlation-time-ms 125 --tremor-px 0.5 --report-rate-hz 250 --jitter-us 80 "
+                            "--correlation-time-ms 125 --tremor-px 0.5 --tremor-hz 0 --report-rate-hz 250 --jitter-us 80 "
                             "--latency-us 4500\n"),
             std::string::npos)
       << text.str();

@@ -10,8 +10,8 @@ sim=$1 ffctl=$2 trace=$3 work=$4
 # Four times faster than the wall clock: the trace's finger (10 s to 20 s of its clock) comes sooner.
 start_ffsim "$sim" "$work" --trace "$trace" --speed 4
 dev="--udp 127.0.0.1:$port"
-flags="--white-noise-px 1.5 --correlated-noise-px 0.5 --correlation-time-ms 250 --tremor-px 0.25 --report-rate-hz 180 --jitter-us 400 --latency-us 3000"
-words="white noise 1.5 px, wander 0.5 px over 250 ms, tremor 0.25 px, 180 reports/s +- 400 us, latency 3000 us"
+flags="--white-noise-px 1.5 --correlated-noise-px 0.5 --correlation-time-ms 250 --tremor-px 0.25 --tremor-hz 9.5 --report-rate-hz 180 --jitter-us 400 --latency-us 3000"
+words="white noise 1.5 px, wander 0.5 px over 250 ms, tremor 0.25 px at 9.5 Hz, 180 reports/s +- 400 us, latency 3000 us"
 expect() {  # expect WHAT FILE: FILE must contain the line fragment WHAT
   grep -qF -- "$1" "$2" || { echo "expected \"$1\" in:"; cat "$2"; exit 1; }
 }
