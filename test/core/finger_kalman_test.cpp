@@ -219,6 +219,23 @@ INSTANTIATE_TEST_SUITE_P(Noise, FingerKalmanAgainstReference,
                                            Case{"measured_tremor", 1.5f, 1.2f, 9.3f}),
                          [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
+TEST(TremorBand, MeasuredOrPhysiological) {
+  SensorProfile sensor;
+  sensor.tremor_px = 1.0f;
+  const TremorBand unmeasured = TremorBand::of(sensor);
+  EXPECT_FALSE(unmeasured.measured);
+  EXPECT_EQ(unmeasured.centre_hz - unmeasured.half_width_hz, 8.0f);  // physiological tremor's 8-12 Hz
+  EXPECT_EQ(unmeasured.centre_hz + unmeasured.half_width_hz, 12.0f);
+  sensor.tremor_hz = 6.5f;
+  const TremorBand measured = TremorBand::of(sensor);
+  EXPECT_TRUE(measured.measured);
+  EXPECT_EQ(measured.centre_hz - measured.half_width_hz, 5.5f);
+  EXPECT_EQ(measured.centre_hz + measured.half_width_hz, 7.5f);
+  // The model resonates at the measured frequency: w^2 = (2 pi 6.5)^2.
+  EXPECT_NEAR(ReportNoise::with_tremor(sensor).tremor.omega2, std::pow(2.0 * M_PI * 6.5, 2.0), 1e-3 * 1668.0);
+  EXPECT_FLOAT_EQ(ReportNoise::with_tremor(sensor).tremor.damping, 2.0f);  // 500 ms
+}
+
 TEST(TremorModel, NoTremorNoState) {
   SensorProfile sensor;
   EXPECT_EQ(ReportNoise::with_tremor(sensor).tremor.variance, 0.0f);

@@ -73,10 +73,12 @@ struct WanderAndWhite {
 };
 
 // The tremor alone, a sinusoid of peak `peak` px on one axis through the tracker: its per-axis
-// velocity variance at the worst frequency of 8-12 Hz (no noise draws).
-double worst_tremor_variance(const SensorProfile& sensor, double peak, const TrackerConfig& config) {
+// velocity variance at the worst frequency of low_hz..high_hz, in 5 steps (no noise draws).
+double worst_tremor_variance(const SensorProfile& sensor, double peak, const TrackerConfig& config,
+                             double low_hz = 8.0, double high_hz = 12.0) {
   double worst = 0.0;
-  for (double hz = 8.0; hz <= 12.0; hz += 1.0) {
+  for (int k = 0; k <= 4; ++k) {
+    const double hz = low_hz + 0.25 * k * (high_hz - low_hz);
     const double v = simulated_velocity_variance(
         sensor, 30.0, [&](double t) { return std::pair<double, double>{peak * std::sin(2.0 * M_PI * hz * t), 0.0}; },
         config);
@@ -180,6 +182,40 @@ TEST(VelocityNoise, WithTheTremorsStatesNoiseAndTremorMatchASimulationOfTheTrack
     const double predicted_tremor = static_cast<double>(resting_velocity_variance(f, sensor)) - predicted_noise;
     EXPECT_NEAR(predicted_tremor, worst, 0.05 * worst + 0.01 * predicted_noise) << rate;
   }
+}
+
+TEST(VelocityNoise, AMeasuredTremorIsTakenWithinAHertzOfItsFrequency) {
+  for (float rate : {200.0f, 1000.0f}) {
+    SensorProfile sensor;
+    sensor.white_noise_px = 1.0f;
+    sensor.tremor_px = 1.5f;
+    sensor.tremor_hz = 7.3f;  // outside the unmeasured 8-12 Hz
+    sensor.report_rate_hz = rate;
+    SensorProfile quiet = sensor;
+    quiet.tremor_px = 0.0f;
+    const TrackerConfig c = split_kalman(sensor);
+    const SteadyStateFilter f = steady_state_filter(accel_q(c), ReportNoise::with_tremor(sensor), sensor);
+    const double predicted_tremor =
+        static_cast<double>(resting_velocity_variance(f, sensor) - resting_velocity_variance(f, quiet));
+    const double worst = worst_tremor_variance(sensor, 1.5, c, 6.3, 8.3);
+    EXPECT_NEAR(predicted_tremor, worst, 0.05 * worst) << rate;
+  }
+}
+
+TEST(VelocityNoise, AMeasuredFrequencyKeepsMoreOfTheTremorOut) {
+  // Told where the tremor is, the states resonate there and more narrowly:
+  // a finger trembling at that frequency reads as slower than with the
+  // unmeasured model, whose widest resonance is at 10 Hz.
+  SensorProfile told;
+  told.white_noise_px = 1.0f;
+  told.tremor_px = 1.5f;
+  told.tremor_hz = 8.6f;
+  SensorProfile untold = told;
+  untold.tremor_hz = 0.0f;
+  auto tremor_at = [](const SensorProfile& s, double hz) {
+    return worst_tremor_variance(s, 1.5, split_kalman(s), hz, hz);
+  };
+  EXPECT_LT(tremor_at(told, 8.6), 0.5 * tremor_at(untold, 8.6));
 }
 
 TEST(VelocityNoise, TheTremorsStatesKeepMostOfItOutOfTheVelocity) {

@@ -99,14 +99,21 @@ TEST(SensorCalibration, CorrelatedNoiseClassOnTwentySeconds) {
   expect_within(c.profile.correlation_time_ms, 30.0, 0.25, "tau");
   expect_within(c.profile.white_noise_px, std::sqrt(0.5 * 0.5 + 0.5 * 0.5 / 12.0), 0.25, "white");
   EXPECT_EQ(c.profile.tremor_px, 0.0f);
+  EXPECT_EQ(c.profile.tremor_hz, 0.0f);  // none found: not measured
 }
 
 TEST(SensorCalibration, TremorAtAKnownFrequency) {
-  TraceOptions o = resting_class("tremor", 10.0);  // 1.5 px peak, 1 px white, 0.5 px quantum
+  for (double hz : {10.0, 7.4}) {  // inside and outside physiological tremor's 8-12 Hz
+    TraceOptions o = resting_class("tremor", 10.0);  // 1.5 px peak, 1 px white, 0.5 px quantum
+    o.tremor.min_hz = o.tremor.max_hz = hz;
+    const Calibration c = calibrate(o);
+    expect_within(c.profile.tremor_px, 1.5, 0.10, "tremor");
+    EXPECT_NEAR(c.tremor_hz, hz, 0.1);
+    EXPECT_NEAR(c.profile.tremor_hz, hz, 0.1);  // the tracker is told it
+  }
+  TraceOptions o = resting_class("tremor", 10.0);
   o.tremor.min_hz = o.tremor.max_hz = 10.0;
   const Calibration c = calibrate(o);
-  expect_within(c.profile.tremor_px, 1.5, 0.10, "tremor");
-  EXPECT_NEAR(c.tremor_hz, 10.0, 0.1);
   expect_within(c.profile.white_noise_px, std::sqrt(1.0 + 0.5 * 0.5 / 12.0), 0.10, "white");
   EXPECT_EQ(c.profile.correlated_noise_px, 0.0f);
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bench_report.hpp"
+#include "class_report.hpp"
 #include "support/models/motion.hpp"
 #include "support/models/trace_classes.hpp"
 #include "support/reference/reference_scene.hpp"
@@ -52,6 +53,39 @@ TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollows
     ++checked;
   }
   EXPECT_GT(checked, 100);
+}
+
+// A lab calibrates each participant: each generated trace's profile has its
+// own tremor's frequency (drawn per trace in 8-12 Hz), and evaluate() runs
+// each case with the configuration made for it.
+TEST(NominalProfile, EachTraceIsToldItsOwnTremorsFrequency) {
+  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*tracegen::find_trace_class("tremor"), 2.0));
+  ASSERT_GE(cases.size(), 2u);
+  for (const PreparedCase& c : cases) {
+    ASSERT_TRUE(c.trace.tremor.enabled());
+    EXPECT_EQ(nominal_profile(c).tremor_hz, static_cast<float>(c.trace.tremor.frequency_hz()));
+    EXPECT_GE(nominal_profile(c).tremor_hz, 8.0f);
+    EXPECT_LE(nominal_profile(c).tremor_hz, 12.0f);
+  }
+  EXPECT_NE(nominal_profile(cases[0]).tremor_hz, nominal_profile(cases[1]).tremor_hz);
+  const std::vector<PreparedCase> white = prepare_cases(class_cases(*tracegen::find_trace_class("white-200hz"), 2.0));
+  EXPECT_EQ(nominal_profile(white.front()).tremor_hz, 0.0f);  // no tremor: none measured
+
+  EvalOptions options;
+  options.cost = false;
+  std::vector<const PreparedCase*> configured;
+  const Metrics each = evaluate(
+      [&](const PreparedCase& c) {
+        configured.push_back(&c);
+        return TrackerConfig::recommended(nominal_profile(c));
+      },
+      cases, options);
+  ASSERT_EQ(configured.size(), cases.size());
+  for (size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(configured[i], &cases[i]);
+  // Told each trace's frequency, not one for all: a different tracker, other figures.
+  const Metrics one = evaluate(TrackerConfig::recommended(tracegen::nominal_profile(cases.front().spec.options)),
+                               cases, options);
+  EXPECT_NE(each.heightmap_rms, one.heightmap_rms);
 }
 
 // The motion-oracle diagnostic: the heightmap error with the estimate's
