@@ -30,7 +30,7 @@ std::string sensor_profile_flags(const SensorProfile& p) {
   char buf[320];
   std::snprintf(buf, sizeof buf,
                 "--white-noise-px %.3g --correlated-noise-px %.3g --correlation-time-ms %.3g --tremor-px %.3g "
-                "--tremor-hz %.3g --report-rate-hz %.4g --jitter-us %.3g --latency-us %u",
+                "--tremor-hz %.4g --report-rate-hz %.4g --jitter-us %.3g --latency-us %u",
                 double{p.white_noise_px}, double{p.correlated_noise_px}, double{p.correlation_time_ms},
                 double{p.tremor_px}, double{p.tremor_hz}, double{p.report_rate_hz}, double{p.jitter_us},
                 static_cast<unsigned>(p.latency_us));
