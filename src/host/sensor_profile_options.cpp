@@ -16,7 +16,7 @@ void add_sensor_profile_options(CLI::App& app, SensorProfile& p) {
       ->check(CLI::Range(0.0f, L::kMaxCorrelationTimeMs))->capture_default_str()->group(group);
   app.add_option("--tremor-px", p.tremor_px, "8-12 Hz tremor of a resting finger, peak per axis")
       ->check(CLI::Range(0.0f, L::kMaxNoisePx))->capture_default_str()->group(group);
-  app.add_option("--tremor-hz", p.tremor_hz, "the tremor's measured frequency (0: not measured, 8-12 Hz)")
+  app.add_option("--tremor-hz", p.tremor_hz, "the tremor's measured frequency (0: not measured, taken as anywhere in 8-12 Hz)")
       ->check(CLI::IsMember({0.0f}) | CLI::Range(L::kMinTremorHz, L::kMaxTremorHz))->capture_default_str()->group(group);
   app.add_option("--report-rate-hz", p.report_rate_hz, "mean sensor reports per second")
       ->check(CLI::Range(L::kMinRateHz, L::kMaxRateHz))->capture_default_str()->group(group);

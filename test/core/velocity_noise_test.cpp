@@ -205,7 +205,7 @@ TEST(VelocityNoise, AMeasuredTremorIsTakenWithinAHertzOfItsFrequency) {
 TEST(VelocityNoise, AMeasuredFrequencyKeepsMoreOfTheTremorOut) {
   // Told where the tremor is, the states resonate there and more narrowly:
   // a finger trembling at that frequency reads as slower than with the
-  // unmeasured model, whose widest resonance is at 10 Hz.
+  // unmeasured model, which resonates more broadly, at 10 Hz.
   SensorProfile told;
   told.white_noise_px = 1.0f;
   told.tremor_px = 1.5f;

@@ -21,8 +21,9 @@ inline float decay(float x) { return 1.0f / (1.0f + x * (1.0f + x * (0.5f + x * 
 // noise is taken at its worst frequency.
 struct TremorBand {
   static constexpr float kUnmeasuredHz = 10.0f, kUnmeasuredHalfWidthHz = 2.0f;
-  // A calibration finds a steady tremor's peak to within 0.1 Hz; a finger's
-  // wanders about it, and a session may follow the calibration by hours.
+  // A calibration finds a steady tremor's peak to a few hundredths of a
+  // hertz; a finger's wanders about it, and a session may follow the
+  // calibration by hours.
   static constexpr float kMeasuredHalfWidthHz = 1.0f;
   float centre_hz = kUnmeasuredHz;
   float half_width_hz = kUnmeasuredHalfWidthHz;
