@@ -108,7 +108,9 @@ struct LevelSet {
   std::string label;
   double noise_px;
   std::vector<PreparedCase> cases;
-  SensorProfile sensor;  // what the trackers are told about the sensor
+  SensorProfile sensor;    // what the trackers are told about the sensor
+  bool generated = false;  // then each trace is told its own tremor's frequency, as calibrated
+  SensorProfile profile_of(const PreparedCase& c) const { return generated ? nominal_profile(c) : sensor; }
 };
 
 // Trace files as one set: each judged against its truth columns or the offline smoother.
@@ -129,7 +131,7 @@ bool load_trace_level(const std::vector<std::string>& paths, const TraceFileOpti
 std::vector<LevelSet> prepare_levels(double duration_s) {
   std::vector<LevelSet> levels;
   for (auto [label, noise] : {std::pair<const char*, double>{"low", 1.0}, {"high", 2.5}}) {
-    LevelSet level{label, noise, {}, {}};
+    LevelSet level{label, noise, {}, {}, true};
     level.cases = prepare_cases(standard_cases(noise, duration_s));
     level.sensor = tracegen::nominal_profile(level.cases.front().spec.options);
     levels.push_back(std::move(level));
@@ -165,7 +167,9 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
   auto score = [&](const Tuned& t) {
     Scored s{t, 0.0, 0.0, 0.0, 0.0, {}, {}, false};
     for (size_t i = 0; i < levels.size(); ++i) {
-      const Metrics m = evaluate(proposed_tracker(t, levels[i].sensor), levels[i].cases, options);
+      const LevelSet& level = levels[i];
+      const Metrics m =
+          evaluate([&](const PreparedCase& c) { return proposed_tracker(t, level.profile_of(c)); }, level.cases, options);
       s.hm += m.heightmap_rms / thesis_hm[i] / static_cast<double>(levels.size());
       s.hm_level.push_back(m.heightmap_rms / thesis_hm[i]);
       s.rest_level.push_back(m.heightmap_rest_rms);
@@ -647,7 +651,7 @@ int main(int argc, char** argv) {
       std::vector<LevelSet> levels;
       for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
         if (!selected(class_names, trace_class.name)) continue;
-        LevelSet level{trace_class.name, 0.0, {}, {}};
+        LevelSet level{trace_class.name, 0.0, {}, {}, true};
         level.cases = prepare_cases(class_cases(trace_class, duration_s));
         level.sensor = tracegen::nominal_profile(level.cases.front().spec.options);
         levels.push_back(std::move(level));
