@@ -14,6 +14,7 @@
 #include "frictionfield/host/replay.hpp"
 #include "frictionfield/host/scene_hash.hpp"
 #include "frictionfield/host/scene_spec.hpp"
+#include "frictionfield/host/sensor_profile_options.hpp"
 #include "frictionfield/host/trace_csv.hpp"
 
 namespace {
@@ -27,14 +28,16 @@ uint32_t host_micros() {
   return static_cast<uint32_t>(duration_cast<microseconds>(steady_clock::now().time_since_epoch()).count());
 }
 
-bool make_tracker(const std::string& name, const std::string& derivative, ff::TrackerConfig& out,
-                  std::string& error) {
+// The device's trackers are told the sensor's profile; the thesis pipeline ignores it.
+bool make_tracker(const std::string& name, const std::string& derivative, const ff::SensorProfile& sensor,
+                  ff::TrackerConfig& out, std::string& error) {
+  const ff::TrackerConfig told = ff::TrackerConfig::recommended(sensor);
   if (name == "thesis") out = ff::TrackerConfig::thesis();
-  else if (name == "recommended") out = ff::TrackerConfig::recommended();
-  else if (name == "kalman") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::Kalman; }
-  else if (name == "split-kalman") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::SplitKalman; }
-  else if (name == "timed") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::TimedExtrapolation; }
-  else if (name == "thesis-ticks") { out = ff::TrackerConfig::recommended(); out.estimator = ff::Estimator::ThesisTicks; }
+  else if (name == "recommended") out = told;
+  else if (name == "kalman") { out = told; out.estimator = ff::Estimator::Kalman; }
+  else if (name == "split-kalman") { out = told; out.estimator = ff::Estimator::SplitKalman; }
+  else if (name == "timed") { out = told; out.estimator = ff::Estimator::TimedExtrapolation; }
+  else if (name == "thesis-ticks") { out = told; out.estimator = ff::Estimator::ThesisTicks; }
   else return error = "unknown tracker '" + name + "': recommended, thesis, split-kalman, kalman, timed, thesis-ticks", false;
   if (derivative == "filtered") out.one_euro.derivative_from = ff::DerivativeFrom::PreviousFiltered;
   else if (derivative == "raw") out.one_euro.derivative_from = ff::DerivativeFrom::PreviousRaw;
@@ -96,6 +99,8 @@ int main(int argc, char** argv) {
   app.add_option("--max-gap-s", max_gap_s, "longest plausible gap between reports (s); a longer one ends the replay")
       ->capture_default_str()
       ->check(CLI::Range(0.001, 86400.0));
+  ff::SensorProfile sensor;  // the device's default until a lab sends its own
+  ff::host::add_sensor_profile_options(app, sensor);
   app.add_flag("--strict", strict, "exit 1 if any sample is rejected or rows are left out after a time jump");
   app.add_flag("-q,--quiet", quiet, "only problems on stderr (the rejected count when not 0)");
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
@@ -108,7 +113,7 @@ int main(int argc, char** argv) {
     std::cerr << "ff-replay: --screen '" << screen << "': expected WxH, e.g. 4096x4096\n";
     return kExitBadUsage;
   }
-  if (!ff::host::make_condition(spec, condition, error) || !make_tracker(tracker, derivative, tracker_config, error)) {
+  if (!ff::host::make_condition(spec, condition, error) || !make_tracker(tracker, derivative, sensor, tracker_config, error)) {
     std::cerr << "ff-replay: " << error << "\n";
     return kExitBadUsage;
   }
@@ -168,6 +173,8 @@ int main(int argc, char** argv) {
              {"scene", ff::host::scene_words(spec)},
              {"scene_hash", ff::host::hash_hex(ff::host::condition_hash(condition))},
              {"tracker", tracker + " (derivative " + derivative + ")"},
+             {"sensor_profile", tracker == "thesis" ? "not used by the thesis pipeline"
+                                                    : ff::host::sensor_profile_flags(sensor)},
              {"strength", std::to_string(spec.strength)},
              {"calibration", spec.inverted_dac ? "inverted (AD9834 FSADJUST)" : "linear"},
              {"screen", screen + (screen == "800x480" ? "" : " scaled to 800x480")},

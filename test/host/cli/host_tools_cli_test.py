@@ -85,7 +85,8 @@ class ReplayOutput(Case):
         self.assertEqual(res.returncode, 0, res.stderr)
         meta, header, rows = read_replay(out)
         self.assertEqual(header, ["t_us", "x", "y", "vx", "vy", "amplitude", "dac", "present"])
-        for key in ("tool", "date", "input", "scene", "scene_hash", "tracker", "strength", "calibration", "summary"):
+        for key in ("tool", "date", "input", "scene", "scene_hash", "tracker", "sensor_profile", "strength", "calibration",
+                    "summary"):
             self.assertIn(key, meta)
         self.assertTrue(meta["tool"].startswith("ff-replay "))
         self.assertEqual(meta["scene"], "--scene heightmap --target top --strength 0.66")
@@ -99,6 +100,30 @@ class ReplayOutput(Case):
         self.assertEqual(present[-1], "0")  # lifted at 0.5 s, 0.4 s of idle ticks
         self.assertEqual(len(rows), (500000 + 400000) // TICK_US + 1)
         self.assertIn(f"ticks={len(rows)} samples=101 rejected=0", meta["summary"])
+
+    def test_the_trackers_are_told_the_sensor_profile_given(self):
+        trace = self.path("t.csv")
+        write_trace(trace, stroke(100))
+        runs = {}
+        for name, extra in (("default", []), ("late", ["--latency-us", "3000", "--tremor-px", "1", "--tremor-hz", "9.5"]),
+                            ("thesis", ["--tracker", "thesis"]),
+                            ("thesis-late", ["--tracker", "thesis", "--latency-us", "3000"])):
+            out = self.path(name + ".csv")
+            res = run(REPLAY, "-q", trace, "-o", out, *extra)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            runs[name] = read_replay(out)
+        self.assertEqual(runs["default"][0]["sensor_profile"],
+                         "--white-noise-px 1 --correlated-noise-px 0 --correlation-time-ms 0 --tremor-px 0 "
+                         "--tremor-hz 0 --report-rate-hz 200 --jitter-us 150 --latency-us 0")
+        self.assertIn("--tremor-px 1 --tremor-hz 9.5", runs["late"][0]["sensor_profile"])
+        self.assertIn("--latency-us 3000", runs["late"][0]["sensor_profile"])
+        # Reports dated 3 ms earlier: the tracker puts the finger further along at each tick.
+        self.assertNotEqual(runs["default"][2], runs["late"][2])
+        # The thesis pipeline takes no profile: the same output, and says so.
+        self.assertEqual(runs["thesis"][2], runs["thesis-late"][2])
+        self.assertEqual(runs["thesis-late"][0]["sensor_profile"], "not used by the thesis pipeline")
+        for bad in (["--tremor-hz", "25"], ["--correlated-noise-px", "2", "--correlation-time-ms", "-1"]):
+            self.assertEqual(run(REPLAY, trace, "-o", self.path("bad.csv"), *bad).returncode, 2, bad)
 
     def test_a_byte_order_mark_is_accepted(self):
         plain, bom = self.path("plain.csv"), self.path("bom.csv")
