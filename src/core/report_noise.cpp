@@ -22,8 +22,7 @@ ReportNoise ReportNoise::of(const SensorProfile& s) {
 
 TremorBand TremorBand::of(const SensorProfile& s) {
   TremorBand b;
-  b.measured = s.tremor_hz > 0.0f;
-  if (b.measured) {
+  if (s.tremor_hz > 0.0f) {  // measured
     b.centre_hz = s.tremor_hz;
     b.half_width_hz = kMeasuredHalfWidthHz;
   }
@@ -38,7 +37,7 @@ ReportNoise ReportNoise::with_tremor(const SensorProfile& s) {
   const float w = 2.0f * kPi * band.centre_hz;
   t.variance = 0.5f * s.tremor_px * s.tremor_px;
   t.omega2 = w * w;
-  t.damping = 1.0f / (band.measured ? TremorModel::kMeasuredDampingS : TremorModel::kUnmeasuredDampingS);
+  t.damping = 1.0f / TremorModel::kDampingS;
   const float damped_omega = std::sqrt(t.omega2 - t.damping * t.damping);
   t.damped_hz = damped_omega / (2.0f * kPi);
   t.inverse_damped_omega = 1.0f / damped_omega;

@@ -139,7 +139,7 @@ struct Reference {
 struct Case {
   const char* name;
   float correlated_px, tremor_px;
-  float tremor_hz = 0.0f;  // measured; 0: not (the model at 10 Hz, damped over 150 ms)
+  float tremor_hz = 0.0f;  // measured; 0: not (the model at 10 Hz)
 };
 
 class FingerKalmanAgainstReference : public ::testing::TestWithParam<Case> {};
@@ -161,10 +161,9 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
   ref.accel_q = static_cast<double>(q);
   ref.has_wander = c.correlated_px > 0.0f;
   ref.has_tremor = c.tremor_px > 0.0f;
-  // Around a measured frequency the resonance is narrower: damped over 500 ms.
-  const bool measured = c.tremor_hz > 0.0f;
-  const double w = 2.0 * M_PI * (measured ? static_cast<double>(c.tremor_hz) : 10.0);
-  const double d = 1.0 / (measured ? 0.5 : 0.15), s = 0.5 * static_cast<double>(c.tremor_px * c.tremor_px);
+  // Damped over 150 ms, at the measured frequency or at 10 Hz.
+  const double w = 2.0 * M_PI * (c.tremor_hz > 0.0f ? static_cast<double>(c.tremor_hz) : 10.0);
+  const double d = 1.0 / 0.15, s = 0.5 * static_cast<double>(c.tremor_px * c.tremor_px);
   ref.tremor = {w * w, d, 4.0 * d * w * w * s};  // stationary variance qc / (4 d w^2) = s
 
   // A stroke at 200 Hz with jitter, a lost report, a trembling finger, noise.
@@ -223,17 +222,15 @@ TEST(TremorBand, MeasuredOrPhysiological) {
   SensorProfile sensor;
   sensor.tremor_px = 1.0f;
   const TremorBand unmeasured = TremorBand::of(sensor);
-  EXPECT_FALSE(unmeasured.measured);
   EXPECT_EQ(unmeasured.centre_hz - unmeasured.half_width_hz, 8.0f);  // physiological tremor's 8-12 Hz
   EXPECT_EQ(unmeasured.centre_hz + unmeasured.half_width_hz, 12.0f);
   sensor.tremor_hz = 6.5f;
   const TremorBand measured = TremorBand::of(sensor);
-  EXPECT_TRUE(measured.measured);
-  EXPECT_EQ(measured.centre_hz - measured.half_width_hz, 5.5f);
-  EXPECT_EQ(measured.centre_hz + measured.half_width_hz, 7.5f);
-  // The model resonates at the measured frequency: w^2 = (2 pi 6.5)^2.
+  EXPECT_EQ(measured.centre_hz - measured.half_width_hz, 5.0f);
+  EXPECT_EQ(measured.centre_hz + measured.half_width_hz, 8.0f);
+  // The model resonates at the measured frequency: w^2 = (2 pi 6.5)^2, as broadly as ever (150 ms).
   EXPECT_NEAR(ReportNoise::with_tremor(sensor).tremor.omega2, std::pow(2.0 * M_PI * 6.5, 2.0), 1e-3 * 1668.0);
-  EXPECT_FLOAT_EQ(ReportNoise::with_tremor(sensor).tremor.damping, 2.0f);  // 500 ms
+  EXPECT_FLOAT_EQ(ReportNoise::with_tremor(sensor).tremor.damping, 1.0f / 0.15f);
 }
 
 TEST(TremorModel, NoTremorNoState) {

@@ -92,12 +92,12 @@ TEST_P(ClassGoals, AHeadingModelToldTheStartsMeetsTheHeightmapGoal) {
 INSTANTIATE_TEST_SUITE_P(Classes, ClassGoals,
                          // Measured (10 s traces, stroke ends predicted, quiet at each stop, the tremor
                          // a state of the direction filter at its measured frequency): heightmap 0.46 /
-                         // 0.43 / 0.46 / 0.48 / 0.59 / 0.53 / 0.61 / 0.69x, chatter 0.0061 / 0.0091 /
-                         // 0.0019 / 0.0061 / 0.0011 / 0.0037 / 0.0049 / 0.0043 (30 s: all 8 within 0.01
+                         // 0.43 / 0.47 / 0.48 / 0.59 / 0.53 / 0.61 / 0.69x, chatter 0.0061 / 0.0091 /
+                         // 0.0011 / 0.0061 / 0.0011 / 0.0035 / 0.0060 / 0.0047 (30 s: all 8 within 0.01
                          // too, docs/tracking.md).
                          ::testing::Values(Bounds{"white-200hz", 0.52, kClassRestBound},
                                            Bounds{"slow-fingers", kClassMaxHeightmapRatio, kClassRestBound},
-                                           Bounds{"tremor", 0.51, kClassRestBound},
+                                           Bounds{"tremor", 0.52, kClassRestBound},
                                            Bounds{"latency", 0.53, kClassRestBound},
                                            Bounds{"correlated-noise", 0.65, kClassRestBound},
                                            Bounds{"realistic-100hz", 0.58, kClassRestBound},
