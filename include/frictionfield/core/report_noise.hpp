@@ -23,8 +23,8 @@ struct TremorBand {
   static constexpr float kUnmeasuredHz = 10.0f, kUnmeasuredHalfWidthHz = 2.0f;
   // A calibration finds a steady tremor's peak to a few hundredths of a
   // hertz; a finger's wanders about it, and a session may follow the
-  // calibration by hours (+-1 Hz, or a resonator narrowed to it, let a
-  // tremor wandering by 0.75 Hz chatter: docs/tracking-research.md).
+  // calibration by hours (a resonance narrowed to the measured frequency
+  // let a tremor wandering by 0.75 Hz chatter: docs/tracking-research.md).
   static constexpr float kMeasuredHalfWidthHz = 1.5f;
   float centre_hz = kUnmeasuredHz;
   float half_width_hz = kUnmeasuredHalfWidthHz;
@@ -34,9 +34,8 @@ struct TremorBand {
 // The tremor as a state: x'' = -w^2 x - 2 d x' + white noise, a resonance at
 // the band's centre whose damping lets it follow any frequency of the band
 // and a tremor that comes and goes (its correlation time 1/d = kDampingS).
-// The noise is sized so that
-// it swings as far as the profile's tremor: a sinusoid of peak a has
-// variance a^2 / 2.
+// The noise is sized so that it swings as far as the profile's tremor: a
+// sinusoid of peak a has variance a^2 / 2.
 struct TremorModel {
   static constexpr float kDampingS = 0.15f;
   float variance = 0.0f;     // of the displacement, px^2 per axis; 0: no tremor state
