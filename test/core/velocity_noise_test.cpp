@@ -89,6 +89,21 @@ double worst_tremor_variance(const SensorProfile& sensor, double peak, const Tra
 
 float accel_q(const TrackerConfig& c) { return c.kalman.accel_noise_px_s2 * c.kalman.accel_noise_px_s2; }
 
+// 1 px of white noise and 1.5 px of tremor (peak), at 200 Hz unless changed.
+SensorProfile trembling_finger() {
+  SensorProfile sensor;
+  sensor.white_noise_px = 1.0f;
+  sensor.tremor_px = 1.5f;
+  return sensor;
+}
+
+// What the tremor adds to the filter's resting velocity noise: the same filter, a finger without it.
+double tremor_share(const SteadyStateFilter& f, const SensorProfile& sensor) {
+  SensorProfile quiet = sensor;
+  quiet.tremor_px = 0.0f;
+  return static_cast<double>(resting_velocity_variance(f, sensor) - resting_velocity_variance(f, quiet));
+}
+
 TEST(VelocityNoise, WhiteNoiseMatchesTheAlphaBetaClosedForm) {
   SensorProfile sensor;
   sensor.white_noise_px = 1.3f;
@@ -148,14 +163,9 @@ TEST(VelocityNoise, FiveTimesTheReportsOfOneWanderTellLittleMore) {
 }
 
 TEST(VelocityNoise, TremorMatchesASimulatedSinusoidAtTheWorstFrequency) {
-  SensorProfile sensor;
-  sensor.white_noise_px = 1.0f;
-  sensor.tremor_px = 1.5f;
+  const SensorProfile sensor = trembling_finger();
   const TrackerConfig c = plain_kalman(sensor);
-  const SteadyStateFilter f = steady_state_filter(accel_q(c), ReportNoise::of(sensor), sensor);
-  SensorProfile quiet = sensor;
-  quiet.tremor_px = 0.0f;
-  const double tremor_part = static_cast<double>(resting_velocity_variance(f, sensor) - resting_velocity_variance(f, quiet));
+  const double tremor_part = tremor_share(steady_state_filter(accel_q(c), ReportNoise::of(sensor), sensor), sensor);
   const double worst = worst_tremor_variance(sensor, 1.5, c);
   EXPECT_NEAR(tremor_part, worst, 0.03 * worst);
 }
@@ -186,17 +196,12 @@ TEST(VelocityNoise, WithTheTremorsStatesNoiseAndTremorMatchASimulationOfTheTrack
 
 TEST(VelocityNoise, AMeasuredTremorIsTakenWithinOneAndAHalfHertzOfItsFrequency) {
   for (float rate : {200.0f, 1000.0f}) {
-    SensorProfile sensor;
-    sensor.white_noise_px = 1.0f;
-    sensor.tremor_px = 1.5f;
+    SensorProfile sensor = trembling_finger();
     sensor.tremor_hz = 7.3f;  // outside the unmeasured 8-12 Hz
     sensor.report_rate_hz = rate;
-    SensorProfile quiet = sensor;
-    quiet.tremor_px = 0.0f;
     const TrackerConfig c = split_kalman(sensor);
-    const SteadyStateFilter f = steady_state_filter(accel_q(c), ReportNoise::with_tremor(sensor), sensor);
     const double predicted_tremor =
-        static_cast<double>(resting_velocity_variance(f, sensor) - resting_velocity_variance(f, quiet));
+        tremor_share(steady_state_filter(accel_q(c), ReportNoise::with_tremor(sensor), sensor), sensor);
     const double worst = worst_tremor_variance(sensor, 1.5, c, 5.8, 8.8);
     EXPECT_NEAR(predicted_tremor, worst, 0.05 * worst) << rate;
   }
@@ -206,9 +211,7 @@ TEST(VelocityNoise, AMeasuredFrequencyKeepsMoreOfTheTremorOut) {
   // Told where the tremor is, the states resonate there: a finger trembling
   // at that frequency reads as slower than with the unmeasured model, which
   // resonates at 10 Hz.
-  SensorProfile told;
-  told.white_noise_px = 1.0f;
-  told.tremor_px = 1.5f;
+  SensorProfile told = trembling_finger();
   told.tremor_hz = 8.6f;
   SensorProfile untold = told;
   untold.tremor_hz = 0.0f;
@@ -221,9 +224,7 @@ TEST(VelocityNoise, AMeasuredFrequencyKeepsMoreOfTheTremorOut) {
 TEST(VelocityNoise, TheTremorsStatesKeepMostOfItOutOfTheVelocity) {
   // What the states are for: a trembling resting finger reads as much
   // slower, so the direction confidence's band can sit lower.
-  SensorProfile sensor;
-  sensor.white_noise_px = 1.0f;
-  sensor.tremor_px = 1.5f;
+  const SensorProfile sensor = trembling_finger();
   const float q = accel_q(split_kalman(sensor));
   const float without = resting_velocity_variance(steady_state_filter(q, ReportNoise::of(sensor), sensor), sensor);
   const float with = resting_velocity_variance(steady_state_filter(q, ReportNoise::with_tremor(sensor), sensor), sensor);
