@@ -16,4 +16,11 @@ bool is_valid(const SensorProfile& p) {
          (p.tremor_hz == 0.0f || within(p.tremor_hz, L::kMinTremorHz, L::kMaxTremorHz));
 }
 
+bool operator==(const SensorProfile& a, const SensorProfile& b) {
+  return a.white_noise_px == b.white_noise_px && a.correlated_noise_px == b.correlated_noise_px &&
+         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px &&
+         a.report_rate_hz == b.report_rate_hz && a.jitter_us == b.jitter_us && a.latency_us == b.latency_us &&
+         a.tremor_hz == b.tremor_hz;
+}
+
 }  // namespace ff

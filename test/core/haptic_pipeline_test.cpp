@@ -186,25 +186,19 @@ TEST(HapticPipeline, BadStrengthIsCountedAndRepaired) {
   EXPECT_FLOAT_EQ(out.back().amplitude, 0.5f);
 }
 
-bool same(const SensorProfile& a, const SensorProfile& b) {
-  return a.white_noise_px == b.white_noise_px && a.correlated_noise_px == b.correlated_noise_px &&
-         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px && a.tremor_hz == b.tremor_hz &&
-         a.report_rate_hz == b.report_rate_hz && a.jitter_us == b.jitter_us && a.latency_us == b.latency_us;
-}
-
 SensorProfile measured() { return {1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u, 9.5f}; }
 
 TEST(HapticPipeline, ASensorProfileReachesTheTrackerAtTheStartOfTheNextTick) {
   auto p = std::make_unique<HapticPipeline>();
-  EXPECT_TRUE(same(p->tracker().config().sensor, SensorProfile{}));  // start-up: the default profile
+  EXPECT_EQ(p->tracker().config().sensor, SensorProfile{});  // start-up: the default profile
   stroke(*p, 0, 100);  // a finger is tracked
   ASSERT_TRUE(p->tracker().state().present);
   ASSERT_EQ(p->faults()[Fault::TouchDown], 1u);
 
   ASSERT_TRUE(p->set_sensor_profile(measured()));
   // Handed over, not applied: the loop never touches the tick's tracker.
-  EXPECT_TRUE(same(p->tracker_config().sensor, measured()));
-  EXPECT_TRUE(same(p->tracker().config().sensor, SensorProfile{}));
+  EXPECT_EQ(p->tracker_config().sensor, measured());
+  EXPECT_EQ(p->tracker().config().sensor, SensorProfile{});
   EXPECT_TRUE(p->tracker().state().present);
 
   // The next tick takes a report: configured first, so that report is the
@@ -213,7 +207,7 @@ TEST(HapticPipeline, ASensorProfileReachesTheTrackerAtTheStartOfTheNextTick) {
   ASSERT_EQ(next % 5000, 0u);
   std::vector<TickOutput> out;
   stroke(*p, next, 1, &out);
-  EXPECT_TRUE(same(p->tracker().config().sensor, measured()));
+  EXPECT_EQ(p->tracker().config().sensor, measured());
   EXPECT_TRUE(out[0].present);
   EXPECT_EQ(p->faults()[Fault::TouchDown], 2u);
   // Configured once: later ticks keep the finger (no further touch-down).
@@ -245,11 +239,11 @@ TEST(HapticPipeline, TheLoopWritesTheSlotTheTickIsNotReading) {
   const TrackerConfig* named = &p->tracker_config();  // what a tick would read now
   ASSERT_TRUE(p->set_sensor_profile(b));
   // A tick landing anywhere inside that call read `named`: it still holds a, whole.
-  EXPECT_TRUE(same(named->sensor, a));
+  EXPECT_EQ(named->sensor, a);
   EXPECT_NE(&p->tracker_config(), named);
   // Two profiles between ticks: the tick takes the last.
   p->tick(0);
-  EXPECT_TRUE(same(p->tracker().config().sensor, b));
+  EXPECT_EQ(p->tracker().config().sensor, b);
 }
 
 TEST(HapticPipeline, AnInvalidSensorProfileIsRefusedCountedAndChangesNothing) {
@@ -284,11 +278,11 @@ TEST(HapticPipeline, AnInvalidSensorProfileIsRefusedCountedAndChangesNothing) {
   for (const SensorProfile& s : bad) {
     EXPECT_FALSE(p->set_sensor_profile(s)) << &s - bad.data();
     EXPECT_EQ(p->faults()[Fault::BadSensorProfile], ++expected);
-    EXPECT_TRUE(same(p->tracker_config().sensor, measured()));
+    EXPECT_EQ(p->tracker_config().sensor, measured());
   }
   std::vector<TickOutput> out;
   stroke(*p, 100 * kTickPeriodUs, 20, &out);
-  EXPECT_TRUE(same(p->tracker().config().sensor, measured()));
+  EXPECT_EQ(p->tracker().config().sensor, measured());
   for (const TickOutput& t : out) EXPECT_TRUE(t.present) << t.t_us;  // never reset: the finger stays
   EXPECT_EQ(p->faults()[Fault::TouchDown], 1u);
 

@@ -174,6 +174,25 @@ TEST(SensorProfile, ValidWithinItsLimits) {
   }
 }
 
+// A profile that reached the device is the one that was sent: equality must
+// see a change in any one field, and nothing else.
+TEST(SensorProfile, EqualOnlyWhenEveryFieldIs) {
+  const SensorProfile sent{1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u, 9.5f};
+  SensorProfile copy = sent;
+  EXPECT_TRUE(copy == sent);
+  EXPECT_FALSE(copy != sent);
+  for (auto changes : std::vector<void (*)(SensorProfile&)>{
+           [](SensorProfile& s) { s.white_noise_px = 1.25f; }, [](SensorProfile& s) { s.correlated_noise_px = 0.0f; },
+           [](SensorProfile& s) { s.correlation_time_ms = 30.0f; }, [](SensorProfile& s) { s.tremor_px = 0.5f; },
+           [](SensorProfile& s) { s.report_rate_hz = 200.0f; }, [](SensorProfile& s) { s.jitter_us = 150.0f; },
+           [](SensorProfile& s) { s.latency_us = 3001u; }, [](SensorProfile& s) { s.tremor_hz = 0.0f; }}) {
+    SensorProfile changed = sent;
+    changes(changed);
+    EXPECT_FALSE(changed == sent);
+    EXPECT_TRUE(changed != sent);
+  }
+}
+
 // Every corner of the profile's limits (the device takes any profile within
 // them over the protocol): the noise the fade is measured against is finite
 // and positive, and a stroke with noise tracks to finite states with a

@@ -658,12 +658,6 @@ TEST(FirmwareApp, RebootRestsThePlateFirst) {
   ASSERT_EQ(d.board.hid_of(MessageType::Ack).size(), 1u);  // acknowledged before the reset
 }
 
-bool same(const SensorProfile& a, const SensorProfile& b) {
-  return a.white_noise_px == b.white_noise_px && a.correlated_noise_px == b.correlated_noise_px &&
-         a.correlation_time_ms == b.correlation_time_ms && a.tremor_px == b.tremor_px && a.tremor_hz == b.tremor_hz &&
-         a.report_rate_hz == b.report_rate_hz && a.jitter_us == b.jitter_us && a.latency_us == b.latency_us;
-}
-
 Message sensor_profile(const SensorProfile& p, uint8_t sequence) {
   Message m = command(MessageType::SetSensorProfile, sequence);
   m.sensor_profile = p;
@@ -676,7 +670,7 @@ TEST(FirmwareApp, ASensorProfileReachesTheTrackerAtTheNextTickNotInTheLoop) {
   Device d;
   d.zforce_model.load_trace(stroke());
   d.board.send_udp(condition(protocol::ConditionKind::Heightmap));
-  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, SensorProfile{}));  // start-up: the default
+  EXPECT_EQ(d.pipeline->tracker().config().sensor, SensorProfile{});  // start-up: the default
   d.run_until(1200000);
   ASSERT_EQ(d.dac_at(1200000), kHeightmapOnPathMovingRight);
 
@@ -690,9 +684,9 @@ TEST(FirmwareApp, ASensorProfileReachesTheTrackerAtTheNextTickNotInTheLoop) {
   EXPECT_EQ(acks.back().ack.command, MessageType::SetSensorProfile);
   EXPECT_EQ(acks.back().ack.status, protocol::AckStatus::Ok);
   d.run_until(1200400);
-  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, SensorProfile{}));
+  EXPECT_EQ(d.pipeline->tracker().config().sensor, SensorProfile{});
   d.step();  // 1.2005 s: the tick
-  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, kMeasured));
+  EXPECT_EQ(d.pipeline->tracker().config().sensor, kMeasured);
 
   // The new tracker starts afresh: the plate rests until the finger's next
   // report (stamped 1.205 s), then renders the scene again.
@@ -707,7 +701,7 @@ TEST(FirmwareApp, ASensorProfileReachesTheTrackerAtTheNextTickNotInTheLoop) {
   const auto replies = d.board.udp_of(MessageType::SensorProfile);
   ASSERT_EQ(replies.size(), 1u);
   EXPECT_EQ(replies[0].sequence, 12);
-  EXPECT_TRUE(same(replies[0].sensor_profile, kMeasured));
+  EXPECT_EQ(replies[0].sensor_profile, kMeasured);
   EXPECT_EQ(d.counters().sensor_profiles_set, 1u);
   EXPECT_EQ(d.board.undecodable, 0);
 }
@@ -744,8 +738,8 @@ TEST(FirmwareApp, ARefusedSensorProfileIsCountedAndTheTrackerKeepsItsFinger) {
   EXPECT_EQ(status[0].status.faults[Fault::BadSensorProfile], 2u);
   const auto active = d.board.hid_of(MessageType::SensorProfile);
   ASSERT_EQ(active.size(), 1u);
-  EXPECT_TRUE(same(active[0].sensor_profile, kMeasured));
-  EXPECT_TRUE(same(d.pipeline->tracker().config().sensor, kMeasured));
+  EXPECT_EQ(active[0].sensor_profile, kMeasured);
+  EXPECT_EQ(d.pipeline->tracker().config().sensor, kMeasured);
   // Not reconfigured: the finger tracked throughout, the scene rendered on.
   EXPECT_EQ(d.pipeline->faults()[Fault::TouchDown], 1u);
   for (uint32_t t = 1200000; t <= 1300000; t += 500) ASSERT_EQ(d.dac_at(t), kHeightmapOnPathMovingRight) << t;

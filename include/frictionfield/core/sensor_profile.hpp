@@ -36,4 +36,8 @@ struct SensorProfileLimits {
 // constant, and a tremor frequency is 0 (not measured) or within its limits.
 bool is_valid(const SensorProfile& profile);
 
+// Field by field: two profiles are equal when every measured figure is.
+bool operator==(const SensorProfile& a, const SensorProfile& b);
+inline bool operator!=(const SensorProfile& a, const SensorProfile& b) { return !(a == b); }
+
 }  // namespace ff
