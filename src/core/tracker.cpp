@@ -65,10 +65,10 @@ void Tracker::configure(const TrackerConfig& config) {
   filter_y_.configure(euro);
   if (!is_valid(config_.sensor)) config_.sensor = SensorProfile{};
   const SensorProfile& sensor = config_.sensor;
-  position_noise_ = ReportNoise::of(sensor);
-  // The tremor moves the finger, not the stroke: only a filter that renders
-  // no position carries it as a state (the position filter follows it).
-  noise_ = config.estimator == Estimator::SplitKalman ? ReportNoise::with_tremor(sensor) : position_noise_;
+  // The tremor moves the finger about its stroke by a fraction of a mm at
+  // 3-20 Hz: a state of both filters, so the direction is the stroke's and
+  // the rendered position the voluntary one, not shaking with the tremor.
+  noise_ = ReportNoise::with_tremor(sensor);
   direction_q_ = config.kalman.accel_noise_px_s2 * config.kalman.accel_noise_px_s2;
   position_q_ = config.position_kalman.accel_noise_px_s2 * config.position_kalman.accel_noise_px_s2;
   latency_us_ = config.compensate_latency ? sensor.latency_us : 0u;
@@ -145,7 +145,7 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   filter_x_.reset();
   filter_y_.reset();
   direction_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
-  position_.start({s.x, s.y}, position_noise_, kInitialSpeedSigmaPxS);
+  position_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
   recent_innovation_ = {};
   recent_innovation_variance_ = 0.0f;
   stroke_end_.restart();
@@ -212,8 +212,8 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   direction_.update(z, 1.0f / s_variance);
   learn_velocity_noise();
   if (config_.estimator == Estimator::SplitKalman) {
-    position_.predict(dt_s, position_q_, position_noise_);
-    position_.update(z, position_.inverse_innovation(position_noise_));
+    position_.predict(dt_s, position_q_, noise_);
+    position_.update(z, position_.inverse_innovation(noise_));
   }
 }
 

@@ -18,7 +18,7 @@ struct FingerKalman {
   // The tremor's covariances: with the finger and the wander (P03 ... P24), its own (P33, P34, P44).
   float P03 = 0.0f, P04 = 0.0f, P13 = 0.0f, P14 = 0.0f, P23 = 0.0f, P24 = 0.0f, P33 = 0.0f, P34 = 0.0f, P44 = 0.0f;
   bool wander = false;  // without one its terms stay 0: skipped (the position filter, a white sensor)
-  bool tremor = false;  // likewise (the position filter, a profile without tremor)
+  bool tremor = false;  // likewise (a profile without tremor)
 
   // One report z, nothing known of the speed (1 sigma initial_speed_px_s).
   void start(Vec2 z, const ReportNoise& n, float initial_speed_px_s) {

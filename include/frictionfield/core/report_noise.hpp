@@ -71,11 +71,11 @@ struct ReportNoise {
   float white_variance = 1.0f;   // px^2
   float wander_variance = 0.0f;  // px^2, 0: no wander
   float inverse_tau_s = 0.0f;    // 1 / tau
-  TremorModel tremor;            // the direction filter's; of() leaves it empty
+  TremorModel tremor;            // of() leaves it empty
 
-  // White noise and wander: both filters'.
+  // White noise and wander (the benchmark's bounds, which model no tremor).
   static ReportNoise of(const SensorProfile& sensor);
-  // The same with the profile's tremor as a state: the direction filter's.
+  // The same with the profile's tremor as a state: the tracker's filters'.
   static ReportNoise with_tremor(const SensorProfile& sensor);
   // The wander's correlation across dt_s: exp(-dt / tau) (decay()); 0 without a wander.
   float correlation(float dt_s) const {

@@ -148,8 +148,7 @@ class Tracker {
   FingerKalman direction_;  // the direction (or only) filter
   FingerKalman position_;   // SplitKalman's position filter
   // From the configuration, so that a report costs no squares or divisions of it.
-  ReportNoise noise_;           // the direction filter's: white, wander and the tremor's state
-  ReportNoise position_noise_;  // the position filter's: white and wander
+  ReportNoise noise_;  // both filters': white, wander and the tremor's state
   float direction_q_ = 0.0f, position_q_ = 0.0f;  // accel_noise^2
   // Direction confidence: z^2 = |v|^2 / (2 resting + excess) per axis pair.
   float resting_velocity_variance_ = 0.0f;  // per axis, px^2/s^2
