@@ -78,7 +78,8 @@ def read_m4(path):
                     "pipeline_prepare": int(pipeline_prepare) if int(pipeline_prepare) >= 0 else None,
                 }
             elif kind == "tracker":
-                m4["trackers"][fields[1]] = {"mean": int(fields[2]) / int(fields[3]), "max": int(fields[4])}
+                m4["trackers"][fields[1]] = {"mean": int(fields[2]) / int(fields[3]), "max": int(fields[4]),
+                                             "configure": int(fields[5]) if len(fields) > 5 else None}
             elif kind == "component":
                 m4["components"][fields[1]] = int(fields[2]) / int(fields[3])
             elif kind == "stopwatch_overhead_milli":
@@ -670,12 +671,13 @@ def report(rows, m4, host_trackers, args):
     w("")
     w("`Tracker::on_sample` (every 10th tick, 200 Hz) + `on_tick(now, need_filter = true)` on the stroke, per tick.")
     w("")
-    w("| configuration | M4 instr / tick (mean) | M4 max single tick | host ns / tick |")
-    w("|---|---|---|---|")
+    w("| configuration | M4 instr / tick (mean) | M4 max single tick | M4 `configure` (once per new profile) | host ns / tick |")
+    w("|---|---|---|---|---|")
     names = list(m4["trackers"].keys()) if have_m4 else list(host_trackers.keys())
     for name in names:
         t = m4["trackers"].get(name, {}) if have_m4 else {}
-        w("| `%s` | %s | %s | %s |" % (name, fmt(t.get("mean")), fmt(t.get("max")), fmt(host_trackers.get(name))))
+        w("| `%s` | %s | %s | %s | %s |" % (name, fmt(t.get("mean")), fmt(t.get("max")), fmt(t.get("configure")),
+                                          fmt(host_trackers.get(name))))
     w("")
 
     # ---------------------------------------------------------- preparation
