@@ -87,7 +87,16 @@ void Tracker::configure(const TrackerConfig& config) {
     const SteadyStateFilter steady = steady_state_filter(direction_q_, noise_, sensor);
     steady_velocity_variance_ = steady.velocity_variance;
     resting_velocity_variance_ = resting_velocity_variance(steady, sensor);
-
+  }
+  const float position_low = config.position_rest_sigmas * config.position_rest_sigmas;
+  const float position_high = config.position_moving_sigmas * config.position_moving_sigmas;
+  position_fade_low_ = position_low;
+  inverse_position_fade_span_ = 0.0f;
+  if (config.estimator == Estimator::SplitKalman && inverse_fade_span_ > 0.0f && position_high > position_low) {
+    inverse_position_fade_span_ = 1.0f / (position_high - position_low);
+    const SteadyStateFilter steady = steady_state_filter(position_q_, noise_, sensor);
+    position_steady_velocity_variance_ = steady.velocity_variance;
+    position_resting_velocity_variance_ = resting_velocity_variance(steady, sensor);
   }
   reset();
 }
@@ -120,6 +129,10 @@ FF_TICK_INLINE void Tracker::learn_velocity_noise() {
   if (inverse_fade_span_ <= 0.0f) return;
   const float excess = direction_.P11 - steady_velocity_variance_;
   inverse_velocity_noise_ = 1.0f / (resting_velocity_variance_ + (excess > 0.0f ? excess : 0.0f));
+  if (inverse_position_fade_span_ <= 0.0f) return;
+  const float position_excess = position_.P11 - position_steady_velocity_variance_;
+  inverse_position_velocity_noise_ =
+      1.0f / (position_resting_velocity_variance_ + (position_excess > 0.0f ? position_excess : 0.0f));
 }
 
 FF_FASTRUN void Tracker::lose_finger() {
@@ -210,11 +223,11 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
     s_variance = direction_.innovation_variance(noise_);
   }
   direction_.update(z, 1.0f / s_variance);
-  learn_velocity_noise();
   if (config_.estimator == Estimator::SplitKalman) {
     position_.predict(dt_s, position_q_, noise_);
     position_.update(z, position_.inverse_innovation(noise_));
   }
+  learn_velocity_noise();
 }
 
 FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
@@ -334,7 +347,13 @@ FF_TICK_INLINE Vec2 Tracker::faded_direction(Vec2 v) const {
   if (inverse_fade_span_ > 0.0f) {
     // The speed in standard deviations of the velocity's noise (learn_velocity_noise).
     const float speed = m * len;
-    gain = smoothstep((speed * speed * inverse_velocity_noise_ - fade_low_) * inverse_fade_span_);
+    float motion = (speed * speed * inverse_velocity_noise_ - fade_low_) * inverse_fade_span_;
+    if (inverse_position_fade_span_ > 0.0f) {  // or the position filter's, if it says more
+      const float agile = (dot(position_.v, position_.v) * inverse_position_velocity_noise_ - position_fade_low_) *
+                          inverse_position_fade_span_;
+      if (agile > motion) motion = agile;
+    }
+    gain = smoothstep(motion);
   }
   return (gain / len) * u;
 }

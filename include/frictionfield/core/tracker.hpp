@@ -48,6 +48,14 @@ struct TrackerConfig {
   // Kalman estimators only: the 1-euro estimators' velocity has no such model.
   float rest_sigmas = 2.5f;
   float moving_sigmas = 5.0f;
+  // SplitKalman: the position filter's speed is evidence of motion too, in
+  // standard deviations of its own resting noise (and excess). The direction
+  // shows as far as the stronger of the two filters' evidence allows: the
+  // agile filter sees a start or a speed-up tens of ms before the smooth one.
+  // Its levels are higher: its noise changes faster, so it crosses any level
+  // more often at rest. Both 0: the direction filter's evidence alone.
+  float position_rest_sigmas = 3.0f;
+  float position_moving_sigmas = 6.0f;
   bool compensate_latency = true;      // date reports sensor.latency_us before their stamp
   // Changes of motion (starts, stops, reversals): the direction filter's
   // recent innovations, each weighted by exp(-age / maneuver_time_ms), are
@@ -155,6 +163,10 @@ class Tracker {
   float steady_velocity_variance_ = 0.0f;   // the direction filter's settled P11
   float inverse_velocity_noise_ = 0.0f;     // 1 / (resting + the filter's excess P11)
   float fade_low_ = 0.0f, inverse_fade_span_ = 0.0f;  // rest_sigmas^2; 1 / (moving^2 - rest^2), 0: no fade
+  // The same for the position filter's speed (inverse span 0: not used).
+  float position_steady_velocity_variance_ = 0.0f, position_resting_velocity_variance_ = 0.0f;
+  float inverse_position_velocity_noise_ = 0.0f;
+  float position_fade_low_ = 0.0f, inverse_position_fade_span_ = 0.0f;
   uint32_t latency_us_ = 0;
   // The direction filter's recent innovations (px) and their variance while its model holds (px^2 per axis).
   Vec2 recent_innovation_;
