@@ -4,7 +4,8 @@
 
 namespace ff {
 
-HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : tracker_(tracker), tracker_slots_{tracker, tracker} {
+HapticPipeline::HapticPipeline(const TrackerConfig& tracker)
+    : tracker_(tracker), tracker_slots_{{tracker, fade_noise(tracker)}, {tracker, fade_noise(tracker)}} {
   // Boot: neutral scene, plate resting until a finger and a condition arrive.
   Condition boot;
   slots_[0].plan.prepare(boot.scene, slots_[0].table, sizeof(slots_[0].table));
@@ -39,7 +40,9 @@ bool HapticPipeline::set_sensor_profile(const SensorProfile& profile) {
   // The tick reads only the slot tracker_published_ names, and it runs to
   // completion between two instructions of the loop: the other slot is free.
   const uint32_t next = tracker_published_.load(std::memory_order_relaxed) + 1u;
-  tracker_slots_[next & 1u] = TrackerConfig::recommended(profile);
+  TrackerSlot& slot = tracker_slots_[next & 1u];
+  slot.config = TrackerConfig::recommended(profile);
+  slot.fade = fade_noise(slot.config);  // here, not in the tick: it settles two filters
   tracker_published_.store(next, std::memory_order_release);
   return true;
 }
@@ -56,7 +59,8 @@ FF_FASTRUN TickOutput HapticPipeline::tick(uint32_t now_us) {
   // first the new tracker sees (never a configuration changed mid-tick).
   const uint32_t published = tracker_published_.load(std::memory_order_acquire);
   if (published != tracker_applied_) {
-    tracker_.configure(tracker_slots_[published & 1u]);
+    const TrackerSlot& slot = tracker_slots_[published & 1u];
+    tracker_.configure(slot.config, slot.fade);
     tracker_applied_ = published;
   }
   const Slot& slot = slots_[active_.load(std::memory_order_acquire)];

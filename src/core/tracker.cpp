@@ -57,47 +57,74 @@ TrackerConfig TrackerConfig::recommended(const SensorProfile& sensor) {
 
 Tracker::Tracker(const TrackerConfig& config) { configure(config); }
 
-void Tracker::configure(const TrackerConfig& config) {
+namespace {
+
+SensorProfile usable(const SensorProfile& sensor) { return is_valid(sensor) ? sensor : SensorProfile{}; }
+float squared(float x) { return x * x; }
+bool kalman_estimator(const TrackerConfig& c) {
+  return c.estimator == Estimator::Kalman || c.estimator == Estimator::SplitKalman;
+}
+bool fades(const TrackerConfig& c) { return kalman_estimator(c) && squared(c.moving_sigmas) > squared(c.rest_sigmas); }
+bool position_evidence(const TrackerConfig& c) {
+  return c.estimator == Estimator::SplitKalman && fades(c) &&
+         squared(c.position_moving_sigmas) > squared(c.position_rest_sigmas);
+}
+
+}  // namespace
+
+FadeNoise fade_noise(const TrackerConfig& config) {
+  const SensorProfile sensor = usable(config.sensor);
+  // The tremor moves the finger about its stroke by a fraction of a mm at
+  // 3-20 Hz: a state of both filters (Tracker::configure).
+  const ReportNoise noise = ReportNoise::with_tremor(sensor);
+  FadeNoise f;
+  if (fades(config)) {
+    const SteadyStateFilter steady = steady_state_filter(squared(config.kalman.accel_noise_px_s2), noise, sensor);
+    f.steady_velocity_variance = steady.velocity_variance;
+    f.resting_velocity_variance = resting_velocity_variance(steady, sensor);
+  }
+  if (position_evidence(config)) {
+    const SteadyStateFilter steady =
+        steady_state_filter(squared(config.position_kalman.accel_noise_px_s2), noise, sensor);
+    f.position_steady_velocity_variance = steady.velocity_variance;
+    f.position_resting_velocity_variance = resting_velocity_variance(steady, sensor);
+  }
+  return f;
+}
+
+void Tracker::configure(const TrackerConfig& config) { configure(config, fade_noise(config)); }
+
+void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
   config_ = config;
   OneEuroConfig euro = config.one_euro;
   euro.rate_hz = 1e6f / static_cast<float>(kTickPeriodUs);
   filter_x_.configure(euro);
   filter_y_.configure(euro);
-  if (!is_valid(config_.sensor)) config_.sensor = SensorProfile{};
+  config_.sensor = usable(config.sensor);
   const SensorProfile& sensor = config_.sensor;
   // The tremor moves the finger about its stroke by a fraction of a mm at
   // 3-20 Hz: a state of both filters, so the direction is the stroke's and
   // the rendered position the voluntary one, not shaking with the tremor.
   noise_ = ReportNoise::with_tremor(sensor);
-  direction_q_ = config.kalman.accel_noise_px_s2 * config.kalman.accel_noise_px_s2;
-  position_q_ = config.position_kalman.accel_noise_px_s2 * config.position_kalman.accel_noise_px_s2;
+  direction_q_ = squared(config.kalman.accel_noise_px_s2);
+  position_q_ = squared(config.position_kalman.accel_noise_px_s2);
   latency_us_ = config.compensate_latency ? sensor.latency_us : 0u;
   inverse_maneuver_time_s_ = config.maneuver_threshold > 0.0f && config.maneuver_time_ms > 0.0f
                                  ? 1e3f / config.maneuver_time_ms : 0.0f;
   maneuvers_ = 0;
   stroke_ends_ = 0;
   stroke_end_.configure(config.stroke_end);
-  const bool kalman = config.estimator == Estimator::Kalman || config.estimator == Estimator::SplitKalman;
-  predict_stroke_ends_ = kalman && config.stroke_end_widening > 1.0f;
-  const float low = config.rest_sigmas * config.rest_sigmas, high = config.moving_sigmas * config.moving_sigmas;
-  fade_low_ = low;
-  inverse_fade_span_ = 0.0f;
-  if (kalman && high > low) {  // what the fade measures speeds against (not per tick: a few ms here)
-    inverse_fade_span_ = 1.0f / (high - low);
-    const SteadyStateFilter steady = steady_state_filter(direction_q_, noise_, sensor);
-    steady_velocity_variance_ = steady.velocity_variance;
-    resting_velocity_variance_ = resting_velocity_variance(steady, sensor);
-  }
-  const float position_low = config.position_rest_sigmas * config.position_rest_sigmas;
-  const float position_high = config.position_moving_sigmas * config.position_moving_sigmas;
-  position_fade_low_ = position_low;
-  inverse_position_fade_span_ = 0.0f;
-  if (config.estimator == Estimator::SplitKalman && inverse_fade_span_ > 0.0f && position_high > position_low) {
-    inverse_position_fade_span_ = 1.0f / (position_high - position_low);
-    const SteadyStateFilter steady = steady_state_filter(position_q_, noise_, sensor);
-    position_steady_velocity_variance_ = steady.velocity_variance;
-    position_resting_velocity_variance_ = resting_velocity_variance(steady, sensor);
-  }
+  predict_stroke_ends_ = kalman_estimator(config) && config.stroke_end_widening > 1.0f;
+  // What the fade measures speeds against: derived by fade_noise(), outside the tick.
+  fade_low_ = squared(config.rest_sigmas);
+  inverse_fade_span_ = fades(config) ? 1.0f / (squared(config.moving_sigmas) - fade_low_) : 0.0f;
+  steady_velocity_variance_ = fade.steady_velocity_variance;
+  resting_velocity_variance_ = fade.resting_velocity_variance;
+  position_fade_low_ = squared(config.position_rest_sigmas);
+  inverse_position_fade_span_ =
+      position_evidence(config) ? 1.0f / (squared(config.position_moving_sigmas) - position_fade_low_) : 0.0f;
+  position_steady_velocity_variance_ = fade.position_steady_velocity_variance;
+  position_resting_velocity_variance_ = fade.position_resting_velocity_variance;
   reset();
 }
 

@@ -8,7 +8,9 @@
 #include <memory>
 #include <vector>
 
+#include "frictionfield/core/min_jerk.hpp"
 #include "frictionfield/core/scenes.hpp"
+#include "support/random.hpp"
 
 namespace ff {
 namespace {
@@ -187,6 +189,34 @@ TEST(HapticPipeline, BadStrengthIsCountedAndRepaired) {
 }
 
 SensorProfile measured() { return {1.5f, 0.5f, 250.0f, 0.25f, 180.0f, 400.0f, 3000u, 9.5f}; }
+
+// The fade's noise is derived in the loop with the configuration, the tick
+// only takes it over: the pipeline renders a noisy stroke with the same
+// direction, tick for tick, as a tracker built from the profile directly.
+TEST(HapticPipeline, AProfilesTrackerFadesAsOneBuiltFromIt) {
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(p->set_condition(condition(scenes::heightmap(Target::Top))), PrepareStatus::Ok);
+  ASSERT_TRUE(p->set_sensor_profile(measured()));
+  Tracker alone(TrackerConfig::recommended(measured()));
+  support::Random rng(3, support::Stream::Noise);
+  int differ = 0, shown = 0;
+  for (uint32_t k = 0; k < 2000; ++k) {
+    const uint32_t now = k * kTickPeriodUs;
+    if (k % 10 == 0) {  // 200 Hz: 0.3 s at rest, a 300 px stroke in 0.4 s, at rest again
+      const double t = static_cast<double>(now) * 1e-6;
+      const SensorSample s{now, static_cast<float>(100.0 + 300.0 * min_jerk((t - 0.3) / 0.4) + 1.5 * rng.gaussian()),
+                           static_cast<float>(240.0 + 1.5 * rng.gaussian()), true};
+      ASSERT_TRUE(p->post_sample(s));
+      alone.on_sample(s);
+    }
+    const TickOutput out = p->tick(now);
+    const TrackState& expected = alone.on_tick(now);
+    if (out.direction.x != expected.direction.x || out.direction.y != expected.direction.y) ++differ;
+    if (length(expected.direction) > 0.0f && length(expected.direction) < 1.0f) ++shown;  // partly faded
+  }
+  EXPECT_EQ(differ, 0);
+  EXPECT_GT(shown, 20);  // the fade's noise decided something
+}
 
 TEST(HapticPipeline, ASensorProfileReachesTheTrackerAtTheStartOfTheNextTick) {
   auto p = std::make_unique<HapticPipeline>();

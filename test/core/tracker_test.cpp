@@ -197,6 +197,40 @@ TEST(Tracker, TheAgileFiltersSpeedShowsABriskStartSooner) {
   EXPECT_LT(smooth.rest, 0.01);
 }
 
+// The fade's noise derived apart (fade_noise, the device's main loop) and
+// handed to configure() gives the tracker configure(config) alone gives; a
+// tracker handed another configuration's noise fades otherwise.
+TEST(Tracker, ConfiguredWithItsFadeNoiseAsWithItsConfigAlone) {
+  SensorProfile sensor;
+  sensor.white_noise_px = 0.6f;
+  sensor.correlated_noise_px = 1.5f;
+  sensor.correlation_time_ms = 30.0f;
+  sensor.tremor_px = 1.0f;
+  const TrackerConfig c = TrackerConfig::recommended(sensor);
+  Tracker whole(c), handed, wrong;
+  handed.configure(c, fade_noise(c));
+  wrong.configure(c, fade_noise(TrackerConfig::recommended()));
+  support::Random rng(5, support::Stream::Noise);
+  int handed_differs = 0, wrong_differs = 0;
+  for (uint32_t k = 0; k < 2000; ++k) {
+    const uint32_t now = k * kTickPeriodUs;
+    if (k % 10 == 0) {
+      const double t = static_cast<double>(now) * 1e-6;
+      const SensorSample s{now, static_cast<float>(100.0 + 300.0 * min_jerk((t - 0.3) / 0.4) + rng.gaussian()),
+                           static_cast<float>(240.0 + rng.gaussian()), true};
+      whole.on_sample(s);
+      handed.on_sample(s);
+      wrong.on_sample(s);
+    }
+    const Vec2 d = whole.on_tick(now).direction;
+    const Vec2 h = handed.on_tick(now).direction, w = wrong.on_tick(now).direction;
+    handed_differs += d.x != h.x || d.y != h.y;
+    wrong_differs += d.x != w.x || d.y != w.y;
+  }
+  EXPECT_EQ(handed_differs, 0);
+  EXPECT_GT(wrong_differs, 20);
+}
+
 TEST(Tracker, AFingerThatStopsDeadDoesNotPointBackwards) {
   // 1000 px/s (200 mm/s), then still: the smooth direction filter
   // overshoots (its velocity swings negative) unless the improbable reports

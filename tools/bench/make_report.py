@@ -79,7 +79,8 @@ def read_m4(path):
                 }
             elif kind == "tracker":
                 m4["trackers"][fields[1]] = {"mean": int(fields[2]) / int(fields[3]), "max": int(fields[4]),
-                                             "configure": int(fields[5]) if len(fields) > 5 else None}
+                                             "configure": int(fields[5]) if len(fields) > 5 else None,
+                                             "fade_noise": int(fields[6]) if len(fields) > 6 else None}
             elif kind == "component":
                 m4["components"][fields[1]] = int(fields[2]) / int(fields[3])
             elif kind == "stopwatch_overhead_milli":
@@ -671,13 +672,17 @@ def report(rows, m4, host_trackers, args):
     w("")
     w("`Tracker::on_sample` (every 10th tick, 200 Hz) + `on_tick(now, need_filter = true)` on the stroke, per tick.")
     w("")
-    w("| configuration | M4 instr / tick (mean) | M4 max single tick | M4 `configure` (once per new profile) | host ns / tick |")
-    w("|---|---|---|---|---|")
+    w("A new sensor profile: the main loop derives the fade's noise (`fade_noise`), the tick then configures the "
+      "tracker with it (`configure`), once.")
+    w("")
+    w("| configuration | M4 instr / tick (mean) | M4 max single tick | M4 `configure` (tick) | M4 `fade_noise` (loop) "
+      "| host ns / tick |")
+    w("|---|---|---|---|---|---|")
     names = list(m4["trackers"].keys()) if have_m4 else list(host_trackers.keys())
     for name in names:
         t = m4["trackers"].get(name, {}) if have_m4 else {}
-        w("| `%s` | %s | %s | %s | %s |" % (name, fmt(t.get("mean")), fmt(t.get("max")), fmt(t.get("configure")),
-                                          fmt(host_trackers.get(name))))
+        w("| `%s` | %s | %s | %s | %s | %s |" % (name, fmt(t.get("mean")), fmt(t.get("max")), fmt(t.get("configure")),
+                                               fmt(t.get("fade_noise")), fmt(host_trackers.get(name))))
     w("")
 
     # ---------------------------------------------------------- preparation

@@ -51,7 +51,7 @@ class HapticPipeline {
   bool set_sensor_profile(const SensorProfile& profile);
   // The tracker configuration the next tick uses: the last one handed over.
   const TrackerConfig& tracker_config() const {
-    return tracker_slots_[tracker_published_.load(std::memory_order_relaxed) & 1u];
+    return tracker_slots_[tracker_published_.load(std::memory_order_relaxed) & 1u].config;
   }
   bool post_sample(const SensorSample& s);  // false: mailbox full (counted)
   // The index the next posted sample gets, and how many samples ticks have taken (both wrap):
@@ -85,8 +85,13 @@ class HapticPipeline {
   // The tracker's configuration, handed over like the scene: the main loop
   // writes the slot the last publication does not name, then counts up;
   // the tick configures the tracker from the named slot when the count
-  // moved since it last looked.
-  TrackerConfig tracker_slots_[2];
+  // moved since it last looked. The loop also derives the fade's noise,
+  // which costs more than a tick may spend (FadeNoise).
+  struct TrackerSlot {
+    TrackerConfig config;
+    FadeNoise fade;
+  };
+  TrackerSlot tracker_slots_[2];
   std::atomic<uint32_t> tracker_published_{0};  // main loop writes
   uint32_t tracker_applied_ = 0;                // tick only
   FaultCounters main_faults_;  // counted on the main-loop side only

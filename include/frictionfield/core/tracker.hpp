@@ -99,10 +99,26 @@ struct TrackState {
   Vec2 direction;        // unit while moving, shorter while fading, 0 at rest
 };
 
+// What the direction confidence measures speeds against: each filter's
+// settled velocity variance and a resting finger's velocity noise through it
+// (velocity_noise.hpp). Deriving it settles the filters: up to ~800,000 M4
+// instructions with every sensor effect (docs/benchmarks.md), more than a
+// tick may spend, so the device derives it in its main loop
+// (HapticPipeline::set_sensor_profile) and the tick only takes it over.
+struct FadeNoise {
+  float steady_velocity_variance = 0.0f;   // the direction filter's settled P11
+  float resting_velocity_variance = 0.0f;  // per axis, px^2/s^2
+  float position_steady_velocity_variance = 0.0f;
+  float position_resting_velocity_variance = 0.0f;
+};
+FadeNoise fade_noise(const TrackerConfig& config);
+
 class Tracker {
  public:
   explicit Tracker(const TrackerConfig& config = TrackerConfig::recommended());
-  void configure(const TrackerConfig& config);
+  void configure(const TrackerConfig& config);  // derives its FadeNoise
+  // Bounded work, for the tick: `noise` must be fade_noise(config).
+  void configure(const TrackerConfig& config, const FadeNoise& noise);
   void reset();
 
   // A sensor report (any order of calls with tick() is allowed). With
