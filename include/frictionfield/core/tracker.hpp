@@ -117,8 +117,8 @@ class Tracker {
  public:
   explicit Tracker(const TrackerConfig& config = TrackerConfig::recommended());
   void configure(const TrackerConfig& config);  // derives its FadeNoise
-  // Bounded work, for the tick: `noise` must be fade_noise(config).
-  void configure(const TrackerConfig& config, const FadeNoise& noise);
+  // Bounded work, for the tick: `fade` must be fade_noise(config).
+  void configure(const TrackerConfig& config, const FadeNoise& fade);
   void reset();
 
   // A sensor report (any order of calls with tick() is allowed). With
