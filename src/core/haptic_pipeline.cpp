@@ -4,8 +4,10 @@
 
 namespace ff {
 
-HapticPipeline::HapticPipeline(const TrackerConfig& tracker)
-    : tracker_(tracker), tracker_slots_{{tracker, fade_noise(tracker)}, {tracker, fade_noise(tracker)}} {
+HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : HapticPipeline(tracker, fade_noise(tracker)) {}
+
+HapticPipeline::HapticPipeline(const TrackerConfig& tracker, const FadeNoise& fade)
+    : tracker_(tracker, fade), tracker_slots_{{tracker, fade}, {tracker, fade}} {
   // Boot: neutral scene, plate resting until a finger and a condition arrive.
   Condition boot;
   slots_[0].plan.prepare(boot.scene, slots_[0].table, sizeof(slots_[0].table));

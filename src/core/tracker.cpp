@@ -56,6 +56,7 @@ TrackerConfig TrackerConfig::recommended(const SensorProfile& sensor) {
 }
 
 Tracker::Tracker(const TrackerConfig& config) { configure(config); }
+Tracker::Tracker(const TrackerConfig& config, const FadeNoise& fade) { configure(config, fade); }
 
 namespace {
 

@@ -70,6 +70,7 @@ class HapticPipeline {
   uint32_t ticks() const { return ticks_; }
 
  private:
+  HapticPipeline(const TrackerConfig& tracker, const FadeNoise& fade);  // the fade derived once
   struct Slot {
     ScenePlan plan;
     AmplitudeMap map;

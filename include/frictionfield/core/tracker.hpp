@@ -116,6 +116,7 @@ FadeNoise fade_noise(const TrackerConfig& config);
 class Tracker {
  public:
   explicit Tracker(const TrackerConfig& config = TrackerConfig::recommended());
+  Tracker(const TrackerConfig& config, const FadeNoise& fade);  // `fade` = fade_noise(config)
   void configure(const TrackerConfig& config);  // derives its FadeNoise
   // Bounded work, for the tick: `fade` must be fade_noise(config).
   void configure(const TrackerConfig& config, const FadeNoise& fade);
