@@ -19,23 +19,32 @@ bool settled(float now, float before) { return std::fabs(now - before) <= kSettl
 
 using Complex = std::complex<float>;
 
+// Products and quotients written out in float. std::complex's own operators
+// call libgcc's __mulsc3 / __divsc3 for C99's infinity rules, and on the M4
+// __divsc3 computes in software double; the pivots here are finite and non-zero.
+Complex times(Complex a, Complex b) {
+  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+}
+float magnitude2(Complex a) { return a.real() * a.real() + a.imag() * a.imag(); }
+Complex over(Complex a, Complex b) { return times(a, std::conj(b)) * (1.0f / magnitude2(b)); }
+
 // Solves a x = b (n <= 5) by Gaussian elimination with partial pivoting.
 void solve(Complex a[5][5], Complex b[5], int n) {
   for (int col = 0; col < n; ++col) {
     int pivot = col;
     for (int r = col + 1; r < n; ++r)
-      if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
+      if (magnitude2(a[r][col]) > magnitude2(a[pivot][col])) pivot = r;
     for (int j = 0; j < n; ++j) std::swap(a[col][j], a[pivot][j]);
     std::swap(b[col], b[pivot]);
     for (int r = col + 1; r < n; ++r) {
-      const Complex f = a[r][col] / a[col][col];
-      for (int j = col; j < n; ++j) a[r][j] -= f * a[col][j];
-      b[r] -= f * b[col];
+      const Complex f = over(a[r][col], a[col][col]);
+      for (int j = col; j < n; ++j) a[r][j] -= times(f, a[col][j]);
+      b[r] -= times(f, b[col]);
     }
   }
   for (int r = n - 1; r >= 0; --r) {
-    for (int j = r + 1; j < n; ++j) b[r] -= a[r][j] * b[j];
-    b[r] /= a[r][r];
+    for (int j = r + 1; j < n; ++j) b[r] -= times(a[r][j], b[j]);
+    b[r] = over(b[r], a[r][r]);
   }
 }
 
@@ -128,7 +137,7 @@ float resting_velocity_variance(const SteadyStateFilter& f, const SensorProfile&
         x[i] = Complex(K[i]);
       }
       solve(a, x, n);
-      const float gain2 = std::norm(x[1]);
+      const float gain2 = magnitude2(x[1]);
       if (gain2 > worst) worst = gain2;
     }
     variance += 0.5f * sensor.tremor_px * sensor.tremor_px * worst;
