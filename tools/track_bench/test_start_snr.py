@@ -1,6 +1,9 @@
 """start_snr.py against closed forms: the alpha-beta filter's velocity noise
 (variance reduction ratio 2 beta^2 / (T^2 alpha (4 - 2 alpha - beta))), a
-ramp followed without steady-state error, and the CLI's table and exit codes."""
+ramp followed without steady-state error, the ideal detector's deflection (a
+constant displacement: s sqrt(n) / sigma), its 1-D level against the speed's
+tail at rest (Monte Carlo), no filter above it (Cauchy-Schwarz), and the CLI's
+tables and exit codes."""
 import numpy as np
 import pytest
 
@@ -39,6 +42,49 @@ def test_crossings_come_later_for_higher_levels_and_never_for_an_unreachable_one
 
 def test_cli_prints_a_row_per_density_and_refuses_bad_values(capsys):
     assert start_snr.main(["--sqrt-q", "45", "100"]) == 0
-    rows = [line for line in capsys.readouterr().out.splitlines() if line.startswith("| ") and "ms" in line]
+    rows = [line for line in capsys.readouterr().out.splitlines() if line.startswith("| ") and line[2].isdigit()]
     assert len(rows) == 2
     assert start_snr.main(["--rate-hz", "0"]) == 2
+
+
+def test_ideal_deflection_of_a_constant_displacement_is_s_root_n_over_sigma():
+    # n reports displaced by s each: ||s|| = s sqrt(n)
+    assert start_snr.ideal_deflection(np.full(16, 0.5), 2.0)[-1] == pytest.approx(0.5 * 4.0 / 2.0, rel=1e-12)
+    assert start_snr.ideal_deflection(np.full(16, 0.5), 2.0)[3] == pytest.approx(0.5 * 2.0 / 2.0, rel=1e-12)
+
+
+def test_one_sided_level_has_the_speeds_tail_at_rest():
+    # The speed of two independent axes at rest is Rayleigh; its tail beyond k sigma
+    # by Monte Carlo, against the 1-D tail beyond the returned level (closed form).
+    rng = np.random.default_rng(7)
+    speed = np.hypot(rng.standard_normal(2_000_000), rng.standard_normal(2_000_000))
+    from scipy.stats import norm
+    for k in (1.5, 2.5):
+        assert np.mean(speed > k) == pytest.approx(norm.sf(start_snr.one_sided_level(k)), rel=0.02)
+    assert start_snr.one_sided_level(2.5) == pytest.approx(1.706, abs=1e-3)
+
+
+@pytest.mark.parametrize("sqrt_q", [20.0, 45.0, 100.0, 750.0])
+@pytest.mark.parametrize("distance_px,duration_s", [(300.0, 0.6), (100.0, 1.5)])
+def test_no_settled_filter_sees_a_start_sooner_than_the_ideal_detector(sqrt_q, distance_px, duration_s):
+    # Cauchy-Schwarz, checked with the filter's own code: its speed over its
+    # resting sigma never exceeds ||s|| / sigma, report by report.
+    T = 0.005
+    t = np.arange(1, int(duration_s / T) + 1) * T
+    position, _ = start_snr.minimum_jerk(t, distance_px, duration_s)
+    gains = start_snr.settled_gains(sqrt_q ** 2, T, 1.0)
+    snr = start_snr.filtered_speed(position, gains, T) / start_snr.resting_velocity_sigma(sqrt_q ** 2, T, 1.0)
+    assert np.all(snr <= start_snr.ideal_deflection(position, 1.0) * (1.0 + 1e-9))
+    filtered = start_snr.crossings(sqrt_q, 200.0, 1.0, distance_px, duration_s)
+    ideal = start_snr.ideal_crossings(200.0, 1.0, distance_px, duration_s)
+    told = start_snr.ideal_crossings(200.0, 1.0, distance_px, duration_s, told_direction=True)
+    for f, i, d in zip(filtered, ideal, told):
+        assert i is not None and d is not None
+        assert d[0] <= i[0] and (f is None or i[0] <= f[0])
+
+
+def test_cli_prints_the_ideal_detector_too(capsys):
+    assert start_snr.main([]) == 0
+    out = capsys.readouterr().out
+    assert "| not the direction (2-D) | 55 ms, 2.0 px moved" in out
+    assert "| the direction too (1-D, 1.71 / 4.48 sigma) | 50 ms, 1.5 px moved" in out
