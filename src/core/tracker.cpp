@@ -70,6 +70,10 @@ bool position_evidence(const TrackerConfig& c) {
   return c.estimator == Estimator::SplitKalman && fades(c) &&
          squared(c.position_moving_sigmas) > squared(c.position_rest_sigmas);
 }
+bool calm_evidence(const TrackerConfig& c) {
+  return c.estimator == Estimator::SplitKalman && fades(c) &&
+         squared(c.calm_moving_sigmas) > squared(c.calm_rest_sigmas);
+}
 
 }  // namespace
 
@@ -90,6 +94,11 @@ FadeNoise fade_noise(const TrackerConfig& config) {
     f.position_steady_velocity_variance = steady.velocity_variance;
     f.position_resting_velocity_variance = resting_velocity_variance(steady, sensor);
   }
+  if (calm_evidence(config)) {
+    const SteadyStateFilter steady = steady_state_filter(squared(config.calm_kalman.accel_noise_px_s2), noise, sensor);
+    f.calm_steady_velocity_variance = steady.velocity_variance;
+    f.calm_resting_velocity_variance = resting_velocity_variance(steady, sensor);
+  }
   return f;
 }
 
@@ -109,6 +118,7 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
   noise_ = ReportNoise::with_tremor(sensor);
   direction_q_ = squared(config.kalman.accel_noise_px_s2);
   position_q_ = squared(config.position_kalman.accel_noise_px_s2);
+  calm_q_ = squared(config.calm_kalman.accel_noise_px_s2);
   latency_us_ = config.compensate_latency ? sensor.latency_us : 0u;
   inverse_maneuver_time_s_ = config.maneuver_threshold > 0.0f && config.maneuver_time_ms > 0.0f
                                  ? 1e3f / config.maneuver_time_ms : 0.0f;
@@ -126,6 +136,11 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
       position_evidence(config) ? 1.0f / (squared(config.position_moving_sigmas) - position_fade_low_) : 0.0f;
   position_steady_velocity_variance_ = fade.position_steady_velocity_variance;
   position_resting_velocity_variance_ = fade.position_resting_velocity_variance;
+  calm_fade_low_ = squared(config.calm_rest_sigmas);
+  inverse_calm_fade_span_ = calm_evidence(config) ? 1.0f / (squared(config.calm_moving_sigmas) - calm_fade_low_) : 0.0f;
+  calm_steady_velocity_variance_ = fade.calm_steady_velocity_variance;
+  calm_resting_velocity_variance_ = fade.calm_resting_velocity_variance;
+  calm_steady_speed_ = std::sqrt(fade.calm_steady_velocity_variance);
   reset();
 }
 
@@ -143,6 +158,7 @@ void Tracker::reset() {
   stale_reported_ = false;
   direction_ = FingerKalman{};
   position_ = FingerKalman{};
+  calm_ = FingerKalman{};
   have_tick_ = false;
   have_tick_candidate_ = false;
   filters_fresh_ = false;
@@ -157,10 +173,15 @@ FF_TICK_INLINE void Tracker::learn_velocity_noise() {
   if (inverse_fade_span_ <= 0.0f) return;
   const float excess = direction_.P11 - steady_velocity_variance_;
   inverse_velocity_noise_ = 1.0f / (resting_velocity_variance_ + (excess > 0.0f ? excess : 0.0f));
-  if (inverse_position_fade_span_ <= 0.0f) return;
-  const float position_excess = position_.P11 - position_steady_velocity_variance_;
-  inverse_position_velocity_noise_ =
-      1.0f / (position_resting_velocity_variance_ + (position_excess > 0.0f ? position_excess : 0.0f));
+  if (inverse_position_fade_span_ > 0.0f) {
+    const float position_excess = position_.P11 - position_steady_velocity_variance_;
+    inverse_position_velocity_noise_ =
+        1.0f / (position_resting_velocity_variance_ + (position_excess > 0.0f ? position_excess : 0.0f));
+  }
+  if (inverse_calm_fade_span_ > 0.0f) {
+    const float calm_excess = calm_.P11 - calm_steady_velocity_variance_;
+    inverse_calm_velocity_noise_ = 1.0f / (calm_resting_velocity_variance_ + (calm_excess > 0.0f ? calm_excess : 0.0f));
+  }
 }
 
 FF_FASTRUN void Tracker::lose_finger() {
@@ -187,6 +208,7 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   filter_y_.reset();
   direction_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
   position_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
+  if (inverse_calm_fade_span_ > 0.0f) calm_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
   recent_innovation_ = {};
   recent_innovation_variance_ = 0.0f;
   stroke_end_.restart();
@@ -220,6 +242,7 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   const float dt_s = static_cast<float>(dt_us) * 1e-6f;
   const Vec2 z{s.x, s.y};
   direction_.predict(dt_s, direction_q_, noise_);
+  if (inverse_calm_fade_span_ > 0.0f) calm_.predict(dt_s, calm_q_, noise_);
   float s_variance = direction_.innovation_variance(noise_);
   float widen = 1.0f;
   if (inverse_maneuver_time_s_ > 0.0f) {
@@ -248,9 +271,14 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   }
   if (widen > 1.0f) {
     direction_.widen(widen);
+    // A change of motion or a stroke's end: the calm filter starts again at
+    // rest at this report, so that its evidence is of motion since then (a
+    // slow start), never of a stroke it still lags behind.
+    if (inverse_calm_fade_span_ > 0.0f) calm_.start(z, noise_, calm_steady_speed_);
     s_variance = direction_.innovation_variance(noise_);
   }
   direction_.update(z, 1.0f / s_variance);
+  if (inverse_calm_fade_span_ > 0.0f && !(widen > 1.0f)) calm_.update(z, calm_.inverse_innovation(noise_));
   if (config_.estimator == Estimator::SplitKalman) {
     position_.predict(dt_s, position_q_, noise_);
     position_.update(z, position_.inverse_innovation(noise_));
@@ -363,6 +391,14 @@ FF_TICK_INLINE Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
   return {last_.x, last_.y};
 }
 
+namespace {
+// A filter's squared speed against its noise (1 / variance), on the fade's
+// scale: 0 at the rest level (sigmas^2), 1 at the moving level; unclamped.
+FF_TICK_INLINE float evidence(float speed2, float inverse_noise, float rest_level, float inverse_span) {
+  return (speed2 * inverse_noise - rest_level) * inverse_span;
+}
+}  // namespace
+
 FF_TICK_INLINE Vec2 Tracker::faded_direction(Vec2 v) const {
   // Normalise by the larger component first: squares of tiny (subnormal)
   // speeds lose precision, and v / |v| must stay unit length.
@@ -375,11 +411,16 @@ FF_TICK_INLINE Vec2 Tracker::faded_direction(Vec2 v) const {
   if (inverse_fade_span_ > 0.0f) {
     // The speed in standard deviations of the velocity's noise (learn_velocity_noise).
     const float speed = m * len;
-    float motion = (speed * speed * inverse_velocity_noise_ - fade_low_) * inverse_fade_span_;
+    float motion = evidence(speed * speed, inverse_velocity_noise_, fade_low_, inverse_fade_span_);
     if (inverse_position_fade_span_ > 0.0f) {  // or the position filter's, if it says more
-      const float agile = (dot(position_.v, position_.v) * inverse_position_velocity_noise_ - position_fade_low_) *
-                          inverse_position_fade_span_;
+      const float agile = evidence(dot(position_.v, position_.v), inverse_position_velocity_noise_, position_fade_low_,
+                                   inverse_position_fade_span_);
       if (agile > motion) motion = agile;
+    }
+    if (inverse_calm_fade_span_ > 0.0f) {  // or the calm filter's
+      const float calm = evidence(dot(calm_.v, calm_.v), inverse_calm_velocity_noise_, calm_fade_low_,
+                                  inverse_calm_fade_span_);
+      if (calm > motion) motion = calm;
     }
     gain = smoothstep(motion);
   }

@@ -197,6 +197,54 @@ TEST(Tracker, TheAgileFiltersSpeedShowsABriskStartSooner) {
   EXPECT_LT(smooth.rest, 0.01);
 }
 
+// A slow stroke from rest (minimum jerk, 100 px in 1.5 s: at most 100 px/s,
+// 200 Hz, 1 px of white noise, 8 seeds): the calm filter's resting noise is
+// half the direction filter's, so the stroke stands out of it sooner. With
+// its evidence the direction is longer over the stroke and as short at rest;
+// without it (calm sigmas 0) the other two filters decide.
+TEST(Tracker, TheCalmFiltersSpeedShowsASlowStrokeSooner) {
+  struct Lengths {
+    double rest = 0.0, moving = 0.0;
+  };
+  const auto mean_lengths = [](const TrackerConfig& c) {
+    Lengths out;
+    int rest_n = 0, moving_n = 0;
+    for (uint64_t seed = 1; seed <= 8; ++seed) {
+      support::Random rng(seed, support::Stream::Noise);
+      std::vector<SensorSample> reports;
+      for (int i = 0; i < 600; ++i) {  // 1 s at rest, the 1.5 s stroke, 0.5 s at rest
+        const double t = i * 0.005;
+        reports.push_back({static_cast<uint32_t>(i) * 5000u,
+                           static_cast<float>(100.0 + 100.0 * min_jerk((t - 1.0) / 1.5) + rng.gaussian()),
+                           static_cast<float>(240.0 + rng.gaussian()), true});
+      }
+      TrackerRun run(c);
+      const auto states = run.replay(reports, 0, 5990);
+      for (size_t k = 1000; k < 5000; ++k) {  // after 0.5 s of settling, until the stroke ends
+        const double len = static_cast<double>(length(states[k].direction));
+        if (k < 2000) {
+          out.rest += len;
+          ++rest_n;
+        } else {
+          out.moving += len;
+          ++moving_n;
+        }
+      }
+    }
+    out.rest /= rest_n;
+    out.moving /= moving_n;
+    return out;
+  };
+  TrackerConfig without = TrackerConfig::recommended();
+  without.calm_rest_sigmas = without.calm_moving_sigmas = 0.0f;
+  const Lengths calm = mean_lengths(TrackerConfig::recommended()), other = mean_lengths(without);
+  std::printf("[calm filter] direction while moving %.3f (without %.3f), at rest %.4f (without %.4f)\n", calm.moving,
+              other.moving, calm.rest, other.rest);
+  EXPECT_GT(calm.moving, other.moving + 0.01);
+  EXPECT_LT(calm.rest, 0.01);
+  EXPECT_LT(other.rest, 0.01);
+}
+
 // The fade's noise derived apart (fade_noise, the device's main loop) and
 // handed to configure() gives the tracker configure(config) alone gives; a
 // tracker handed another configuration's noise fades otherwise.
@@ -370,23 +418,37 @@ TEST(Tracker, RestingFingerHasNoDirection) {
   EXPECT_TRUE(states.back().present);
 }
 
-TEST(Tracker, DirectionFadesSmoothlyWithSpeed) {
-  const TrackerConfig c = TrackerConfig::recommended();
-  // A noise-free line: the filter settles on the exact speed, so the fade
-  // sees it in units of a resting finger's velocity noise (velocity_noise_test
-  // checks that against a simulation).
-  const float q = c.kalman.accel_noise_px_s2 * c.kalman.accel_noise_px_s2;
+// A noise-free line: a filter settles on the exact speed, so the fade sees it
+// in units of a resting finger's velocity noise through that filter
+// (velocity_noise_test checks that against a simulation): 0 below the rest
+// level, smoothstep(1/2) half way in (speed / sigma)^2, 1 above the moving level.
+void expect_fade_of(const TrackerConfig& c, float accel_noise, float rest_sigmas, float moving_sigmas) {
+  const float q = accel_noise * accel_noise;
   const float sigma = std::sqrt(resting_velocity_variance(steady_state_filter(q, ReportNoise::of(c.sensor), c.sensor), c.sensor));
-  const float lo = c.rest_sigmas * sigma, hi = c.moving_sigmas * sigma;
-  const float mid = std::sqrt(0.5f * (lo * lo + hi * hi));  // the fade is a smoothstep in (speed / sigma)^2
+  const float lo = rest_sigmas * sigma, hi = moving_sigmas * sigma;
+  const float mid = std::sqrt(0.5f * (lo * lo + hi * hi));
   for (float speed : {0.5f * lo, mid, 1.5f * hi}) {
     TrackerRun run(c);
     const auto states = run.replay(line(0, {300, 300}, {speed, 0}, 200), 0, 1990);
     const double len = static_cast<double>(length(states.back().direction));
     if (speed < lo) EXPECT_EQ(len, 0.0) << speed;
     else if (speed > hi) EXPECT_NEAR(len, 1.0, 1e-5) << speed;
-    else EXPECT_NEAR(len, 0.5, 0.05) << speed;  // smoothstep(1/2)
+    else EXPECT_NEAR(len, 0.5, 0.05) << speed;
   }
+}
+
+TEST(Tracker, DirectionFadesSmoothlyWithSpeed) {
+  TrackerConfig c = TrackerConfig::recommended();
+  c.calm_rest_sigmas = c.calm_moving_sigmas = 0.0f;  // the direction filter's own fade
+  expect_fade_of(c, c.kalman.accel_noise_px_s2, c.rest_sigmas, c.moving_sigmas);
+}
+
+TEST(Tracker, TheCalmFiltersEvidenceFadesSmoothlyWithSpeed) {
+  TrackerConfig c = TrackerConfig::recommended();
+  c.rest_sigmas = 100.0f;  // the direction filter's evidence out of reach
+  c.moving_sigmas = 200.0f;
+  c.position_rest_sigmas = c.position_moving_sigmas = 0.0f;
+  expect_fade_of(c, c.calm_kalman.accel_noise_px_s2, c.calm_rest_sigmas, c.calm_moving_sigmas);
 }
 
 TEST(Tracker, TouchDownStartsWithoutHistory) {

@@ -56,6 +56,17 @@ struct TrackerConfig {
   // more often at rest. Both 0: the direction filter's evidence alone.
   float position_rest_sigmas = 3.0f;
   float position_moving_sigmas = 6.0f;
+  // SplitKalman: a third, calm filter (less acceleration noise than the
+  // direction filter) whose speed is evidence of motion only. Its resting
+  // noise is smaller, so a slow stroke (tens of px/s) stands out of it tens
+  // of ms sooner. Wherever the direction filter is widened (a change of
+  // motion, a predicted stroke end) it starts again at rest, settled, at
+  // that report: its evidence is of motion since then, never of a stroke it
+  // still lags behind. Its levels are higher: a calm filter's excursions at
+  // rest last longer. Both 0: not run (no cost).
+  KalmanConfig calm_kalman{20.0f};
+  float calm_rest_sigmas = 3.5f;
+  float calm_moving_sigmas = 7.0f;
   bool compensate_latency = true;      // date reports sensor.latency_us before their stamp
   // Changes of motion (starts, stops, reversals): the direction filter's
   // recent innovations, each weighted by exp(-age / maneuver_time_ms), are
@@ -110,6 +121,8 @@ struct FadeNoise {
   float resting_velocity_variance = 0.0f;  // per axis, px^2/s^2
   float position_steady_velocity_variance = 0.0f;
   float position_resting_velocity_variance = 0.0f;
+  float calm_steady_velocity_variance = 0.0f;
+  float calm_resting_velocity_variance = 0.0f;
 };
 FadeNoise fade_noise(const TrackerConfig& config);
 
@@ -172,9 +185,10 @@ class Tracker {
   bool stale_reported_ = false;  // StaleSample counted once per gap
   FingerKalman direction_;  // the direction (or only) filter
   FingerKalman position_;   // SplitKalman's position filter
+  FingerKalman calm_;       // SplitKalman's calm filter: evidence of slow motion
   // From the configuration, so that a report costs no squares or divisions of it.
   ReportNoise noise_;  // both filters': white, wander and the tremor's state
-  float direction_q_ = 0.0f, position_q_ = 0.0f;  // accel_noise^2
+  float direction_q_ = 0.0f, position_q_ = 0.0f, calm_q_ = 0.0f;  // accel_noise^2
   // Direction confidence: z^2 = |v|^2 / (2 resting + excess) per axis pair.
   float resting_velocity_variance_ = 0.0f;  // per axis, px^2/s^2
   float steady_velocity_variance_ = 0.0f;   // the direction filter's settled P11
@@ -184,6 +198,11 @@ class Tracker {
   float position_steady_velocity_variance_ = 0.0f, position_resting_velocity_variance_ = 0.0f;
   float inverse_position_velocity_noise_ = 0.0f;
   float position_fade_low_ = 0.0f, inverse_position_fade_span_ = 0.0f;
+  // And for the calm filter's.
+  float calm_steady_velocity_variance_ = 0.0f, calm_resting_velocity_variance_ = 0.0f;
+  float calm_steady_speed_ = 0.0f;  // its settled velocity sigma per axis: where it starts again
+  float inverse_calm_velocity_noise_ = 0.0f;
+  float calm_fade_low_ = 0.0f, inverse_calm_fade_span_ = 0.0f;
   uint32_t latency_us_ = 0;
   // The direction filter's recent innovations (px) and their variance while its model holds (px^2 per axis).
   Vec2 recent_innovation_;
