@@ -149,95 +149,71 @@ TEST(Tracker, TheRenderedPositionIsTheStrokesNotTheTremors) {
   EXPECT_LT(told, 0.6);    // 0.54: at 0.2 px of white noise the finger's own motion takes the rest
 }
 
-// Brisk strokes from rest (minimum jerk, 300 px in 0.3 s, 200 Hz, 1 px of
-// white noise, 8 seeds): the direction filter, widened at the start by its
-// detector of changes of motion, counts that widening as uncertainty and
-// fades its direction, while the agile position filter, never widened, sees
-// the finger move. With the position filter's evidence the direction is
-// longer while the finger moves and as short at rest; without it (position
-// sigmas 0) the direction filter alone decides.
-TEST(Tracker, TheAgileFiltersSpeedShowsABriskStartSooner) {
-  struct Lengths {
-    double rest = 0.0, moving = 0.0;
-  };
-  const auto mean_lengths = [](const TrackerConfig& c) {
-    Lengths out;
-    int rest_n = 0, moving_n = 0;
-    for (uint64_t seed = 1; seed <= 8; ++seed) {
-      support::Random rng(seed, support::Stream::Noise);
-      std::vector<SensorSample> reports;
-      for (int i = 0; i < 300; ++i) {  // 1 s at rest, then the stroke, then at rest
-        const double t = i * 0.005;
-        reports.push_back({static_cast<uint32_t>(i) * 5000u,
-                           static_cast<float>(100.0 + 300.0 * min_jerk((t - 1.0) / 0.3) + rng.gaussian()),
-                           static_cast<float>(240.0 + rng.gaussian()), true});
-      }
-      TrackerRun run(c);
-      const auto states = run.replay(reports, 0, 2990);
-      for (size_t k = 1000; k < 2600; ++k) {  // after 0.5 s of settling, until the stroke ends
-        const double len = static_cast<double>(length(states[k].direction));
-        if (k < 2000) {
-          out.rest += len;
-          ++rest_n;
-        } else {
-          out.moving += len;
-          ++moving_n;
-        }
+// Mean direction length over 8 seeds of a stroke from rest (minimum jerk,
+// `distance` px along x in `duration_s` after 1 s at rest, 200 Hz, 1 px of
+// white noise): at rest (0.5-1 s) and while it moves.
+struct StrokeLengths {
+  double rest = 0.0, moving = 0.0;
+};
+StrokeLengths stroke_direction_lengths(const TrackerConfig& c, double distance, double duration_s) {
+  StrokeLengths out;
+  int rest_n = 0, moving_n = 0;
+  const int reports = static_cast<int>((1.0 + duration_s + 0.5) / 0.005);
+  const size_t stroke_end_tick = static_cast<size_t>((1.0 + duration_s) * 2000.0);
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
+    support::Random rng(seed, support::Stream::Noise);
+    std::vector<SensorSample> reports_of_seed;
+    for (int i = 0; i < reports; ++i) {
+      const double t = i * 0.005;
+      reports_of_seed.push_back({static_cast<uint32_t>(i) * 5000u,
+                                 static_cast<float>(100.0 + distance * min_jerk((t - 1.0) / duration_s) + rng.gaussian()),
+                                 static_cast<float>(240.0 + rng.gaussian()), true});
+    }
+    TrackerRun run(c);
+    const auto states = run.replay(reports_of_seed, 0, static_cast<uint32_t>(reports) * 10u - 10u);
+    for (size_t k = 1000; k < stroke_end_tick; ++k) {  // after 0.5 s of settling, until the stroke ends
+      const double len = static_cast<double>(length(states[k].direction));
+      if (k < 2000) {
+        out.rest += len;
+        ++rest_n;
+      } else {
+        out.moving += len;
+        ++moving_n;
       }
     }
-    out.rest /= rest_n;
-    out.moving /= moving_n;
-    return out;
-  };
-  TrackerConfig smooth_only = TrackerConfig::recommended();
-  smooth_only.position_rest_sigmas = smooth_only.position_moving_sigmas = 0.0f;
-  const Lengths both = mean_lengths(TrackerConfig::recommended()), smooth = mean_lengths(smooth_only);
-  EXPECT_GT(both.moving, smooth.moving + 0.01);  // 0.874 against 0.850 when measured
-  EXPECT_LT(both.rest, 0.01);
-  EXPECT_LT(smooth.rest, 0.01);
+  }
+  out.rest /= rest_n;
+  out.moving /= moving_n;
+  return out;
 }
 
-// A slow stroke from rest (minimum jerk, 100 px in 1.5 s: at most 100 px/s,
-// 200 Hz, 1 px of white noise, 8 seeds): the calm filter's resting noise is
-// half the direction filter's, so the stroke stands out of it sooner. With
-// its evidence the direction is longer over the stroke and as short at rest;
-// without it (calm sigmas 0) the other two filters decide.
+// Brisk strokes (300 px in 0.3 s): the direction filter, widened at the
+// start by its detector of changes of motion, counts that widening as
+// uncertainty and fades its direction, while the agile position filter,
+// never widened, sees the finger move. With the position filter's evidence
+// the direction is longer while the finger moves and as short at rest;
+// without it (position sigmas 0) the other filters decide.
+TEST(Tracker, TheAgileFiltersSpeedShowsABriskStartSooner) {
+  TrackerConfig without = TrackerConfig::recommended();
+  without.position_rest_sigmas = without.position_moving_sigmas = 0.0f;
+  const StrokeLengths both = stroke_direction_lengths(TrackerConfig::recommended(), 300.0, 0.3);
+  const StrokeLengths other = stroke_direction_lengths(without, 300.0, 0.3);
+  std::printf("[agile filter] direction while moving %.3f (without %.3f), at rest %.4f (without %.4f)\n", both.moving,
+              other.moving, both.rest, other.rest);
+  EXPECT_GT(both.moving, other.moving + 0.01);
+  EXPECT_LT(both.rest, 0.01);
+  EXPECT_LT(other.rest, 0.01);
+}
+
+// A slow stroke (100 px in 1.5 s: at most 100 px/s): the calm filter's
+// resting noise is half the direction filter's, so the stroke stands out of
+// it sooner. With its evidence the direction is longer over the stroke and
+// as short at rest; without it (calm sigmas 0) the other two filters decide.
 TEST(Tracker, TheCalmFiltersSpeedShowsASlowStrokeSooner) {
-  struct Lengths {
-    double rest = 0.0, moving = 0.0;
-  };
-  const auto mean_lengths = [](const TrackerConfig& c) {
-    Lengths out;
-    int rest_n = 0, moving_n = 0;
-    for (uint64_t seed = 1; seed <= 8; ++seed) {
-      support::Random rng(seed, support::Stream::Noise);
-      std::vector<SensorSample> reports;
-      for (int i = 0; i < 600; ++i) {  // 1 s at rest, the 1.5 s stroke, 0.5 s at rest
-        const double t = i * 0.005;
-        reports.push_back({static_cast<uint32_t>(i) * 5000u,
-                           static_cast<float>(100.0 + 100.0 * min_jerk((t - 1.0) / 1.5) + rng.gaussian()),
-                           static_cast<float>(240.0 + rng.gaussian()), true});
-      }
-      TrackerRun run(c);
-      const auto states = run.replay(reports, 0, 5990);
-      for (size_t k = 1000; k < 5000; ++k) {  // after 0.5 s of settling, until the stroke ends
-        const double len = static_cast<double>(length(states[k].direction));
-        if (k < 2000) {
-          out.rest += len;
-          ++rest_n;
-        } else {
-          out.moving += len;
-          ++moving_n;
-        }
-      }
-    }
-    out.rest /= rest_n;
-    out.moving /= moving_n;
-    return out;
-  };
   TrackerConfig without = TrackerConfig::recommended();
   without.calm_rest_sigmas = without.calm_moving_sigmas = 0.0f;
-  const Lengths calm = mean_lengths(TrackerConfig::recommended()), other = mean_lengths(without);
+  const StrokeLengths calm = stroke_direction_lengths(TrackerConfig::recommended(), 100.0, 1.5);
+  const StrokeLengths other = stroke_direction_lengths(without, 100.0, 1.5);
   std::printf("[calm filter] direction while moving %.3f (without %.3f), at rest %.4f (without %.4f)\n", calm.moving,
               other.moving, calm.rest, other.rest);
   EXPECT_GT(calm.moving, other.moving + 0.01);
