@@ -44,7 +44,7 @@ bool HapticPipeline::set_sensor_profile(const SensorProfile& profile) {
   const uint32_t next = tracker_published_.load(std::memory_order_relaxed) + 1u;
   TrackerSlot& slot = tracker_slots_[next & 1u];
   slot.config = TrackerConfig::recommended(profile);
-  slot.fade = fade_noise(slot.config);  // here, not in the tick: it settles two filters
+  slot.fade = fade_noise(slot.config);  // here, not in the tick: it settles three filters
   tracker_published_.store(next, std::memory_order_release);
   return true;
 }

@@ -50,7 +50,7 @@ struct TrackerConfig {
   float moving_sigmas = 5.0f;
   // SplitKalman: the position filter's speed is evidence of motion too, in
   // standard deviations of its own resting noise (and excess). The direction
-  // shows as far as the stronger of the two filters' evidence allows: the
+  // shows as far as the strongest of the filters' evidence allows: the
   // agile filter sees a start or a speed-up tens of ms before the smooth one.
   // Its levels are higher: its noise changes faster, so it crosses any level
   // more often at rest. Both 0: the direction filter's evidence alone.
@@ -187,7 +187,7 @@ class Tracker {
   FingerKalman position_;   // SplitKalman's position filter
   FingerKalman calm_;       // SplitKalman's calm filter: evidence of slow motion
   // From the configuration, so that a report costs no squares or divisions of it.
-  ReportNoise noise_;  // both filters': white, wander and the tremor's state
+  ReportNoise noise_;  // every filter's: white, wander and the tremor's state
   float direction_q_ = 0.0f, position_q_ = 0.0f, calm_q_ = 0.0f;  // accel_noise^2
   // Direction confidence: z^2 = |v|^2 / (2 resting + excess) per axis pair.
   float resting_velocity_variance_ = 0.0f;  // per axis, px^2/s^2
