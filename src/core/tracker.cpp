@@ -80,25 +80,16 @@ bool calm_evidence(const TrackerConfig& c) {
 FadeNoise fade_noise(const TrackerConfig& config) {
   const SensorProfile sensor = usable(config.sensor);
   // The tremor moves the finger about its stroke by a fraction of a mm at
-  // 3-20 Hz: a state of both filters (Tracker::configure).
+  // 3-20 Hz: a state of every filter (Tracker::configure).
   const ReportNoise noise = ReportNoise::with_tremor(sensor);
+  const auto settled = [&](const KalmanConfig& k) {
+    const SteadyStateFilter steady = steady_state_filter(squared(k.accel_noise_px_s2), noise, sensor);
+    return SpeedNoise{steady.velocity_variance, resting_velocity_variance(steady, sensor)};
+  };
   FadeNoise f;
-  if (fades(config)) {
-    const SteadyStateFilter steady = steady_state_filter(squared(config.kalman.accel_noise_px_s2), noise, sensor);
-    f.steady_velocity_variance = steady.velocity_variance;
-    f.resting_velocity_variance = resting_velocity_variance(steady, sensor);
-  }
-  if (position_evidence(config)) {
-    const SteadyStateFilter steady =
-        steady_state_filter(squared(config.position_kalman.accel_noise_px_s2), noise, sensor);
-    f.position_steady_velocity_variance = steady.velocity_variance;
-    f.position_resting_velocity_variance = resting_velocity_variance(steady, sensor);
-  }
-  if (calm_evidence(config)) {
-    const SteadyStateFilter steady = steady_state_filter(squared(config.calm_kalman.accel_noise_px_s2), noise, sensor);
-    f.calm_steady_velocity_variance = steady.velocity_variance;
-    f.calm_resting_velocity_variance = resting_velocity_variance(steady, sensor);
-  }
+  if (fades(config)) f.direction = settled(config.kalman);
+  if (position_evidence(config)) f.position = settled(config.position_kalman);
+  if (calm_evidence(config)) f.calm = settled(config.calm_kalman);
   return f;
 }
 
@@ -113,7 +104,7 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
   config_.sensor = usable(config.sensor);
   const SensorProfile& sensor = config_.sensor;
   // The tremor moves the finger about its stroke by a fraction of a mm at
-  // 3-20 Hz: a state of both filters, so the direction is the stroke's and
+  // 3-20 Hz: a state of every filter, so the direction is the stroke's and
   // the rendered position the voluntary one, not shaking with the tremor.
   noise_ = ReportNoise::with_tremor(sensor);
   direction_q_ = squared(config.kalman.accel_noise_px_s2);
@@ -127,20 +118,11 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
   stroke_end_.configure(config.stroke_end);
   predict_stroke_ends_ = kalman_estimator(config) && config.stroke_end_widening > 1.0f;
   // What the fade measures speeds against: derived by fade_noise(), outside the tick.
-  fade_low_ = squared(config.rest_sigmas);
-  inverse_fade_span_ = fades(config) ? 1.0f / (squared(config.moving_sigmas) - fade_low_) : 0.0f;
-  steady_velocity_variance_ = fade.steady_velocity_variance;
-  resting_velocity_variance_ = fade.resting_velocity_variance;
-  position_fade_low_ = squared(config.position_rest_sigmas);
-  inverse_position_fade_span_ =
-      position_evidence(config) ? 1.0f / (squared(config.position_moving_sigmas) - position_fade_low_) : 0.0f;
-  position_steady_velocity_variance_ = fade.position_steady_velocity_variance;
-  position_resting_velocity_variance_ = fade.position_resting_velocity_variance;
-  calm_fade_low_ = squared(config.calm_rest_sigmas);
-  inverse_calm_fade_span_ = calm_evidence(config) ? 1.0f / (squared(config.calm_moving_sigmas) - calm_fade_low_) : 0.0f;
-  calm_steady_velocity_variance_ = fade.calm_steady_velocity_variance;
-  calm_resting_velocity_variance_ = fade.calm_resting_velocity_variance;
-  calm_steady_speed_ = std::sqrt(fade.calm_steady_velocity_variance);
+  direction_evidence_.configure(fades(config), config.rest_sigmas, config.moving_sigmas, fade.direction);
+  position_evidence_.configure(position_evidence(config), config.position_rest_sigmas, config.position_moving_sigmas,
+                               fade.position);
+  calm_evidence_.configure(calm_evidence(config), config.calm_rest_sigmas, config.calm_moving_sigmas, fade.calm);
+  calm_steady_speed_ = std::sqrt(fade.calm.steady_variance);
   reset();
 }
 
@@ -167,21 +149,10 @@ void Tracker::reset() {
 }
 
 FF_TICK_INLINE void Tracker::learn_velocity_noise() {
-  // What a resting finger shows, plus what the filter has not yet learned
-  // (P11 above its settled value after a touch-down, a gap or a change of
-  // motion). Once per report, so that a tick costs no division for it.
-  if (inverse_fade_span_ <= 0.0f) return;
-  const float excess = direction_.P11 - steady_velocity_variance_;
-  inverse_velocity_noise_ = 1.0f / (resting_velocity_variance_ + (excess > 0.0f ? excess : 0.0f));
-  if (inverse_position_fade_span_ > 0.0f) {
-    const float position_excess = position_.P11 - position_steady_velocity_variance_;
-    inverse_position_velocity_noise_ =
-        1.0f / (position_resting_velocity_variance_ + (position_excess > 0.0f ? position_excess : 0.0f));
-  }
-  if (inverse_calm_fade_span_ > 0.0f) {
-    const float calm_excess = calm_.P11 - calm_steady_velocity_variance_;
-    inverse_calm_velocity_noise_ = 1.0f / (calm_resting_velocity_variance_ + (calm_excess > 0.0f ? calm_excess : 0.0f));
-  }
+  if (!direction_evidence_.used()) return;
+  direction_evidence_.learn(direction_.P11);
+  if (position_evidence_.used()) position_evidence_.learn(position_.P11);
+  if (calm_evidence_.used()) calm_evidence_.learn(calm_.P11);
 }
 
 FF_FASTRUN void Tracker::lose_finger() {
@@ -208,7 +179,7 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   filter_y_.reset();
   direction_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
   position_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
-  if (inverse_calm_fade_span_ > 0.0f) calm_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
+  if (calm_evidence_.used()) calm_.start({s.x, s.y}, noise_, kInitialSpeedSigmaPxS);
   recent_innovation_ = {};
   recent_innovation_variance_ = 0.0f;
   stroke_end_.restart();
@@ -242,7 +213,7 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
   const float dt_s = static_cast<float>(dt_us) * 1e-6f;
   const Vec2 z{s.x, s.y};
   direction_.predict(dt_s, direction_q_, noise_);
-  if (inverse_calm_fade_span_ > 0.0f) calm_.predict(dt_s, calm_q_, noise_);
+  if (calm_evidence_.used()) calm_.predict(dt_s, calm_q_, noise_);
   float s_variance = direction_.innovation_variance(noise_);
   float widen = 1.0f;
   if (inverse_maneuver_time_s_ > 0.0f) {
@@ -274,11 +245,11 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
     // A change of motion or a stroke's end: the calm filter starts again at
     // rest at this report, so that its evidence is of motion since then (a
     // slow start), never of a stroke it still lags behind.
-    if (inverse_calm_fade_span_ > 0.0f) calm_.start(z, noise_, calm_steady_speed_);
+    if (calm_evidence_.used()) calm_.start(z, noise_, calm_steady_speed_);
     s_variance = direction_.innovation_variance(noise_);
   }
   direction_.update(z, 1.0f / s_variance);
-  if (inverse_calm_fade_span_ > 0.0f && !(widen > 1.0f)) calm_.update(z, calm_.inverse_innovation(noise_));
+  if (calm_evidence_.used() && !(widen > 1.0f)) calm_.update(z, calm_.inverse_innovation(noise_));
   if (config_.estimator == Estimator::SplitKalman) {
     position_.predict(dt_s, position_q_, noise_);
     position_.update(z, position_.inverse_innovation(noise_));
@@ -391,14 +362,6 @@ FF_TICK_INLINE Vec2 Tracker::estimate(uint32_t now_us, Vec2& velocity) {
   return {last_.x, last_.y};
 }
 
-namespace {
-// A filter's squared speed against its noise (1 / variance), on the fade's
-// scale: 0 at the rest level (sigmas^2), 1 at the moving level; unclamped.
-FF_TICK_INLINE float evidence(float speed2, float inverse_noise, float rest_level, float inverse_span) {
-  return (speed2 * inverse_noise - rest_level) * inverse_span;
-}
-}  // namespace
-
 FF_TICK_INLINE Vec2 Tracker::faded_direction(Vec2 v) const {
   // Normalise by the larger component first: squares of tiny (subnormal)
   // speeds lose precision, and v / |v| must stay unit length.
@@ -408,18 +371,16 @@ FF_TICK_INLINE Vec2 Tracker::faded_direction(Vec2 v) const {
   const Vec2 u = (1.0f / m) * v;
   const float len = length(u);  // in [1, sqrt 2]
   float gain = 1.0f;
-  if (inverse_fade_span_ > 0.0f) {
+  if (direction_evidence_.used()) {
     // The speed in standard deviations of the velocity's noise (learn_velocity_noise).
     const float speed = m * len;
-    float motion = evidence(speed * speed, inverse_velocity_noise_, fade_low_, inverse_fade_span_);
-    if (inverse_position_fade_span_ > 0.0f) {  // or the position filter's, if it says more
-      const float agile = evidence(dot(position_.v, position_.v), inverse_position_velocity_noise_, position_fade_low_,
-                                   inverse_position_fade_span_);
+    float motion = direction_evidence_.of(speed * speed);
+    if (position_evidence_.used()) {  // or the position filter's, if it says more
+      const float agile = position_evidence_.of(dot(position_.v, position_.v));
       if (agile > motion) motion = agile;
     }
-    if (inverse_calm_fade_span_ > 0.0f) {  // or the calm filter's
-      const float calm = evidence(dot(calm_.v, calm_.v), inverse_calm_velocity_noise_, calm_fade_low_,
-                                  inverse_calm_fade_span_);
+    if (calm_evidence_.used()) {  // or the calm filter's
+      const float calm = calm_evidence_.of(dot(calm_.v, calm_.v));
       if (calm > motion) motion = calm;
     }
     gain = smoothstep(motion);

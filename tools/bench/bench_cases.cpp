@@ -204,7 +204,7 @@ TrackerConfig tracker_config(int index) {
   if (index == 0) return TrackerConfig::thesis();
   if (index == 5) {
     // A sensor with every modelled effect (the realistic-200hz trace class's
-    // profile): both filters carry the wander and the tremor.
+    // profile): every filter carries the wander and the tremor.
     SensorProfile sensor;
     sensor.white_noise_px = 0.6f;
     sensor.correlated_noise_px = 1.5f;

@@ -7,6 +7,7 @@
 #include "frictionfield/core/fault_counters.hpp"
 #include "frictionfield/core/finger_kalman.hpp"
 #include "frictionfield/core/geometry.hpp"
+#include "frictionfield/core/motion_evidence.hpp"
 #include "frictionfield/core/one_euro_filter.hpp"
 #include "frictionfield/core/report_noise.hpp"
 #include "frictionfield/core/sensor_profile.hpp"
@@ -117,12 +118,7 @@ struct TrackState {
 // tick may spend, so the device derives it in its main loop
 // (HapticPipeline::set_sensor_profile) and the tick only takes it over.
 struct FadeNoise {
-  float steady_velocity_variance = 0.0f;   // the direction filter's settled P11
-  float resting_velocity_variance = 0.0f;  // per axis, px^2/s^2
-  float position_steady_velocity_variance = 0.0f;
-  float position_resting_velocity_variance = 0.0f;
-  float calm_steady_velocity_variance = 0.0f;
-  float calm_resting_velocity_variance = 0.0f;
+  SpeedNoise direction, position, calm;  // per filter; zero where its evidence is unused
 };
 FadeNoise fade_noise(const TrackerConfig& config);
 
@@ -189,20 +185,9 @@ class Tracker {
   // From the configuration, so that a report costs no squares or divisions of it.
   ReportNoise noise_;  // every filter's: white, wander and the tremor's state
   float direction_q_ = 0.0f, position_q_ = 0.0f, calm_q_ = 0.0f;  // accel_noise^2
-  // Direction confidence: z^2 = |v|^2 / (2 resting + excess) per axis pair.
-  float resting_velocity_variance_ = 0.0f;  // per axis, px^2/s^2
-  float steady_velocity_variance_ = 0.0f;   // the direction filter's settled P11
-  float inverse_velocity_noise_ = 0.0f;     // 1 / (resting + the filter's excess P11)
-  float fade_low_ = 0.0f, inverse_fade_span_ = 0.0f;  // rest_sigmas^2; 1 / (moving^2 - rest^2), 0: no fade
-  // The same for the position filter's speed (inverse span 0: not used).
-  float position_steady_velocity_variance_ = 0.0f, position_resting_velocity_variance_ = 0.0f;
-  float inverse_position_velocity_noise_ = 0.0f;
-  float position_fade_low_ = 0.0f, inverse_position_fade_span_ = 0.0f;
-  // And for the calm filter's.
-  float calm_steady_velocity_variance_ = 0.0f, calm_resting_velocity_variance_ = 0.0f;
-  float calm_steady_speed_ = 0.0f;  // its settled velocity sigma per axis: where it starts again
-  float inverse_calm_velocity_noise_ = 0.0f;
-  float calm_fade_low_ = 0.0f, inverse_calm_fade_span_ = 0.0f;
+  // Direction confidence: each filter's speed as evidence of motion.
+  MotionEvidence direction_evidence_, position_evidence_, calm_evidence_;
+  float calm_steady_speed_ = 0.0f;  // the calm filter's settled velocity sigma per axis: where it starts again
   uint32_t latency_us_ = 0;
   // The direction filter's recent innovations (px) and their variance while its model holds (px^2 per axis).
   Vec2 recent_innovation_;
