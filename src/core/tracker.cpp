@@ -230,6 +230,7 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
       ++maneuvers_;
     }
   }
+  bool stroke_end = false;
   if (predict_stroke_ends_) {
     stroke_end_.add(s.t_us, z);
     if (!refined_this_tick_ && stroke_end_.refine_due()) {
@@ -237,6 +238,7 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
       if (stroke_end_.refine()) {  // the finger stops now
         if (widen < config_.stroke_end_widening) widen = config_.stroke_end_widening;
         ++stroke_ends_;
+        stroke_end = true;
       }
     }
   }
@@ -248,12 +250,18 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
     if (calm_evidence_.used()) calm_.start(z, noise_, calm_steady_speed_);
     s_variance = direction_.innovation_variance(noise_);
   }
-  direction_.update(z, 1.0f / s_variance);
-  if (calm_evidence_.used() && !(widen > 1.0f)) calm_.update(z, calm_.inverse_innovation(noise_));
-  if (config_.estimator == Estimator::SplitKalman) {
+  const bool split = config_.estimator == Estimator::SplitKalman;
+  if (split) {
     position_.predict(dt_s, position_q_, noise_);
     position_.update(z, position_.inverse_innovation(noise_));
   }
+  if (stroke_end && split && config_.stroke_end_takes_position &&
+      dot(position_.v, position_.v) < dot(direction_.v, direction_.v)) {
+    direction_ = position_;  // its estimate and its uncertainty, this report included
+  } else {
+    direction_.update(z, 1.0f / s_variance);
+  }
+  if (calm_evidence_.used() && !(widen > 1.0f)) calm_.update(z, calm_.inverse_innovation(noise_));
   learn_velocity_noise();
 }
 

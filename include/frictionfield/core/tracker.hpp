@@ -87,6 +87,11 @@ struct TrackerConfig {
   // as the fitted speed falls to 0 (StrokeEndConfig::quiet_speed_px_s). 1 or
   // less: not predicted (no cost). The Kalman estimators only.
   float stroke_end_widening = 10.0f;
+  // SplitKalman: at a predicted end, if the position filter reads the finger
+  // slower than the direction filter does, the direction filter takes over
+  // its estimate instead of being widened: the fast filter has already seen
+  // the finger slow down or turn, where the smooth one still lags the stroke.
+  bool stroke_end_takes_position = true;
   StrokeEndConfig stroke_end;
 
   uint32_t max_extrapolation_us = 15000;  // then hold the position
