@@ -90,19 +90,20 @@ TEST_P(ClassGoals, AHeadingModelToldTheStartsMeetsTheHeightmapGoal) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Classes, ClassGoals,
-                         // Measured (10 s traces, stroke ends predicted, quiet at each stop, the tremor
-                         // a state of both filters at its measured frequency, the position and the calm
-                         // filters' speeds as evidence of motion): heightmap 0.458 / 0.406 / 0.455 / 0.469
-                         // / 0.557 / 0.503 / 0.576 / 0.626x, chatter 0.0061 / 0.0091 / 0.0011 / 0.0062 /
-                         // 0.0013 / 0.0035 / 0.0061 / 0.0095 (30 s: all 8 within 0.01 too, docs/tracking.md).
+                         // Measured (10 s traces, stroke ends predicted, quiet at each stop, the position
+                         // filter's estimate taken over there when slower, the tremor a state of every
+                         // filter at its measured frequency, the position and the calm filters' speeds as
+                         // evidence of motion): heightmap 0.456 / 0.405 / 0.449 / 0.467 / 0.551 / 0.502 /
+                         // 0.569 / 0.622x, chatter 0.0061 / 0.0091 / 0.0010 / 0.0061 / 0.0013 / 0.0069 /
+                         // 0.0071 / 0.0095 (30 s: all 8 within 0.01 too, docs/tracking.md).
                          ::testing::Values(Bounds{"white-200hz", 0.51, kClassRestBound},
                                            Bounds{"slow-fingers", kClassMaxHeightmapRatio, kClassRestBound},
-                                           Bounds{"tremor", 0.51, kClassRestBound},
+                                           Bounds{"tremor", 0.50, kClassRestBound},
                                            Bounds{"latency", 0.52, kClassRestBound},
-                                           Bounds{"correlated-noise", 0.61, kClassRestBound},
-                                           Bounds{"realistic-100hz", 0.56, kClassRestBound},
-                                           Bounds{"realistic-200hz", 0.63, kClassRestBound},
-                                           Bounds{"realistic-1khz", 0.68, kClassRestBound}),
+                                           Bounds{"correlated-noise", 0.60, kClassRestBound},
+                                           Bounds{"realistic-100hz", 0.55, kClassRestBound},
+                                           Bounds{"realistic-200hz", 0.62, kClassRestBound},
+                                           Bounds{"realistic-1khz", 0.67, kClassRestBound}),
                          [](const ::testing::TestParamInfo<Bounds>& info) {
                            std::string n = info.param.trace_class;
                            for (char& c : n)
