@@ -1,0 +1,80 @@
+"""standstill_breakdown.py on a hand-made tick file whose shares are worked
+out by hand, and its exit codes on bad input."""
+import math
+
+import pytest
+
+import standstill_breakdown
+
+HEADER = "t_us,x_true,y_true,vx_true,vy_true,touching,resting,present,x,y,vx,vy,dx,dy,hm,hm_ideal,fm,fm_ideal,hm_true_dir,hm_unit_dir\n"
+
+
+def tick(t_us, vx_true, touching, vx, dx, dy, error, full_length_error):
+    # hm_ideal 0.5; hm and hm_unit_dir off it by the given errors
+    return (f"{t_us},0,0,{vx_true},0,{touching},0,1,0,0,{vx},0,{dx},{dy},"
+            f"{0.5 + error},0.5,0.5,0.5,0.5,{0.5 + full_length_error}\n")
+
+
+def write_ticks(path):
+    # A tick every 0.5 ms: still at 0, moving at 0.5-2 ms, lifted at 2.5, moving again at 3.
+    rows = [tick(0, 0, 1, 0, 0, 0, 0.0, 0.0),
+            tick(500, 100, 1, 50, 0.6, 0.8, 0.1, 0.2),   # 0.5 ms after the standstill
+            tick(1000, 100, 1, 100, 0.3, 0.4, 0.2, 0.0),  # 1.0
+            tick(1500, 100, 1, 100, 0.0, 0.5, 0.0, 0.0),  # 1.5
+            tick(2000, 100, 1, 100, 1.0, 0.0, 0.3, 0.0),  # 2.0
+            tick(2500, 0, 0, 0, 0, 0, 0.0, 0.0),          # lifted: a standstill
+            tick(3000, 100, 1, 100, 0.0, 0.0, 0.1, 0.0)]  # 0.5
+    path.write_text(HEADER + "".join(rows))
+
+
+def test_shares_by_hand(tmp_path):
+    path = tmp_path / "ticks.csv"
+    write_ticks(path)
+    rows, totals = standstill_breakdown.breakdown([standstill_breakdown.read_ticks(path)], 20.0, [1.0, 2.0])
+    # squared errors 0.01 0.04 0 0.09 0.01 (total 0.15); at full length 0.04 at 0.5 ms only
+    first, second, last = rows
+    assert first[:2] == (0.0, 1.0) and second[:2] == (1.0, 2.0) and math.isinf(last[1])
+    assert [r[2] for r in rows] == pytest.approx([2 / 5, 2 / 5, 1 / 5])
+    assert [r[3] for r in rows] == pytest.approx([0.02 / 0.15, 0.04 / 0.15, 0.09 / 0.15])
+    assert [r[4] for r in rows] == pytest.approx([0.04 / 0.15, 0.0, 0.0])
+    assert [r[5] for r in rows] == pytest.approx([0.5, 0.5, 1.0])  # direction lengths 1 and 0, 0.5 and 0.5, 1
+    assert [r[6] for r in rows] == pytest.approx([0.75, 1.0, 1.0])  # tracked / true speed 0.5 and 1
+    assert totals["ticks"] == 5
+    assert totals["rms"] == pytest.approx(math.sqrt(0.15 / 5))
+    assert totals["full_length_rms"] == pytest.approx(math.sqrt(0.04 / 5))
+
+
+def test_no_moving_ticks_is_an_error(tmp_path):
+    path = tmp_path / "ticks.csv"
+    write_ticks(path)
+    # At 150 px/s or more nothing moves.
+    with pytest.raises(standstill_breakdown.InputError):
+        standstill_breakdown.breakdown([standstill_breakdown.read_ticks(path)], 150.0, [1.0])
+
+
+def test_cli_prints_the_table(tmp_path, capsys):
+    path = tmp_path / "ticks.csv"
+    write_ticks(path)
+    assert standstill_breakdown.main([str(path), "--bins", "1,2"]) == 0
+    out = capsys.readouterr().out
+    assert "| 0-1 ms | 40.0 % | 13.3 % | 26.7 % | 0.50 | 0.75 |" in out
+    assert "| 2 ms and later | 20.0 % | 60.0 % | 0.0 % | 1.00 | 1.00 |" in out
+    assert "5 moving ticks; heightmap error RMS 0.1732, 0.0894" in out
+
+
+@pytest.mark.parametrize("content,args", [
+    ("t_us,x\n1,2\n", []),        # not a tick file
+    (None, []),                   # missing file
+    (HEADER, []),                 # no ticks
+    ("ok", ["--bins", "80,40"]),  # decreasing bins
+    ("ok", ["--bins", "x"]),
+])
+def test_bad_input_exits_2_with_one_line(tmp_path, capsys, content, args):
+    path = tmp_path / "ticks.csv"
+    if content == "ok":
+        write_ticks(path)
+    elif content is not None:
+        path.write_text(content)
+    assert standstill_breakdown.main([str(path)] + args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("standstill_breakdown: ") and err.count("\n") == 1
