@@ -242,14 +242,6 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
       }
     }
   }
-  if (widen > 1.0f) {
-    direction_.widen(widen);
-    // A change of motion or a stroke's end: the calm filter starts again at
-    // rest at this report, so that its evidence is of motion since then (a
-    // slow start), never of a stroke it still lags behind.
-    if (calm_evidence_.used()) calm_.start(z, noise_, calm_steady_speed_);
-    s_variance = direction_.innovation_variance(noise_);
-  }
   const bool split = config_.estimator == Estimator::SplitKalman;
   if (split) {
     position_.predict(dt_s, position_q_, noise_);
@@ -259,9 +251,19 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
       dot(position_.v, position_.v) < dot(direction_.v, direction_.v)) {
     direction_ = position_;  // its estimate and its uncertainty, this report included
   } else {
+    if (widen > 1.0f) {
+      direction_.widen(widen);
+      s_variance = direction_.innovation_variance(noise_);
+    }
     direction_.update(z, 1.0f / s_variance);
   }
-  if (calm_evidence_.used() && !(widen > 1.0f)) calm_.update(z, calm_.inverse_innovation(noise_));
+  if (calm_evidence_.used()) {
+    // A change of motion or a stroke's end: the calm filter starts again at
+    // rest at this report, so that its evidence is of motion since then (a
+    // slow start), never of a stroke it still lags behind.
+    if (widen > 1.0f) calm_.start(z, noise_, calm_steady_speed_);
+    else calm_.update(z, calm_.inverse_innovation(noise_));
+  }
   learn_velocity_noise();
 }
 

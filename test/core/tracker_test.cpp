@@ -187,38 +187,38 @@ StrokeLengths stroke_direction_lengths(const TrackerConfig& c, double distance, 
   return out;
 }
 
+// One filter's evidence of motion, on a stroke of `distance_px` in
+// `duration_s` from rest: with it (recommended()) the direction is longer
+// while the finger moves than `without` it, and as short at rest either way.
+void expect_evidence_shows_the_stroke_sooner(const char* filter, const TrackerConfig& without, double distance_px,
+                                             double duration_s) {
+  const StrokeLengths with = stroke_direction_lengths(TrackerConfig::recommended(), distance_px, duration_s);
+  const StrokeLengths other = stroke_direction_lengths(without, distance_px, duration_s);
+  std::printf("[%s] direction while moving %.3f (without %.3f), at rest %.4f (without %.4f)\n", filter, with.moving,
+              other.moving, with.rest, other.rest);
+  EXPECT_GT(with.moving, other.moving + 0.01);
+  EXPECT_LT(with.rest, 0.01);
+  EXPECT_LT(other.rest, 0.01);
+}
+
 // Brisk strokes (300 px in 0.3 s): the direction filter, widened at the
 // start by its detector of changes of motion, counts that widening as
 // uncertainty and fades its direction, while the agile position filter,
-// never widened, sees the finger move. With the position filter's evidence
-// the direction is longer while the finger moves and as short at rest;
-// without it (position sigmas 0) the other filters decide.
+// never widened, sees the finger move. Without its evidence (position
+// sigmas 0) the other filters decide.
 TEST(Tracker, TheAgileFiltersSpeedShowsABriskStartSooner) {
   TrackerConfig without = TrackerConfig::recommended();
   without.position_rest_sigmas = without.position_moving_sigmas = 0.0f;
-  const StrokeLengths both = stroke_direction_lengths(TrackerConfig::recommended(), 300.0, 0.3);
-  const StrokeLengths other = stroke_direction_lengths(without, 300.0, 0.3);
-  std::printf("[agile filter] direction while moving %.3f (without %.3f), at rest %.4f (without %.4f)\n", both.moving,
-              other.moving, both.rest, other.rest);
-  EXPECT_GT(both.moving, other.moving + 0.01);
-  EXPECT_LT(both.rest, 0.01);
-  EXPECT_LT(other.rest, 0.01);
+  expect_evidence_shows_the_stroke_sooner("agile filter", without, 300.0, 0.3);
 }
 
 // A slow stroke (100 px in 1.5 s: at most 100 px/s): the calm filter's
 // resting noise is half the direction filter's, so the stroke stands out of
-// it sooner. With its evidence the direction is longer over the stroke and
-// as short at rest; without it (calm sigmas 0) the other two filters decide.
+// it sooner. Without its evidence (calm sigmas 0) the other two filters decide.
 TEST(Tracker, TheCalmFiltersSpeedShowsASlowStrokeSooner) {
   TrackerConfig without = TrackerConfig::recommended();
   without.calm_rest_sigmas = without.calm_moving_sigmas = 0.0f;
-  const StrokeLengths calm = stroke_direction_lengths(TrackerConfig::recommended(), 100.0, 1.5);
-  const StrokeLengths other = stroke_direction_lengths(without, 100.0, 1.5);
-  std::printf("[calm filter] direction while moving %.3f (without %.3f), at rest %.4f (without %.4f)\n", calm.moving,
-              other.moving, calm.rest, other.rest);
-  EXPECT_GT(calm.moving, other.moving + 0.01);
-  EXPECT_LT(calm.rest, 0.01);
-  EXPECT_LT(other.rest, 0.01);
+  expect_evidence_shows_the_stroke_sooner("calm filter", without, 100.0, 1.5);
 }
 
 // The fade's noise derived apart (fade_noise, the device's main loop) and
