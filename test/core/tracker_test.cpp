@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "support/models/trace_classes.hpp"
 #include "support/random.hpp"
 #include "support/reference/reference_amplitude.hpp"
 #include "support/reference/reference_scene.hpp"
@@ -225,11 +226,7 @@ TEST(Tracker, TheCalmFiltersSpeedShowsASlowStrokeSooner) {
 // handed to configure() gives the tracker configure(config) alone gives; a
 // tracker handed another configuration's noise fades otherwise.
 TEST(Tracker, ConfiguredWithItsFadeNoiseAsWithItsConfigAlone) {
-  SensorProfile sensor;
-  sensor.white_noise_px = 0.6f;
-  sensor.correlated_noise_px = 1.5f;
-  sensor.correlation_time_ms = 30.0f;
-  sensor.tremor_px = 1.0f;
+  const SensorProfile sensor = tracegen::class_profile("realistic-200hz");
   const TrackerConfig c = TrackerConfig::recommended(sensor);
   Tracker whole(c), handed, wrong;
   handed.configure(c, fade_noise(c));

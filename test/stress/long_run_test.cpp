@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include "stress_random.hpp"
+#include "support/models/trace_classes.hpp"
 
 #ifndef FF_STRESS_LONG_RUN_SECONDS
 #define FF_STRESS_LONG_RUN_SECONDS 10800
@@ -57,11 +58,7 @@ TEST(LongRun, ARunShorterThanAMinuteIsOneWholeMinute) {
 TEST(LongRun, ThreeHoursRecommendedTracker) { check_long_run(TrackerConfig::recommended(), "recommended"); }
 // The direction filter at its largest: the wander and the tremor as states.
 TEST(LongRun, ThreeHoursRecommendedTrackerForASensorWithWanderAndTremor) {
-  SensorProfile sensor;
-  sensor.white_noise_px = 0.6f;
-  sensor.correlated_noise_px = 1.5f;
-  sensor.correlation_time_ms = 30.0f;
-  sensor.tremor_px = 1.0f;
+  const SensorProfile sensor = tracegen::class_profile("realistic-200hz");
   check_long_run(TrackerConfig::recommended(sensor), "recommended(wander and tremor)");
 }
 TEST(LongRun, ThreeHoursThesisTracker) { check_long_run(TrackerConfig::thesis(), "thesis (ticks + 1-euro)"); }

@@ -9,6 +9,7 @@
 
 #include "accuracy.hpp"
 #include "bench_cases.hpp"
+#include "support/models/trace_classes.hpp"
 
 namespace ff::bench {
 namespace {
@@ -29,6 +30,20 @@ TEST(BenchCases, IdsAreUniqueAndEveryKindIsPresent) {
     EXPECT_EQ(ids.count(expected), 1u) << expected;
   }
   EXPECT_EQ(ids.count("vortex/table-8px-float-height-cd"), 0u);  // a vortex has no height
+}
+
+// The benchmark's realistic tracker is configured for the realistic-200hz
+// class's sensor, as the trace generator models it.
+TEST(BenchCases, TheRealisticProfileIsTheRealisticClasssNominalProfile) {
+  const SensorProfile bench = realistic_sensor_profile();
+  const SensorProfile generated = tracegen::class_profile("realistic-200hz");
+  EXPECT_FLOAT_EQ(bench.white_noise_px, generated.white_noise_px);
+  EXPECT_FLOAT_EQ(bench.jitter_us, generated.jitter_us);
+  SensorProfile rest = bench;  // every other field exactly
+  rest.white_noise_px = generated.white_noise_px;
+  rest.jitter_us = generated.jitter_us;
+  EXPECT_TRUE(rest == generated);
+  EXPECT_TRUE(is_valid(bench));
 }
 
 TEST(BenchReference, CoreClosedFormsAgreeWithinOneLsb) {

@@ -200,19 +200,22 @@ const char* tracker_config_name(int index) {
   return "?";
 }
 
+SensorProfile realistic_sensor_profile() {
+  SensorProfile p;
+  p.white_noise_px = 0.52041650f;  // 0.5 px white and the 0.5 px quantum's q/sqrt(12)
+  p.correlated_noise_px = 1.5f;
+  p.correlation_time_ms = 30.0f;
+  p.tremor_px = 1.0f;
+  p.report_rate_hz = 200.0f;
+  p.jitter_us = 234.52079f;  // 150 us on each stamp (twice) and 2 % period jitter (100 us)
+  p.latency_us = 2000;       // 1-3 ms after the scan
+  return p;
+}
+
 TrackerConfig tracker_config(int index) {
   if (index == 0) return TrackerConfig::thesis();
-  if (index == 5) {
-    // A sensor with every modelled effect (the realistic-200hz trace class's
-    // profile): every filter carries the wander and the tremor.
-    SensorProfile sensor;
-    sensor.white_noise_px = 0.6f;
-    sensor.correlated_noise_px = 1.5f;
-    sensor.correlation_time_ms = 30.0f;
-    sensor.tremor_px = 1.0f;
-    sensor.latency_us = 2000;
-    return TrackerConfig::recommended(sensor);
-  }
+  // Every filter carries the wander and the tremor.
+  if (index == 5) return TrackerConfig::recommended(realistic_sensor_profile());
   TrackerConfig c = TrackerConfig::recommended();
   if (index == 2) c.estimator = Estimator::ThesisTicks;
   if (index == 3) c.estimator = Estimator::TimedExtrapolation;

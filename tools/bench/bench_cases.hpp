@@ -67,5 +67,9 @@ void case_id(const BenchCase& c, char* out, size_t capacity);
 constexpr int kTrackerConfigCount = 6;
 const char* tracker_config_name(int index);
 TrackerConfig tracker_config(int index);
+// The profile of a sensor with every modelled effect: what a perfect
+// calibration measures on the realistic-200hz trace class (bench_reference_test
+// checks it against the trace generator's nominal profile).
+SensorProfile realistic_sensor_profile();
 
 }  // namespace ff::bench

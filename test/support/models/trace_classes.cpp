@@ -98,4 +98,11 @@ SensorProfile nominal_profile(const TraceOptions& o, const GeneratedTrace& trace
   return p;
 }
 
+SensorProfile class_profile(const std::string& class_name) {
+  TraceOptions options;
+  const TraceClass* c = find_trace_class(class_name);
+  if (c != nullptr) c->apply(options);
+  return nominal_profile(options);
+}
+
 }  // namespace ff::tracegen
