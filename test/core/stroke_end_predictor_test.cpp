@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -165,6 +166,26 @@ TEST(StrokeEndPredictorCore, ALongSlowStrokeKeptDecimatedIsEnded) {
   const Feed r = feed(p, slow, 3.5, 5000, 1.0, 10);
   ASSERT_EQ(r.ends.size(), 1u);
   EXPECT_NEAR(r.ends[0], 2.7 + 0.01, 0.04);
+}
+
+TEST(StrokeEndPredictorCore, AMotionLongerThanAnyStrokeIsBegunAgain) {
+  // 10 s of a steady drag at 50 px/s: no stop for the fit to find, so it is
+  // begun again once it spans kMaxStrokeS, and the points it fits never
+  // reach further back than that (and the rest kept before it).
+  StrokeEndPredictor p;
+  const double max_span_s = static_cast<double>(StrokeEndPredictor::kMaxStrokeS) + 0.2;
+  double widest_s = 0.0;
+  for (uint32_t k = 0; k < 2000; ++k) {  // 200 Hz
+    const double t = k * 0.005;
+    const uint32_t now_us = kOriginUs + k * 5000u;
+    p.add(now_us, {static_cast<float>(150.0 + 50.0 * t), 240.0f});
+    if (p.refine_due()) {
+      EXPECT_FALSE(p.refine()) << t;  // a drag has no end
+    }
+    widest_s = std::max(widest_s, (now_us - p.origin_us()) * 1e-6);
+  }
+  EXPECT_LE(widest_s, max_span_s);
+  EXPECT_GE(widest_s, static_cast<double>(StrokeEndPredictor::kMaxStrokeS));
 }
 
 TEST(StrokeEndPredictorCore, AStrokeShorterThanTheMinimumIsNotEnded) {
