@@ -44,6 +44,7 @@ TEST(BenchCases, TheRealisticProfileIsTheRealisticClasssNominalProfile) {
   rest.jitter_us = generated.jitter_us;
   EXPECT_TRUE(rest == generated);
   EXPECT_TRUE(is_valid(bench));
+  EXPECT_DEATH(tracegen::class_profile("realistic-2khz"), "no trace class");  // never the default sensor
 }
 
 TEST(BenchReference, CoreClosedFormsAgreeWithinOneLsb) {

@@ -1,6 +1,8 @@
 #include "support/models/trace_classes.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace ff::tracegen {
 
@@ -101,7 +103,11 @@ SensorProfile nominal_profile(const TraceOptions& o, const GeneratedTrace& trace
 SensorProfile class_profile(const std::string& class_name) {
   TraceOptions options;
   const TraceClass* c = find_trace_class(class_name);
-  if (c != nullptr) c->apply(options);
+  if (c == nullptr) {  // a misspelt name in a test: stop, rather than test the default sensor
+    std::fprintf(stderr, "class_profile: no trace class \"%s\"\n", class_name.c_str());
+    std::abort();
+  }
+  c->apply(options);
   return nominal_profile(options);
 }
 

@@ -32,8 +32,9 @@ SensorProfile nominal_profile(const TraceOptions& options);
 // that finger measures it (within 0.1 Hz of a generated tremor,
 // sensor_calibration_test): what a lab that calibrates each participant has.
 SensorProfile nominal_profile(const TraceOptions& options, const GeneratedTrace& trace);
-// The nominal profile of a named class's traces (default options otherwise);
-// the tests' profile for a sensor with every effect is "realistic-200hz"'s.
+// The nominal profile of a named class's traces (default options otherwise;
+// an unknown name aborts); the tests' profile for a sensor with every effect
+// is "realistic-200hz"'s.
 SensorProfile class_profile(const std::string& class_name);
 
 }  // namespace ff::tracegen
