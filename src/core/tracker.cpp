@@ -37,11 +37,7 @@ const char* to_string(Estimator e) {
 
 TrackerConfig TrackerConfig::thesis() {
   TrackerConfig c;
-  c.estimator = Estimator::ThesisTicks;
-  c.one_euro = OneEuroConfig{};
-  c.rest_sigmas = 0.0f;  // v_hat = dxhat / |dxhat| at any speed
-  c.moving_sigmas = 0.0f;
-  c.compensate_latency = false;
+  c.estimator = Estimator::ThesisTicks;  // 1-euro, no fade (v_hat = dxhat / |dxhat|), stamps as given
   c.max_extrapolation_us = std::numeric_limits<uint32_t>::max();  // the thesis never stops counting
   c.max_speed_px_s = std::numeric_limits<float>::infinity();       // no jump rejection
   return c;
@@ -126,9 +122,7 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
   reset();
 }
 
-void Tracker::reset() {
-  filter_x_.reset();
-  filter_y_.reset();
+void Tracker::reset() {  // the 1-euro filters restart at the next touch-down (restart_at)
   state_ = TrackState{};
   last_ = SensorSample{};
   raw_velocity_ = {};

@@ -58,6 +58,18 @@ TEST(OneEuroFilter, VariantsDifferOnlyAfterTheSecondSample) {
   EXPECT_NE(a.filter(2.0f), b.filter(2.0f));
 }
 
+TEST(OneEuroFilter, ConfiguringStartsItAfresh) {
+  // A new condition reconfigures the tracker's filters: the first value after
+  // that passes through, as after a reset, instead of blending with the old one.
+  OneEuroFilter f;
+  f.configure(OneEuroConfig{});
+  f.filter(0.0f);
+  f.filter(10.0f);
+  f.configure(OneEuroConfig{});
+  EXPECT_FLOAT_EQ(f.filter(500.0f), 500.0f);
+  EXPECT_FLOAT_EQ(f.derivative(), 0.0f);
+}
+
 TEST(OneEuroFilter, SettlesOnAConstant) {
   OneEuroFilter f;
   f.configure(OneEuroConfig{});

@@ -180,5 +180,27 @@ TEST(StrokeEndWidening, ABurstOfReportsRefinesOncePerTick) {
   EXPECT_LE(burst.refinements, bursts);
 }
 
+TEST(StrokeEndWidening, TheCountsStartAgainWithEachConfiguration) {
+  // maneuvers() and stroke_ends() count since configure(): a new condition
+  // starts them at 0, whatever the strokes before it did.
+  Tracker tracker(TrackerConfig::recommended());
+  support::Random rng(6);
+  auto feed = [&](uint32_t k, SensorSample s) {  // a report and the ticks up to the next one
+    tracker.on_sample(s);
+    for (uint32_t t = 0; t < kPeriodUs; t += kTickPeriodUs) tracker.on_tick(kStartUs + k * kPeriodUs + t);
+  };
+  uint32_t k = 0;
+  for (; k < 240; ++k) feed(k, report(k, rng));  // the stroke and its stop
+  for (int i = 0; i < 80; ++i, ++k) {            // then a sharp back-and-forth: 400 px/s, turned at once
+    const float x = 450.0f - 2.0f * static_cast<float>(i < 40 ? i : 80 - i);
+    feed(k, {kStartUs + k * kPeriodUs, x, 140.0f, true});
+  }
+  ASSERT_GT(tracker.maneuvers(), 0u);
+  ASSERT_GT(tracker.stroke_ends(), 0u);
+  tracker.configure(TrackerConfig::recommended());
+  EXPECT_EQ(tracker.maneuvers(), 0u);
+  EXPECT_EQ(tracker.stroke_ends(), 0u);
+}
+
 }  // namespace
 }  // namespace ff

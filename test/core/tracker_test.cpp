@@ -74,6 +74,41 @@ TEST(Tracker, ThesisPipelineMatchesIndependentReference) {
   EXPECT_LT(worst, 0.01) << "px";
 }
 
+TEST(Tracker, ThesisMatchesTheReferenceThroughAGapAndAJump) {
+  // The thesis never stops extrapolating and takes any jump (docs/spec.md#thesis-tracker):
+  // a 60 ms gap (past the Kalman trackers' 15 ms hold) and a 400 px jump in one report
+  // (80,000 px/s, past their 5,000 px/s) must follow the reference through both.
+  std::vector<SensorSample> s = line(1000, {200, 240}, {300, -100}, 40);
+  const uint32_t resume = s.back().t_us + 60000u;
+  for (const SensorSample& r : line(resume, {s.back().x + 400.0f, s.back().y}, {300, -100}, 40)) s.push_back(r);
+  TrackerRun run(TrackerConfig::thesis());
+  const int ticks = static_cast<int>((s.back().t_us - 1000u) / kTickPeriodUs);
+  const std::vector<TrackState> got = run.replay(s, 1000, ticks);
+  reference::ReferenceThesisTracker ref;
+  size_t next = 0;
+  double worst = 0;
+  for (int k = 0; k < ticks; ++k) {
+    const uint32_t now = 1000u + static_cast<uint32_t>(k) * kTickPeriodUs;
+    while (next < s.size() && s[next].t_us <= now) ref.on_sample(s[next++]);
+    reference::DVec p, direction;
+    ref.on_tick(p, direction);
+    worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - p.x, static_cast<double>(got[k].position.y) - p.y));
+  }
+  EXPECT_LT(worst, 0.01) << "px";
+  EXPECT_EQ(run.tracker.faults()[Fault::JumpRejected], 0u);
+}
+
+TEST(Tracker, TheOneEuroFiltersRunAtTheTickWhateverTheirConfigSays) {
+  // The 1-euro filters see one value per tick, so their rate is the tick's:
+  // a configuration written for another rate must not change the output.
+  TrackerConfig other = TrackerConfig::thesis();
+  other.one_euro.rate_hz = 100.0f;
+  TrackerRun given(TrackerConfig::thesis()), told(other);
+  const auto samples = line(0, {100, 240}, {200, 50}, 60);
+  const auto a = given.replay(samples, 0, 590), b = told.replay(samples, 0, 590);
+  for (size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k].position.x, b[k].position.x) << "tick " << k;
+}
+
 TEST(Tracker, ThesisExtrapolatesYFromY) {
   // The thesis pseudo-code wrote y_extrapol <- x + ...: a finger at x = 100 moving in y must stay at its own y.
   TrackerRun run(TrackerConfig::thesis());
