@@ -122,24 +122,13 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
   reset();
 }
 
-void Tracker::reset() {  // the 1-euro filters restart at the next touch-down (restart_at)
+void Tracker::reset() {
+  // No finger and no tick clock. Everything else about the finger (filters,
+  // velocity, pending jump, stroke fit) starts again at the next touch-down,
+  // in restart_at(), the only way back to having one.
   state_ = TrackState{};
-  last_ = SensorSample{};
-  raw_velocity_ = {};
   have_last_ = false;
-  have_velocity_ = false;
-  ticks_since_sample_ = 0;
-  have_pending_jump_ = false;
-  lifting_ = false;
-  stale_reported_ = false;
-  direction_ = FingerKalman{};
-  position_ = FingerKalman{};
-  calm_ = FingerKalman{};
   have_tick_ = false;
-  have_tick_candidate_ = false;
-  filters_fresh_ = false;
-  stroke_end_.restart();
-  refined_this_tick_ = false;
 }
 
 FF_TICK_INLINE void Tracker::learn_velocity_noise() {

@@ -609,5 +609,27 @@ TEST(Tracker, OneTickGlitchIsIgnoredAClockStepIsFollowed) {
   EXPECT_EQ(t.faults()[Fault::TouchDown], 2u);
 }
 
+TEST(Tracker, AResetForgetsTheFingerAndTheTickClock) {
+  // reset() is a new start (a condition, a restarted device): no finger until
+  // the next report, and a tick clock that starts anywhere without a fault.
+  Tracker t;
+  for (const SensorSample& s : line(1000000, {100, 100}, {300, 0}, 20)) {
+    t.on_sample(s);
+    t.on_tick(s.t_us);
+  }
+  ASSERT_TRUE(t.state().present);
+  t.reset();
+  EXPECT_FALSE(t.state().present);
+  EXPECT_EQ(t.state().position.x, 0.0f);
+  const FaultCounters before = t.faults();
+  EXPECT_FALSE(t.on_tick(5000).present);  // the clock now reads 5 ms
+  t.on_sample({5200, 150, 100, true});
+  const TrackState after = t.on_tick(5500);
+  EXPECT_TRUE(after.present);
+  EXPECT_NEAR(static_cast<double>(after.position.x), 150.0, 1e-3);
+  EXPECT_EQ(t.faults()[Fault::BadTickTime], before[Fault::BadTickTime]);
+  EXPECT_EQ(t.faults()[Fault::SampleTimeImplausible], before[Fault::SampleTimeImplausible]);
+}
+
 }  // namespace
 }  // namespace ff
