@@ -26,6 +26,7 @@
 #include "emulated_firmware.hpp"
 #include "intel_hex.hpp"
 #include "udp_transport.hpp"
+#include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
 namespace {
@@ -150,7 +151,7 @@ std::string slurp(const std::string& path) {
 // ffctl with these arguments, as a shell runs it.
 CliRun ffctl(const std::string& args) {
   static int n = 0;
-  const std::string base = ::testing::TempDir() + "ffctl_cli_" + std::to_string(getpid()) + "_" + std::to_string(n++);
+  const std::string base = support::scratch_path("ffctl_cli_" + std::to_string(n++));
   const std::string cmd = std::string(FFCTL_BINARY) + " " + args + " >" + base + ".out 2>" + base + ".err </dev/null";
   const int status = std::system(cmd.c_str());
   CliRun r;
@@ -162,9 +163,16 @@ CliRun ffctl(const std::string& args) {
 
 std::string udp(const UdpDevice& d) { return "--udp 127.0.0.1:" + std::to_string(d.port()) + " "; }
 
-// ffctl "--udp 127.0.0.1:PORT" + args, run for `run_ms`, then sent `signal`;
-// stdout to `stdout_path` (not a terminal). Returns the wait status.
-int run_then_signal(const UdpDevice& device, std::vector<std::string> args, int run_ms, int signal,
+size_t lines_in(const std::string& path) {
+  const std::string text = slurp(path);
+  return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// ffctl "--udp 127.0.0.1:PORT" + args, run until `ready()` (polled every 20 ms;
+// a loaded machine only makes it wait longer, at most 30 s), then sent
+// `signal`; stdout to `stdout_path` (not a terminal). Returns the wait status.
+template <typename Ready>
+int run_then_signal(const UdpDevice& device, std::vector<std::string> args, Ready ready, int signal,
                     const std::string& stdout_path = "/dev/null") {
   args.insert(args.begin(), {FFCTL_BINARY, "--udp", "127.0.0.1:" + std::to_string(device.port())});
   // Everything allocated before fork(): the device's thread may hold the heap's lock.
@@ -183,7 +191,9 @@ int run_then_signal(const UdpDevice& device, std::vector<std::string> args, int 
   ::close(out);
   ::close(null);
   if (child < 0) return -1;
-  std::this_thread::sleep_for(std::chrono::milliseconds(run_ms));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!ready() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   ::kill(child, signal);
   int status = 0;
   ::waitpid(child, &status, 0);
@@ -213,7 +223,7 @@ TEST(FfctlCli, BadUsageIsExitTwoBeforeAnyDeviceIsTouched) {
   r = ffctl("--udp 127.0.0.1:70000 status");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("1..65535"), std::string::npos) << r.err;
-  r = ffctl("verify " + ::testing::TempDir() + "no_such_recording.csv");
+  r = ffctl("verify " + support::scratch_path("no_such_recording.csv"));
   EXPECT_EQ(r.exit_code, 2);
   r = ffctl("--version");
   EXPECT_EQ(r.exit_code, 0);
@@ -233,7 +243,7 @@ std::string write_hex(const std::string& name, uint32_t sp, uint32_t reset) {
   for (uint32_t w : {sp, reset}) {
     for (int i = 0; i < 4; ++i) words.push_back(static_cast<uint8_t>(w >> (8 * i)));
   }
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = support::scratch_path(name);
   std::ofstream(path) << hex_record(0, 0x00, words) << hex_record(0, 0x01, {});
   return path;
 }
@@ -310,7 +320,7 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   r = ffctl(udp(device) + "carrier 5000000");  // beyond the AD9834's range: the device refuses
   EXPECT_EQ(r.exit_code, 1) << r.out;
 
-  const std::string path = ::testing::TempDir() + "udp_rec.csv";
+  const std::string path = support::scratch_path("udp_rec.csv");
   r = ffctl(udp(device) + "record -o " + path + " --seconds 2 --scene heightmap --target top --strength 0.66");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Recording rec;
@@ -371,7 +381,7 @@ TEST(FfctlCli, SensorProfileIsSentReadBackShownAndKeptByARecording) {
   EXPECT_NE(r.out.find(words), std::string::npos) << r.out;
 
   // A recording keeps it; verify replays with it.
-  const std::string path = ::testing::TempDir() + "udp_profile_rec.csv";
+  const std::string path = support::scratch_path("udp_profile_rec.csv");
   r = ffctl(udp(device) + "record -o " + path + " --seconds 1 --scene heightmap --target top --strength 0.66");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(slurp(path).find("# sensor-profile " + flags + "\n"), std::string::npos);
@@ -393,7 +403,7 @@ TEST(FfctlCli, SensorProfileIsSentReadBackShownAndKeptByARecording) {
 
 TEST(FfctlCli, VerifyFailsAnotherSceneWhenTheFingerNeverLifts) {
   UdpDevice device(circling);
-  const std::string path = ::testing::TempDir() + "udp_never_lifts.csv";
+  const std::string path = support::scratch_path("udp_never_lifts.csv");
   CliRun r = ffctl(udp(device) + "record -o " + path + " --seconds 1.5 --scene heightmap --target top --strength 1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* other : {"--scene heightmap --target bottom --strength 1", "--scene frictionmap --target top",
@@ -406,9 +416,10 @@ TEST(FfctlCli, VerifyFailsAnotherSceneWhenTheFingerNeverLifts) {
 
 TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
   UdpDevice device(strokes);
-  const std::string out = ::testing::TempDir() + "monitor.out";
-  // The finger comes and goes every 0.8 s: over 2 s, at least two changes.
-  const int status = run_then_signal(device, {"monitor", "--interval", "0.05"}, 2000, SIGINT, out);
+  const std::string out = support::scratch_path("monitor.out");
+  // The finger comes and goes every 0.8 s: stopped after the first line and two changes.
+  const auto two_changes = [&] { return lines_in(out) >= 3; };
+  const int status = run_then_signal(device, {"monitor", "--interval", "0.05"}, two_changes, SIGINT, out);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
   const std::string text = slurp(out);
@@ -422,8 +433,9 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
 
 TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
   UdpDevice device(strokes);
-  const std::string path = ::testing::TempDir() + "udp_ctrl_c.csv";
-  const int status = run_then_signal(device, {"record", "-o", path}, 1500, SIGINT);
+  const std::string path = support::scratch_path("udp_ctrl_c.csv");
+  const auto half_a_second = [&] { return lines_in(ticks_path_for(path)) > 1100; };  // 2 kHz ticks
+  const int status = run_then_signal(device, {"record", "-o", path}, half_a_second, SIGINT);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
   Recording rec;
@@ -436,8 +448,9 @@ TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
 
 TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
   UdpDevice device(strokes);
-  const std::string path = ::testing::TempDir() + "udp_killed.csv";
-  const int status = run_then_signal(device, {"record", "-o", path, "--scene", "heightmap"}, 2500, SIGKILL);
+  const std::string path = support::scratch_path("udp_killed.csv");
+  const auto a_second = [&] { return lines_in(ticks_path_for(path)) > 2100; };  // 2 kHz ticks, as flushed
+  const int status = run_then_signal(device, {"record", "-o", path, "--scene", "heightmap"}, a_second, SIGKILL);
   EXPECT_TRUE(WIFSIGNALED(status));
   // Every line whole, every file readable: about the second before the kill is there.
   for (const std::string& p : {path, ticks_path_for(path), force_path_for(path)}) {
@@ -448,7 +461,7 @@ TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
   Recording rec;
   std::string error;
   ASSERT_TRUE(read_recording(path, rec, error)) << error;
-  EXPECT_GT(rec.ticks.size(), 1000u);  // > 0.5 s of 2 kHz (the kill came ~2 s in)
+  EXPECT_GT(rec.ticks.size(), 1000u);  // > 0.5 s of 2 kHz (the kill came after a second was on disk)
   EXPECT_GT(rec.samples.size(), 10u);
   EXPECT_TRUE(rec.has_condition);  // written when it was set, not at the end
 }

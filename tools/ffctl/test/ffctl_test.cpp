@@ -28,6 +28,7 @@
 #include "hex_record.hpp"
 #include "hid_transport.hpp"
 #include "intel_hex.hpp"
+#include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
 namespace {
@@ -189,7 +190,7 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   ASSERT_TRUE(r.samples.back().taken_known);
   EXPECT_GE(r.samples.back().taken_us, r.ticks.back().t_us);
 
-  const std::string path = ::testing::TempDir() + "ffctl_rec.csv";
+  const std::string path = support::scratch_path("ffctl_rec.csv");
   ASSERT_TRUE(write_recording(path, r, error)) << error;
   Recording back;
   ASSERT_TRUE(read_recording(path, back, error)) << error;
@@ -246,7 +247,7 @@ TEST(Ffctl, ARecordingKeepsItsSensorProfileBesideItAndDropsAStaleOne) {
   r.ticks.push_back({500, 0.0f, 0, false});
   r.has_sensor_profile = true;
   r.sensor_profile = {1.25f, 0.75f, 125.0f, 0.5f, 250.0f, 80.0f, 4500u};
-  const std::string path = ::testing::TempDir() + "ffctl_profile_rec.csv";
+  const std::string path = support::scratch_path("ffctl_profile_rec.csv");
   std::string error;
   ASSERT_TRUE(write_recording(path, r, error)) << error;
   Recording back;
@@ -513,7 +514,7 @@ TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
   r.condition.scene.evaluation = Evaluation::Table;
   r.samples[1].taken_known = true;
   r.samples[1].taken_us = t0 + 16000u;
-  const std::string path = ::testing::TempDir() + "ffctl_scripted.csv";
+  const std::string path = support::scratch_path("ffctl_scripted.csv");
   ASSERT_TRUE(write_recording(path, r, error)) << error;
   Recording back;
   ASSERT_TRUE(read_recording(path, back, error)) << error;
@@ -545,7 +546,7 @@ TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
 }
 
 TEST(Ffctl, ARecordingWithBrokenTicksIsRefusedWithItsLine) {
-  const std::string path = ::testing::TempDir() + "ffctl_broken.csv";
+  const std::string path = support::scratch_path("ffctl_broken.csv");
   std::ofstream(path) << "t_us,x,y,touch\n1000,10,10,1\n";
   std::ofstream(ticks_path_for(path)) << "t_us,amplitude,dac,present\n500,0.5,2048,1\n1000,0.5,5000,1\n";
   Recording r;

@@ -11,6 +11,7 @@
 #include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/protocol/codec.hpp"
 #include "scene_command.hpp"
+#include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
 namespace {
@@ -96,7 +97,7 @@ TEST(SceneCommand, EverythingElseTravelsWholeAsAGeneralScene) {
   expect_same_condition_as_ff_replay(t);
   // A scene file travels whole as what ff-replay builds from the same words,
   // with or without --scene file (src/host decides what --scene-file implies).
-  const std::string path = ::testing::TempDir() + "scene_command_file.scene";
+  const std::string path = support::scratch_path("scene_command_file.scene");
   {
     std::ofstream out(path);
     out << host::format_scene_text(scenes::heightmap(Target::Bottom));
