@@ -139,22 +139,16 @@ FF_TICK_INLINE void Tracker::learn_velocity_noise() {
 }
 
 FF_FASTRUN void Tracker::lose_finger() {
+  // The tick that calls this renders no finger; the next report touches down
+  // again, and restart_at() sets everything else about the finger afresh.
   have_last_ = false;
-  have_velocity_ = false;
-  have_pending_jump_ = false;
-  lifting_ = false;
-  state_.present = false;
-  state_.velocity = {};
-  state_.direction = {};
 }
 
 FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   // No history survives a touch-down or a confirmed jump: no velocity spike.
   copy_sample(last_, s);
   have_last_ = true;
-  have_velocity_ = false;
   raw_velocity_ = {};
-  ticks_since_sample_ = 0;
   have_pending_jump_ = false;
   lifting_ = false;
   stale_reported_ = false;
@@ -167,8 +161,8 @@ FF_FASTRUN void Tracker::restart_at(const SensorSample& s) {
   recent_innovation_variance_ = 0.0f;
   stroke_end_.restart();
   if (predict_stroke_ends_) stroke_end_.add(s.t_us, {s.x, s.y});
-  learn_velocity_noise();
   filters_fresh_ = false;
+  // The fade learns the new filters' noise at the next report; their velocity is 0 till then.
 }
 
 FF_TICK_INLINE bool Tracker::moved_further_than_allowed(const SensorSample& s, const SensorSample& from) const {
@@ -186,7 +180,6 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
     const float inv_dt = 1.0f / static_cast<float>(dt_us);
     raw_velocity_ = {(s.x - last_.x) * inv_dt, (s.y - last_.y) * inv_dt};
   }
-  have_velocity_ = true;
   copy_sample(last_, s);
   ticks_since_sample_ = 0;
   lifting_ = false;
@@ -437,10 +430,8 @@ FF_FASTRUN const TrackState& Tracker::on_tick(uint32_t now_us, bool need_filter)
     SensorSample keep;
     copy_sample(keep, last_);
     const Vec2 v = raw_velocity_;
-    const bool had_v = have_velocity_;
     restart_at(keep);
     raw_velocity_ = v;
-    have_velocity_ = had_v;
   }
 
   Vec2 velocity;

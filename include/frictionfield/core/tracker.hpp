@@ -175,7 +175,6 @@ class Tracker {
   SensorSample last_;
   Vec2 raw_velocity_;            // px/us
   bool have_last_ = false;
-  bool have_velocity_ = false;
   uint32_t ticks_since_sample_ = 0;  // the thesis' idx_extrapol
   // Jump candidate waiting for confirmation.
   SensorSample pending_jump_;
