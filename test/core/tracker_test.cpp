@@ -590,6 +590,36 @@ TEST(Tracker, SingleJumpIsRejectedAConfirmedOneRestarts) {
   EXPECT_NEAR(static_cast<double>(states.back().position.x), 600.0, 1e-3);
 }
 
+TEST(Tracker, ASceneThatNeedsNoMotionFiltersNothing) {
+  // need_filter = false (a scene without motion-dependent rendering): the
+  // reports are kept, no filter runs, no stroke is fitted.
+  Tracker t(TrackerConfig::recommended());
+  for (const SensorSample& s : line(0, {100, 240}, {300, 0}, 100)) {
+    t.on_sample(s, false);
+    for (uint32_t tick = 0; tick < 5000; tick += kTickPeriodUs) {
+      ASSERT_EQ(t.on_tick(s.t_us + tick, false).position.x, s.x);
+    }
+  }
+  EXPECT_EQ(t.stroke_end_predictor().refinements(), 0u);
+  EXPECT_EQ(t.maneuvers(), 0u);
+}
+
+TEST(Tracker, WhenMotionMattersAgainTheFiltersStartFromTheNewestReport) {
+  // A condition that needs motion after one that did not: the first report
+  // arrives without filtering, the tick after it with. The filters start
+  // from that report, not from the last one they saw 100 ms earlier.
+  Tracker t(TrackerConfig::recommended());
+  for (const SensorSample& s : line(0, {100, 240}, {300, 0}, 20)) {
+    t.on_sample(s);
+    for (uint32_t tick = 0; tick < 5000; tick += kTickPeriodUs) t.on_tick(s.t_us + tick);
+  }
+  for (uint32_t now = 100000; now < 200000; now += kTickPeriodUs) t.on_tick(now);  // no reports
+  t.on_sample({200000, 400.0f, 300.0f, true}, false);
+  const TrackState& first = t.on_tick(200000, true);
+  EXPECT_NEAR(static_cast<double>(first.position.x), 400.0, 1e-3);
+  EXPECT_NEAR(static_cast<double>(first.position.y), 300.0, 1e-3);
+}
+
 TEST(Tracker, AMoveExactlyAtTheSpeedLimitIsNoJump) {
   // recommended(): 5000 px/s + 25 px slack; 1 ms later a report may be
   // 5 + 25 = 30 px away. (18, 24) is exactly 30 px: accepted. From there,
