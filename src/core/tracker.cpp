@@ -264,7 +264,6 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   s.t_us = in.t_us - latency_us_;  // when the sensor saw the finger (judged by the stamp below)
   s.x = clamp(in.x, 0.0f, kScreenMaxX);
   s.y = clamp(in.y, 0.0f, kScreenMaxY);
-  s.touch = true;
 
   if (have_tick_) {
     // Judge the stamp by the tick clock (the same micros() on the device): a

@@ -620,6 +620,22 @@ TEST(Tracker, WhenMotionMattersAgainTheFiltersStartFromTheNewestReport) {
   EXPECT_NEAR(static_cast<double>(first.position.y), 300.0, 1e-3);
 }
 
+TEST(Tracker, AGlitchThenAMoveElsewhere) {
+  // A glitch at A, then the finger really is at B: the report at B rejects
+  // A and is the candidate itself, which the next report at B confirms.
+  TrackerRun run(TrackerConfig::recommended());
+  auto s = line(0, {100, 240}, {200, 0}, 20);
+  s.push_back({100000, 700, 50, true});   // A
+  s.push_back({105000, 300, 400, true});  // B
+  const auto at_b = line(110000, {300, 400}, {0, 0}, 10);
+  s.insert(s.end(), at_b.begin(), at_b.end());
+  const auto states = run.replay(s, 0, 400);
+  EXPECT_EQ(run.tracker.faults()[Fault::JumpRejected], 1u);
+  EXPECT_EQ(run.tracker.faults()[Fault::JumpConfirmed], 1u);
+  EXPECT_NEAR(static_cast<double>(states.back().position.x), 300.0, 1e-3);
+  EXPECT_NEAR(static_cast<double>(states.back().position.y), 400.0, 1e-3);
+}
+
 TEST(Tracker, AMoveExactlyAtTheSpeedLimitIsNoJump) {
   // recommended(): 5000 px/s + 25 px slack; 1 ms later a report may be
   // 5 + 25 = 30 px away. (18, 24) is exactly 30 px: accepted. From there,
