@@ -530,7 +530,10 @@ TEST(Tracker, LiftOffAfterTimeout) {
   const auto states = run.replay(s, 0, 400);
   const int lift_tick = static_cast<int>((100000 + c.lift_off_timeout_us) / 500);
   EXPECT_TRUE(states[lift_tick - 1].present);
+  EXPECT_GT(length(states[lift_tick - 1].direction), 0.0f);
   EXPECT_FALSE(states[lift_tick].present);
+  EXPECT_EQ(length(states[lift_tick].velocity), 0.0f);  // no finger: nothing of its motion either
+  EXPECT_EQ(length(states[lift_tick].direction), 0.0f);
 }
 
 TEST(Tracker, AFlickerOfTheTouchIsNoLiftOff) {
@@ -591,17 +594,30 @@ TEST(Tracker, SingleJumpIsRejectedAConfirmedOneRestarts) {
 }
 
 TEST(Tracker, ASceneThatNeedsNoMotionFiltersNothing) {
-  // need_filter = false (a scene without motion-dependent rendering): the
-  // reports are kept, no filter runs, no stroke is fitted.
+  // need_filter = false (a scene without motion-dependent rendering), after a
+  // stroke that did need it: the reports are passed on as they are, with no
+  // velocity or direction, no filter runs and no stroke is fitted.
   Tracker t(TrackerConfig::recommended());
-  for (const SensorSample& s : line(0, {100, 240}, {300, 0}, 100)) {
-    t.on_sample(s, false);
+  const auto reports = line(0, {100, 240}, {300, 0}, 100);
+  uint32_t refinements = 0;
+  for (size_t i = 0; i < reports.size(); ++i) {
+    const SensorSample& s = reports[i];
+    const bool need = i < 30;
+    t.on_sample(s, need);
     for (uint32_t tick = 0; tick < 5000; tick += kTickPeriodUs) {
-      ASSERT_EQ(t.on_tick(s.t_us + tick, false).position.x, s.x);
+      const TrackState& state = t.on_tick(s.t_us + tick, need);
+      if (need) continue;
+      ASSERT_EQ(state.position.x, s.x);
+      ASSERT_EQ(length(state.velocity), 0.0f);
+      ASSERT_EQ(length(state.direction), 0.0f);
+    }
+    if (i == 29) {  // the stroke was filtered and fitted: nothing of that from here on
+      ASSERT_GT(length(t.state().velocity), 0.0f);
+      refinements = t.stroke_end_predictor().refinements();
+      ASSERT_GT(refinements, 0u);
     }
   }
-  EXPECT_EQ(t.stroke_end_predictor().refinements(), 0u);
-  EXPECT_EQ(t.maneuvers(), 0u);
+  EXPECT_EQ(t.stroke_end_predictor().refinements(), refinements);
 }
 
 TEST(Tracker, WhenMotionMattersAgainTheFiltersStartFromTheNewestReport) {
@@ -696,6 +712,20 @@ TEST(Tracker, TickTimeThatDoesNotAdvanceRepeatsTheState) {
   EXPECT_EQ(a.position.x, b.position.x);
   EXPECT_EQ(a.position.x, c.position.x);
   EXPECT_EQ(t.faults()[Fault::BadTickTime], 2u);
+}
+
+TEST(Tracker, TwoOddTicksFarApartAreTwoGlitches) {
+  // An odd tick, good ticks, then another odd tick right after the first
+  // one's time: two glitches, not a clock step that the second confirms.
+  Tracker t;
+  for (const SensorSample& s : line(0, {100, 100}, {100, 0}, 10)) t.on_sample(s);
+  uint32_t now = 40000;
+  t.on_tick(now);
+  t.on_tick(now + 1000000);  // one tick 1 s ahead
+  for (int k = 0; k < 20; ++k) t.on_tick(now += kTickPeriodUs);
+  EXPECT_TRUE(t.on_tick(1040000 + kTickPeriodUs).present);  // 0.5 ms after the first odd one
+  EXPECT_EQ(t.faults()[Fault::BadTickTime], 2u);
+  EXPECT_EQ(t.faults()[Fault::TimeBaseReset], 0u);
 }
 
 TEST(Tracker, ReportFromTheFutureIsDropped) {
