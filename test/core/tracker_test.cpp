@@ -652,6 +652,23 @@ TEST(Tracker, AGlitchThenAMoveElsewhere) {
   EXPECT_NEAR(static_cast<double>(states.back().position.y), 400.0, 1e-3);
 }
 
+TEST(Tracker, TicksThatNeedNoMotionLeaveNoStaleFilterBehind) {
+  // The thesis filters at the tick: while the ticks need no motion, its
+  // 1-euro filters stand still though the reports move on; when motion
+  // matters again they start from the newest report, not 30 px behind it.
+  Tracker t(TrackerConfig::thesis());
+  const auto reports = line(0, {100, 240}, {300, 0}, 40);
+  for (size_t i = 0; i < reports.size(); ++i) {
+    t.on_sample(reports[i]);
+    const bool need = i < 20;
+    for (uint32_t tick = 0; tick < 5000 && (need || i + 1 < reports.size()); tick += kTickPeriodUs) {
+      t.on_tick(reports[i].t_us + tick, need);
+    }
+  }
+  const TrackState& first = t.on_tick(reports.back().t_us, true);
+  EXPECT_NEAR(static_cast<double>(first.position.x), static_cast<double>(reports.back().x), 1e-3);
+}
+
 TEST(Tracker, AMoveExactlyAtTheSpeedLimitIsNoJump) {
   // recommended(): 5000 px/s + 25 px slack; 1 ms later a report may be
   // 5 + 25 = 30 px away. (18, 24) is exactly 30 px: accepted. From there,
