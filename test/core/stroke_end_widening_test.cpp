@@ -181,8 +181,8 @@ TEST(StrokeEndWidening, ABurstOfReportsRefinesOncePerTick) {
 }
 
 TEST(StrokeEndWidening, TheCountsStartAgainWithEachConfiguration) {
-  // maneuvers() and stroke_ends() count since configure(): a new condition
-  // starts them at 0, whatever the strokes before it did.
+  // maneuvers(), stroke_ends() and the fit's refinements count since
+  // configure(): a new condition starts them at 0, whatever came before.
   Tracker tracker(TrackerConfig::recommended());
   support::Random rng(6);
   auto feed = [&](uint32_t k, SensorSample s) {  // a report and the ticks up to the next one
@@ -197,9 +197,11 @@ TEST(StrokeEndWidening, TheCountsStartAgainWithEachConfiguration) {
   }
   ASSERT_GT(tracker.maneuvers(), 0u);
   ASSERT_GT(tracker.stroke_ends(), 0u);
+  ASSERT_GT(tracker.stroke_end_predictor().refinements(), 0u);
   tracker.configure(TrackerConfig::recommended());
   EXPECT_EQ(tracker.maneuvers(), 0u);
   EXPECT_EQ(tracker.stroke_ends(), 0u);
+  EXPECT_EQ(tracker.stroke_end_predictor().refinements(), 0u);
 }
 
 }  // namespace
