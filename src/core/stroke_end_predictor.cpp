@@ -30,12 +30,10 @@ void StrokeEndPredictor::configure(const StrokeEndConfig& config) {
   restart();
 }
 
-void StrokeEndPredictor::restart() {
+void StrokeEndPredictor::restart() {  // the next report begins a stroke (begin_stroke_at)
   quiet_known_ = false;
-  count_ = 0;
   started_ = false;
   moving_ = false;
-  newest_kept_ = false;
 }
 
 namespace {
