@@ -62,8 +62,7 @@ FF_FASTRUN void StrokeEndPredictor::begin_stroke_at(const Point& newest) {
   points_[0] = newest;
   reorigin_at_first();
   newest_ = points_[0];
-  newest_kept_ = true;
-  moving_ = false;
+  moving_ = false;  // so the next report, whatever it is, says whether it is kept
   quiet_known_ = false;
   spacing_us_ = kSpacingUs;
 }
@@ -87,9 +86,8 @@ FF_FASTRUN void StrokeEndPredictor::keep_moving(const Point& p) {
 }
 
 FF_FASTRUN void StrokeEndPredictor::add(uint32_t t_us, Vec2 p) {
-  if (!started_) {
+  if (!started_) {  // any origin will do: begin_stroke_at() moves it to this report
     started_ = true;
-    origin_ = whole(p);
     begin_stroke_at({0.0f, p.x - origin_.x, p.y - origin_.y, t_us});
     return;
   }
