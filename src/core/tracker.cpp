@@ -37,7 +37,8 @@ const char* to_string(Estimator e) {
 
 TrackerConfig TrackerConfig::thesis() {
   TrackerConfig c;
-  c.estimator = Estimator::ThesisTicks;  // 1-euro, no fade (v_hat = dxhat / |dxhat|), stamps as given
+  c.estimator = Estimator::ThesisTicks;  // 1-euro, no fade (v_hat = dxhat / |dxhat|)
+  c.compensate_latency = false;           // stamps as given, whatever sensor it is told
   c.max_extrapolation_us = std::numeric_limits<uint32_t>::max();  // the thesis never stops counting
   c.max_speed_px_s = std::numeric_limits<float>::infinity();       // no jump rejection
   return c;

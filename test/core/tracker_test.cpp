@@ -98,6 +98,21 @@ TEST(Tracker, ThesisMatchesTheReferenceThroughAGapAndAJump) {
   EXPECT_EQ(run.tracker.faults()[Fault::JumpRejected], 0u);
 }
 
+TEST(Tracker, TheThesisIgnoresTheSensorItIsTold) {
+  // The benchmark tells every tracker the sensor; the thesis pipeline takes
+  // the stamps as given. A 3 ms latency would date the reports earlier and
+  // end the finger 3 ms sooner after the sensor falls silent.
+  TrackerConfig told = TrackerConfig::thesis();
+  told.sensor.latency_us = 3000;
+  TrackerRun plain(TrackerConfig::thesis()), with_sensor(told);
+  const auto samples = line(0, {100, 240}, {200, 50}, 40);  // then silent for 300 ms
+  const auto a = plain.replay(samples, 0, 1000), b = with_sensor.replay(samples, 0, 1000);
+  for (size_t k = 0; k < a.size(); ++k) {
+    ASSERT_EQ(a[k].present, b[k].present) << "tick " << k;
+    ASSERT_EQ(a[k].position.x, b[k].position.x) << "tick " << k;
+  }
+}
+
 TEST(Tracker, TheOneEuroFiltersRunAtTheTickWhateverTheirConfigSays) {
   // The 1-euro filters see one value per tick, so their rate is the tick's:
   // a configuration written for another rate must not change the output.
