@@ -310,6 +310,31 @@ TEST(StrokeEndPredictorCore, RestartedOrConfiguredItIsANewPredictor) {
   }
 }
 
+TEST(StrokeEndPredictorCore, TheQuietSpanIsAtMostTheStrokesSecondHalf) {
+  // Quiet from travel / T * 30 (1 - tau)^2 = q: tau = 1 - sqrt(q T / (30 D)).
+  // A stroke of 40 px in 0.5 s with a quiet speed of 1000 px/s would be
+  // quiet from tau = 1 - sqrt(500 / 1200) = 0.35: the fade begins at the
+  // middle at the earliest, however high the quiet speed.
+  StrokeEndConfig c;
+  c.quiet_speed_px_s = 1000.0f;
+  StrokeEndPredictor p(c);
+  const Path slow{{Stroke{0.2, 0.5, 200.0, 200.0, 40.0, 0.0}}};
+  support::Random rng(23);
+  int fits = 0;
+  for (uint32_t k = 0; k * 0.005 < 1.5; ++k) {
+    const double t = k * 0.005;
+    const Stroke& s = slow.at(t);
+    p.add(kOriginUs + k * 5000u, {static_cast<float>(s.x(t) + 0.1 * rng.gaussian()), static_cast<float>(s.y(t))});
+    if (!(p.refine_due() && !p.refine() && p.moving())) continue;
+    const float mid_s = 0.5f * (p.fitted_start_s() + p.fitted_end_s());
+    if (p.fitted_end_s() - p.fitted_start_s() < 0.25f) continue;
+    ++fits;
+    const uint32_t mid_us = p.origin_us() + static_cast<uint32_t>(mid_s * 1e6f);
+    ASSERT_EQ(p.stopping_gain(mid_us - 1000u), 1.0f) << "at " << t << " s";
+  }
+  EXPECT_GT(fits, 20);
+}
+
 TEST(StrokeEndPredictorCore, TwoRunsDifferingInOneReportAgreeAfterTheNextRest) {
   // Three strokes with rests of 150 ms; one run loses a report in the first.
   const Path p{{kOut, Stroke{0.75, 0.35, 340.0, -20.0, -120.0, 90.0}, Stroke{1.25, 0.5, 220.0, 70.0, 60.0, 200.0}}};
