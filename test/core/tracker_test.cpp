@@ -51,6 +51,27 @@ std::vector<SensorSample> line(uint32_t t0, Vec2 p0, Vec2 v_px_s, int n, uint32_
   return s;
 }
 
+// The largest distance (px) between the thesis tracker and thesis alg. 3/4
+// written in double, independently of the core (y extrapolated from y), over
+// `ticks` ticks from t0; `faults` gets the tracker's.
+double worst_gap_to_thesis_reference(const std::vector<SensorSample>& s, uint32_t t0, int ticks,
+                                     FaultCounters* faults = nullptr) {
+  TrackerRun run(TrackerConfig::thesis());
+  const std::vector<TrackState> got = run.replay(s, t0, ticks);
+  reference::ReferenceThesisTracker ref;
+  size_t next = 0;
+  double worst = 0;
+  for (int k = 0; k < ticks; ++k) {
+    const uint32_t now = t0 + static_cast<uint32_t>(k) * kTickPeriodUs;
+    while (next < s.size() && s[next].t_us <= now) ref.on_sample(s[next++]);
+    reference::DVec p, direction;
+    ref.on_tick(p, direction);
+    worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - p.x, static_cast<double>(got[k].position.y) - p.y));
+  }
+  if (faults) *faults = run.tracker.faults();
+  return worst;
+}
+
 TEST(Tracker, ThesisPipelineMatchesIndependentReference) {
   std::vector<SensorSample> s;
   for (int i = 0; i < 300; ++i) {
@@ -58,20 +79,7 @@ TEST(Tracker, ThesisPipelineMatchesIndependentReference) {
     s.push_back({1000u + static_cast<uint32_t>(i) * 5000u, 400.0f + 250.0f * std::sin(3.0f * t),
                  240.0f + 150.0f * std::sin(2.0f * t), true});
   }
-  TrackerRun run(TrackerConfig::thesis());
-  const std::vector<TrackState> got = run.replay(s, 1000, 2990);
-  // Thesis alg. 3/4 with y extrapolated from y, in double, independent of the core.
-  reference::ReferenceThesisTracker ref;
-  size_t next = 0;
-  double worst = 0;
-  for (int k = 0; k < 2990; ++k) {
-    const uint32_t now = 1000u + static_cast<uint32_t>(k) * 500u;
-    while (next < s.size() && s[next].t_us <= now) ref.on_sample(s[next++]);
-    reference::DVec p, direction;
-    ref.on_tick(p, direction);
-    worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - p.x, static_cast<double>(got[k].position.y) - p.y));
-  }
-  EXPECT_LT(worst, 0.01) << "px";
+  EXPECT_LT(worst_gap_to_thesis_reference(s, 1000, 2990), 0.01) << "px";
 }
 
 TEST(Tracker, ThesisMatchesTheReferenceThroughAGapAndAJump) {
@@ -81,21 +89,11 @@ TEST(Tracker, ThesisMatchesTheReferenceThroughAGapAndAJump) {
   std::vector<SensorSample> s = line(1000, {200, 240}, {300, -100}, 40);
   const uint32_t resume = s.back().t_us + 60000u;
   for (const SensorSample& r : line(resume, {s.back().x + 400.0f, s.back().y}, {300, -100}, 40)) s.push_back(r);
-  TrackerRun run(TrackerConfig::thesis());
-  const int ticks = static_cast<int>((s.back().t_us - 1000u) / kTickPeriodUs);
-  const std::vector<TrackState> got = run.replay(s, 1000, ticks);
-  reference::ReferenceThesisTracker ref;
-  size_t next = 0;
-  double worst = 0;
-  for (int k = 0; k < ticks; ++k) {
-    const uint32_t now = 1000u + static_cast<uint32_t>(k) * kTickPeriodUs;
-    while (next < s.size() && s[next].t_us <= now) ref.on_sample(s[next++]);
-    reference::DVec p, direction;
-    ref.on_tick(p, direction);
-    worst = std::fmax(worst, std::hypot(static_cast<double>(got[k].position.x) - p.x, static_cast<double>(got[k].position.y) - p.y));
-  }
-  EXPECT_LT(worst, 0.01) << "px";
-  EXPECT_EQ(run.tracker.faults()[Fault::JumpRejected], 0u);
+  FaultCounters faults;
+  EXPECT_LT(worst_gap_to_thesis_reference(s, 1000, static_cast<int>((s.back().t_us - 1000u) / kTickPeriodUs), &faults),
+            0.01)
+      << "px";
+  EXPECT_EQ(faults[Fault::JumpRejected], 0u);
 }
 
 TEST(Tracker, TheThesisIgnoresTheSensorItIsTold) {
