@@ -7,14 +7,7 @@ namespace ff {
 HapticPipeline::HapticPipeline(const TrackerConfig& tracker) : HapticPipeline(tracker, fade_noise(tracker)) {}
 
 HapticPipeline::HapticPipeline(const TrackerConfig& tracker, const FadeNoise& fade)
-    : tracker_(tracker, fade), tracker_slots_{{tracker, fade}, {tracker, fade}} {
-  // Boot: neutral scene, plate resting until a finger and a condition arrive.
-  Condition boot;
-  slots_[0].plan.prepare(boot.scene, slots_[0].table, sizeof(slots_[0].table));
-  slots_[0].map.configure(boot.amplitude);
-  slots_[0].constant_amplitude = slots_[0].map.scale(0.5f);
-  slots_[0].constant_code = slots_[0].map.dac_code(slots_[0].constant_amplitude);
-}
+    : tracker_(tracker, fade), tracker_slots_{{tracker, fade}, {tracker, fade}} {}
 
 PrepareStatus HapticPipeline::set_condition(const Condition& condition) {
   const uint8_t next = static_cast<uint8_t>(active_.load(std::memory_order_acquire) ^ 1u);
@@ -76,7 +69,6 @@ FF_FASTRUN TickOutput HapticPipeline::tick(uint32_t now_us) {
   const TrackState& track = tracker_.on_tick(now_us, track_motion);
 
   TickOutput out;
-  out.t_us = now_us;
   out.present = track.present;
   out.position = track.position;
   if (!track.present) {

@@ -40,6 +40,22 @@ TEST(HapticPipeline, BootsIdleWithThePlateResting) {
   EXPECT_EQ(t.dac, 0);
 }
 
+// Before any condition a default slot is the boot condition, prepared by
+// nothing: the neutral scene at full strength, A = 0.5, code
+// round(0.5 * 4095) = 2048, no tracking; the plate rests without a finger.
+TEST(HapticPipeline, BeforeAnyConditionAFingerFeelsTheNeutralScene) {
+  auto p = std::make_unique<HapticPipeline>();
+  EXPECT_EQ(p->plan().needs(), Needs::Nothing);
+  std::vector<TickOutput> out;
+  stroke(*p, 0, 100, &out);
+  ASSERT_TRUE(out.back().present);
+  EXPECT_EQ(out.back().amplitude, 0.5f);
+  EXPECT_EQ(out.back().dac, 2048);
+  EXPECT_EQ(out.back().direction.x, 0.0f);
+  EXPECT_EQ(out.back().direction.y, 0.0f);
+  EXPECT_EQ(p->amplitude_map().idle_code(), 0);
+}
+
 TEST(HapticPipeline, OutputObeysTheSpecIdentity) {
   // amplitude = 0.5 - s (vx, vy) . G_norm and dac = calibration(amplitude).
   auto p = std::make_unique<HapticPipeline>();
@@ -254,7 +270,7 @@ TEST(HapticPipeline, WithoutAReportAtTheChangeTheFingerIsFoundAgainAtTheNext) {
   std::vector<TickOutput> out;
   stroke(*p, 100 * kTickPeriodUs + kTickPeriodUs, 9, &out);
   for (const TickOutput& t : out) {
-    EXPECT_FALSE(t.present) << t.t_us;
+    EXPECT_FALSE(t.present) << &t - out.data();
     EXPECT_EQ(t.dac, 0);  // the plate rests
   }
   stroke(*p, 110 * kTickPeriodUs, 1, &out);  // 55 ms: the next report
@@ -313,7 +329,7 @@ TEST(HapticPipeline, AnInvalidSensorProfileIsRefusedCountedAndChangesNothing) {
   std::vector<TickOutput> out;
   stroke(*p, 100 * kTickPeriodUs, 20, &out);
   EXPECT_EQ(p->tracker().config().sensor, measured());
-  for (const TickOutput& t : out) EXPECT_TRUE(t.present) << t.t_us;  // never reset: the finger stays
+  for (const TickOutput& t : out) EXPECT_TRUE(t.present) << &t - out.data();  // never reset: the finger stays
   EXPECT_EQ(p->faults()[Fault::TouchDown], 1u);
 
   // The edges themselves are in range.

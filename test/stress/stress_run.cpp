@@ -37,8 +37,8 @@ InvariantChecker::InvariantChecker(const RunConfig& config, double rendering_bou
 void InvariantChecker::fail(const Tick& t, const std::string& what) {
   if (violations++ == 0) {
     char head[160];
-    std::snprintf(head, sizeof head, "tick at %llu us (now %u, present %d, pos %.9g,%.9g, dir %.9g,%.9g, A %.9g, dac %u): ",
-                  static_cast<unsigned long long>(t.at), t.out.t_us, t.out.present ? 1 : 0,
+    std::snprintf(head, sizeof head, "tick at %llu us (present %d, pos %.9g,%.9g, dir %.9g,%.9g, A %.9g, dac %u): ",
+                  static_cast<unsigned long long>(t.at), t.out.present ? 1 : 0,
                   static_cast<double>(t.out.position.x), static_cast<double>(t.out.position.y),
                   static_cast<double>(t.out.direction.x), static_cast<double>(t.out.direction.y),
                   static_cast<double>(t.out.amplitude), static_cast<unsigned>(t.out.dac));
@@ -156,7 +156,7 @@ std::string bitwise_difference(const std::vector<Tick>& a, const std::vector<Tic
   for (size_t i = 0; i < a.size(); ++i) {
     const TickOutput& x = a[i].out;
     const TickOutput& y = b[i].out;
-    if ((!ignore_time && x.t_us != y.t_us) || x.present != y.present || x.dac != y.dac || bits(x.amplitude) != bits(y.amplitude) ||
+    if ((!ignore_time && a[i].at != b[i].at) || x.present != y.present || x.dac != y.dac || bits(x.amplitude) != bits(y.amplitude) ||
         bits(x.position.x) != bits(y.position.x) || bits(x.position.y) != bits(y.position.y) ||
         bits(x.direction.x) != bits(y.direction.x) || bits(x.direction.y) != bits(y.direction.y)) {
       return "tick " + std::to_string(i) + " differs";

@@ -24,7 +24,6 @@
 namespace ff {
 
 struct TickOutput {
-  uint32_t t_us = 0;
   bool present = false;   // a finger was tracked at this tick
   Vec2 position;          // filtered (or last sample's if the scene needs none)
   Vec2 direction;         // what the scene was rendered with (0,0 if unused)
@@ -71,6 +70,8 @@ class HapticPipeline {
 
  private:
   HapticPipeline(const TrackerConfig& tracker, const FadeNoise& fade);  // the fade derived once
+  // A default Slot is the boot condition, Condition{} prepared: the neutral
+  // scene at full strength, the plate resting until a finger arrives.
   struct Slot {
     ScenePlan plan;
     AmplitudeMap map;
