@@ -22,8 +22,9 @@ bool DacCalibration::valid() const {
   if (count < 2 || count > kMaxCalibrationPoints) return false;
   if (amplitude[0] != 0.0f || amplitude[count - 1] != 1.0f) return false;
   const bool increasing = code[1] > code[0];
+  // No test of finiteness of its own: NaN fails every ordered comparison
+  // below, and an infinity lies outside 0..4095 or above the last amplitude, 1.
   for (int i = 0; i < count; ++i) {
-    if (!std::isfinite(amplitude[i]) || !std::isfinite(code[i])) return false;
     if (code[i] < 0.0f || code[i] > static_cast<float>(kDacMax)) return false;
     if (i == 0) continue;
     if (!(amplitude[i] > amplitude[i - 1])) return false;

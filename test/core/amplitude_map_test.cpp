@@ -79,6 +79,54 @@ TEST(DacCalibration, PiecewiseLinearAndValidated) {
   EXPECT_FALSE(DacCalibration::from_points(no_end, c, 3, cal));
 }
 
+TEST(DacCalibration, CodesOutsideTheDacAreRefusedEvenInOrder) {
+  const float a[] = {0.0f, 0.5f, 1.0f};
+  const float above[] = {100.0f, 1000.0f, 4096.0f};  // the DAC's codes are 0..4095
+  const float below[] = {-1.0f, 1000.0f, 4000.0f};
+  const float inf[] = {100.0f, 1000.0f, INFINITY};
+  const float nan[] = {NAN, 1000.0f, 4000.0f};
+  const float nan_decreasing[] = {4000.0f, 1000.0f, NAN};
+  for (const float* codes : {above, below, inf, nan, nan_decreasing}) {
+    DacCalibration cal;
+    EXPECT_FALSE(DacCalibration::from_points(a, codes, 3, cal)) << codes[0] << " " << codes[2];
+  }
+  const float edges[] = {0.0f, 1000.0f, 4095.0f};
+  DacCalibration cal;
+  EXPECT_TRUE(DacCalibration::from_points(a, edges, 3, cal));
+}
+
+TEST(DacCalibration, AmplitudesMustRiseStrictly) {
+  const float c[] = {0.0f, 1000.0f, 2000.0f, 4095.0f};
+  const float back[] = {0.0f, 0.6f, 0.4f, 1.0f};
+  const float flat[] = {0.0f, 0.5f, 0.5f, 1.0f};  // a step: code_for would divide by zero
+  const float nan[] = {0.0f, NAN, 0.5f, 1.0f};
+  const float inf[] = {0.0f, INFINITY, 0.5f, 1.0f};
+  for (const float* a : {back, flat, nan, inf}) {
+    DacCalibration cal;
+    EXPECT_FALSE(DacCalibration::from_points(a, c, 4, cal)) << a[1] << " " << a[2];
+  }
+  const float rising[] = {0.0f, 0.4f, 0.6f, 1.0f};
+  DacCalibration cal;
+  EXPECT_TRUE(DacCalibration::from_points(rising, c, 4, cal));
+}
+
+// valid() reads the first and the count-th point: a count outside 2..16 is
+// refused before anything is read (the sanitizer build checks the bounds).
+TEST(DacCalibration, ACountOutsideTheTableIsInvalid) {
+  for (const int count : {0, 1, kMaxCalibrationPoints + 1, 255}) {
+    DacCalibration cal;
+    cal.count = static_cast<uint8_t>(count);
+    EXPECT_FALSE(cal.valid()) << count;
+  }
+  DacCalibration full;
+  full.count = kMaxCalibrationPoints;
+  for (int i = 0; i < kMaxCalibrationPoints; ++i) {
+    full.amplitude[i] = static_cast<float>(i) / (kMaxCalibrationPoints - 1);
+    full.code[i] = 273.0f * static_cast<float>(i);  // 0 .. 4095
+  }
+  EXPECT_TRUE(full.valid());
+}
+
 TEST(AmplitudeMap, SCurveIsMonotonicAndKeepsEndpointsAndCentre) {
   AmplitudeMap m;
   AmplitudeSettings a;
@@ -115,6 +163,21 @@ TEST(AmplitudeMap, SCurveValuesByHand) {
   a.strength = 1.0f;
   ASSERT_TRUE(m.configure(a));
   EXPECT_FLOAT_EQ(m.scale(0.25f), 0.25f);
+}
+
+TEST(AmplitudeMap, ABadSCurveIsRepairedAndReported) {
+  AmplitudeMap m;
+  AmplitudeSettings a;
+  a.s_curve = 2.0f;  // clamped to the full curve: S5(1/4) = 0.103515625, as by hand above
+  EXPECT_FALSE(m.configure(a));
+  EXPECT_EQ(m.settings().s_curve, 1.0f);
+  EXPECT_FLOAT_EQ(m.scale(0.25f), 0.103515625f);
+  for (float c : {-0.5f, NAN, -INFINITY}) {  // no curve
+    a.s_curve = c;
+    EXPECT_FALSE(m.configure(a)) << c;
+    EXPECT_EQ(m.settings().s_curve, 0.0f) << c;
+    EXPECT_FLOAT_EQ(m.scale(0.25f), 0.25f) << c;
+  }
 }
 
 TEST(AmplitudeMap, IdleCodeFollowsTheCalibration) {
