@@ -92,5 +92,15 @@ TEST(TickMath, NearestIntegerRoundsHalfAwayFromZero) {
   EXPECT_EQ(nearest_integer(16777216.0f), 16777216.0f);  // already an integer
 }
 
+// Beyond 2^23 every float is whole, and beyond 2^31 no int32 holds it: such
+// values, infinities and NaN come back as they are, never through an int.
+TEST(TickMath, NearestIntegerLeavesWholeAndNonFiniteValuesAlone) {
+  EXPECT_EQ(nearest_integer(3e9f), 3e9f);
+  EXPECT_EQ(nearest_integer(-1e30f), -1e30f);
+  EXPECT_EQ(nearest_integer(INFINITY), INFINITY);
+  EXPECT_EQ(nearest_integer(-INFINITY), -INFINITY);
+  EXPECT_TRUE(std::isnan(nearest_integer(NAN)));
+}
+
 }  // namespace
 }  // namespace ff
