@@ -214,16 +214,21 @@ Case make_nonfinite(Rng& rng) {
   return c;
 }
 
+// The report, touching, with the value as its x, its y or both (drawn).
+Report touching_at(Rng& rng, Report r, float value) {
+  const int which = rng.integer(0, 2);
+  if (which != 1) r.s.x = value;
+  if (which != 0) r.s.y = value;
+  r.s.touch = true;
+  return r;
+}
+
 Case make_subnormal(Rng& rng) {
   Episode e;
   Case c = episode_case(rng, rng.uniform(0.02, 0.3), e);
   corrupt(c, rng, e.w0, e.w1, 0.3, 0.1, [](Rng& g, Report r) {
     const float tiny = pick_float(g, {1e-40f, -1e-40f, FLT_TRUE_MIN, -FLT_TRUE_MIN, -0.0f, FLT_MIN, 1e-30f});
-    const int which = g.integer(0, 2);
-    if (which != 1) r.s.x = tiny;
-    if (which != 0) r.s.y = tiny;
-    r.s.touch = true;
-    return r;
+    return touching_at(g, r, tiny);
   });
   return c;
 }
@@ -233,11 +238,7 @@ Case make_huge(Rng& rng) {
   Case c = episode_case(rng, rng.uniform(0.05, 1.0), e);
   corrupt(c, rng, e.w0, e.w1, 0.5, 0.3, [](Rng& g, Report r) {
     const float big = pick_float(g, {1e6f, -1e6f, 1e30f, -1e30f, FLT_MAX, -FLT_MAX, 65535.0f, -841.0f});
-    const int which = g.integer(0, 2);
-    if (which != 1) r.s.x = big;
-    if (which != 0) r.s.y = big;
-    r.s.touch = true;
-    return r;
+    return touching_at(g, r, big);
   });
   return c;
 }
