@@ -136,8 +136,7 @@ FF_FASTRUN float element_profile(const FieldElement& e, Vec2 p) {
 }
 
 FieldElement FieldElement::point_sink(Vec2 centre, float weight) {
-  FieldElement e;
-  e.kind = ElementKind::PointSink;
+  FieldElement e;  // PointSink is the default kind
   e.weight = weight;
   e.point.centre = centre;
   return e;

@@ -40,8 +40,7 @@ FF_FASTRUN CurvePoint PathCurve::at(float x) const {
 }
 
 PathCurve PathCurve::cubic(float rise, float x0, float y0, float length) {
-  PathCurve c;
-  c.kind = CurveKind::Cubic;
+  PathCurve c;  // Cubic is the default kind
   c.rise = rise;
   c.x0 = x0;
   c.y0 = y0;

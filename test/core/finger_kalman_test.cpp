@@ -239,6 +239,14 @@ TEST(TremorModel, NoTremorNoState) {
   sensor.tremor_px = 1.0f;
   EXPECT_EQ(ReportNoise::of(sensor).tremor.variance, 0.0f);  // the position filter's: none
   EXPECT_FLOAT_EQ(ReportNoise::with_tremor(sensor).tremor.variance, 0.5f);  // a sinusoid of peak 1
+  // A size no validation let through is no tremor either, never a tremor
+  // of size squared (-1 px) or NaN, nor a floor under the white noise.
+  for (float bad : {-1.0f, NAN, -INFINITY}) {
+    sensor.tremor_px = bad;
+    const ReportNoise n = ReportNoise::with_tremor(sensor);
+    EXPECT_EQ(n.tremor.variance, 0.0f) << bad;
+    EXPECT_EQ(n.white_variance, ReportNoise::of(sensor).white_variance) << bad;
+  }
 }
 
 }  // namespace

@@ -55,6 +55,40 @@ TEST(GridTable, OutsideAndNaNPositionsStayInsideTheGrid) {
   EXPECT_FLOAT_EQ(t.sample({INFINITY, -INFINITY}, 0), 800.0f);
 }
 
+// The corner node is read from the last cell (fraction 1), not as the first
+// node of a cell past the table: what lies beyond the table (NaN here) is
+// never read, even times a fraction of 0.
+TEST(GridTable, TheCornerIsReadInsideTheTable) {
+  std::vector<float> mem(51 * 31 + 64, NAN);
+  GridTable t;
+  ASSERT_TRUE(t.init(mem.data(), 51 * 31 * 4, 51, 31, 16.0f, 1, TableStorage::Float32));
+  t.fill([](Vec2 p, float* out) { out[0] = p.x + 1000.0f * p.y; });
+  EXPECT_EQ(t.sample({800.0f, 480.0f}, 0), 480800.0f);
+  EXPECT_EQ(t.sample({800.0f, 240.0f}, 0), 240800.0f);
+  std::vector<float> pairs(51 * 31 * 2 + 64, NAN);
+  ASSERT_TRUE(t.init(pairs.data(), 51 * 31 * 2 * 4, 51, 31, 16.0f, 2, TableStorage::Float32));
+  t.fill([](Vec2 p, float* out) {
+    out[0] = p.x;
+    out[1] = p.y;
+  });
+  EXPECT_EQ(t.sample2({800.0f, 480.0f}).x, 800.0f);
+  EXPECT_EQ(t.sample2({800.0f, 480.0f}).y, 480.0f);
+}
+
+// init() starts a table afresh: nodes 0 whatever the memory held, and no
+// int16 scale left over from an earlier table.
+TEST(GridTable, InitClearsTheNodesAndTheScale) {
+  std::vector<float> mem(51 * 31, NAN);
+  GridTable t;
+  ASSERT_TRUE(t.init(mem.data(), mem.size() * 4, 51, 31, 16.0f, 1, TableStorage::Int16));
+  t.fill([](Vec2, float* out) { out[0] = 50.0f; });  // scale 50 / 32767 per step
+  ASSERT_TRUE(t.init(mem.data(), mem.size() * 4, 51, 31, 16.0f, 1, TableStorage::Float32));
+  EXPECT_EQ(t.sample({123.0f, 45.0f}, 0), 0.0f);
+  t.set(7, 2, 0, 3.0f);
+  EXPECT_EQ(t.node(7, 2, 0), 3.0f);
+  EXPECT_EQ(t.sample({112.0f, 32.0f}, 0), 3.0f);
+}
+
 TEST(GridTable, RefusesMemoryThatDoesNotFit) {
   std::vector<float> mem(10);
   GridTable t;

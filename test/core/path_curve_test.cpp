@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <new>
+
 #include "support/reference/reference_scene.hpp"
 
 namespace ff {
@@ -46,6 +49,32 @@ TEST(PathCurve, PolylineInterpolatesAndRejectsBadPoints) {
   EXPECT_EQ(PathCurve::polyline(backwards, 2).count, 0);
   const Vec2 nan_point[] = {{100, 240}, {200, NAN}};
   EXPECT_EQ(PathCurve::polyline(nan_point, 2).count, 0);
+}
+
+// Fewer than two points or more than the table holds: an empty polyline,
+// which is flat at y = 0 everywhere (the sanitizer build checks it reads no
+// point it does not have).
+TEST(PathCurve, APolylineOfTooFewOrTooManyPointsIsEmptyAndFlat) {
+  Vec2 pts[kMaxPolylinePoints + 1];
+  for (int i = 0; i <= kMaxPolylinePoints; ++i) pts[i] = {10.0f * static_cast<float>(i + 1), 240.0f};
+  for (const PathCurve& c : {PathCurve::polyline(pts, 1), PathCurve::polyline(pts, 0), PathCurve::polyline(nullptr, 3),
+                             PathCurve::polyline(pts, kMaxPolylinePoints + 1)}) {
+    EXPECT_EQ(c.kind, CurveKind::Polyline);
+    EXPECT_EQ(c.count, 0);
+    for (float x : {-5.0f, 0.0f, 5.0f, 100.0f, 799.0f}) {
+      EXPECT_EQ(c.at(x).y, 0.0f) << x;
+      EXPECT_EQ(c.at(x).slope, 0.0f) << x;
+    }
+  }
+  EXPECT_EQ(PathCurve::polyline(pts, kMaxPolylinePoints).count, kMaxPolylinePoints);
+  // Built in memory that held anything (a reused scene slot): still flat at 0,
+  // so nothing outside the points it has was read.
+  alignas(PathCurve) unsigned char raw[sizeof(PathCurve)];
+  std::memset(raw, 0xFF, sizeof raw);
+  PathCurve* empty = new (raw) PathCurve;
+  empty->kind = CurveKind::Polyline;
+  EXPECT_EQ(empty->at(100.0f).y, 0.0f);
+  EXPECT_EQ(empty->at(100.0f).slope, 0.0f);
 }
 
 TEST(PathCurve, SineHasItsSlope) {
