@@ -80,6 +80,69 @@ TEST(ScenePlan, RefusesBadScenesAndKeepsTheOldOne) {
   EXPECT_FLOAT_EQ(plan.amplitude({400, 240}, {}), 1.0f);
 }
 
+// The protocol carries a polyline's count as a byte: a path of fewer than
+// two points, or of more than the curve holds, is refused, not rendered.
+TEST(ScenePlan, RefusesAPathOfTooFewOrTooManyPoints) {
+  const Vec2 pts[] = {{100, 240}, {400, 100}, {700, 40}};
+  SceneDefinition s;
+  s.rendering = Rendering::Directional;
+  ASSERT_TRUE(s.add(FieldElement::path_sink(PathCurve::polyline(pts, 3), 20.0f)));
+  ScenePlan plan;
+  ASSERT_EQ(plan.prepare(s, nullptr, 0), PrepareStatus::Ok);
+  for (int count : {0, 1, kMaxPolylinePoints + 1, 255}) {
+    s.elements[0].valley.curve.count = static_cast<uint8_t>(count);
+    EXPECT_EQ(plan.prepare(s, nullptr, 0), PrepareStatus::InvalidParameter) << count;
+  }
+  // Nor a point that is not finite, or one that turns back in x.
+  for (Vec2 middle : {Vec2{NAN, 100}, Vec2{400, INFINITY}, Vec2{100, 100}, Vec2{50, 100}}) {
+    s.elements[0].valley.curve = PathCurve::polyline(pts, 3);
+    s.elements[0].valley.curve.points[1] = middle;
+    EXPECT_EQ(plan.prepare(s, nullptr, 0), PrepareStatus::InvalidParameter) << middle.x << " " << middle.y;
+  }
+}
+
+TEST(ScenePlan, RefusesANonFiniteConstantOrBias) {
+  ScenePlan plan;
+  for (float bad : {NAN, INFINITY, -INFINITY}) {
+    SceneDefinition s = scenes::neutral();
+    s.constant = bad;
+    EXPECT_EQ(plan.prepare(s, nullptr, 0), PrepareStatus::InvalidParameter) << bad;
+    s = scenes::frictionmap(Target::Middle);
+    s.bias = bad;
+    EXPECT_EQ(plan.prepare(s, nullptr, 0), PrepareStatus::InvalidParameter) << bad;
+  }
+}
+
+// A table of heights cannot hold a vortex (it has no height), but a vortex
+// of weight 0 contributes nothing and is dropped before that is asked.
+TEST(ScenePlan, AHeightTableRefusesAVortexUnlessItWeighsNothing) {
+  SceneDefinition s = scenes::heightmap(Target::Top);
+  s.evaluation = Evaluation::Table;
+  s.table = {8.0f, TableStorage::Float32, TableSource::HeightCentralDifferences};
+  ASSERT_TRUE(s.add(FieldElement::vortex({400, 240}, 0.0f)));
+  ScenePlan plan;
+  Arena arena;
+  EXPECT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok);
+  s.elements[s.element_count - 1].weight = 1e-3f;
+  EXPECT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::InvalidParameter);
+  s.table.source = TableSource::TabulatedGradient;  // a gradient table holds it
+  EXPECT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok);
+}
+
+// A position-only table costs one evaluation per node and no search:
+// 8 px over 800 x 480 is 101 x 61 nodes.
+TEST(ScenePlan, APositionTableCountsOneEvaluationPerNode) {
+  SceneDefinition s = scenes::frictionmap(Target::Middle);
+  s.evaluation = Evaluation::Table;
+  s.table = {8.0f, TableStorage::Float32, TableSource::TabulatedGradient};
+  ScenePlan plan;
+  Arena arena;
+  ASSERT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok);
+  EXPECT_EQ(plan.stats().table_cols, 101);
+  EXPECT_EQ(plan.stats().table_rows, 61);
+  EXPECT_EQ(plan.stats().gradient_evaluations, 101u * 61u);
+}
+
 TEST(ScenePlan, FlatFieldRendersNeutral) {
   SceneDefinition s;
   s.rendering = Rendering::Directional;
