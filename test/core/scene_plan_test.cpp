@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <memory>
@@ -141,6 +142,23 @@ TEST(ScenePlan, APositionTableCountsOneEvaluationPerNode) {
   EXPECT_EQ(plan.stats().table_cols, 101);
   EXPECT_EQ(plan.stats().table_rows, 61);
   EXPECT_EQ(plan.stats().gradient_evaluations, 101u * 61u);
+}
+
+// Only a directional scene has a direction field: a position-only table is
+// never read as one (it holds one channel, not two; the memory after it
+// holds NaN here).
+TEST(ScenePlan, APositionOnlySceneHasNoDirectionField) {
+  SceneDefinition s = scenes::frictionmap(Target::Middle);
+  s.evaluation = Evaluation::Table;
+  s.table = {8.0f, TableStorage::Float32, TableSource::TabulatedGradient};
+  ScenePlan plan;
+  Arena arena;
+  std::fill(arena.words.begin(), arena.words.end(), 0x7FC00000u);  // NaN
+  ASSERT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok);
+  for (Vec2 p : {Vec2{0, 0}, Vec2{400, 240}, Vec2{800, 480}, Vec2{799, 1}}) {
+    EXPECT_EQ(plan.normalized_gradient(p).x, 0.0f) << p.x << " " << p.y;
+    EXPECT_EQ(plan.normalized_gradient(p).y, 0.0f) << p.x << " " << p.y;
+  }
 }
 
 TEST(ScenePlan, FlatFieldRendersNeutral) {
