@@ -283,12 +283,10 @@ float ScenePlan::find_max_gradient() {
 // file compiled in (flatten: 2.5 KB of RAM): preparation evaluates ~800 times.
 FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool squared, bool* out_of_range) {
   float scan_step = 32.0f;
-  int candidates = 6;
   for (int e = 0; e < count_; ++e) {
     if (elements_[e].kind != ElementKind::Texture) continue;
     const TextureParams& t = elements_[e].texture;
-    scan_step = std::fmin(32.0f, std::fmin(scan_step, 0.125f * std::fmin(t.wavelength_x, t.wavelength_y)));
-    candidates = 6;
+    scan_step = std::fmin(scan_step, 0.125f * std::fmin(t.wavelength_x, t.wavelength_y));
   }
   const float kStep = std::fmax(scan_step, 2.0f);
   constexpr int kCandidates = 6;
@@ -315,7 +313,7 @@ FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool sq
   auto consider = [&](Vec2 p, float m) __attribute__((always_inline)) {
     if (!(m > lowest_kept)) return;
     int slot = -1;
-    for (int i = 0; i < candidates && slot < 0; ++i) {
+    for (int i = 0; i < kCandidates && slot < 0; ++i) {
       if (best_m[i] >= 0.0f && std::fabs(best_p[i].x - p.x) <= neighbourhood &&
           std::fabs(best_p[i].y - p.y) <= neighbourhood) {
         slot = i;
@@ -323,13 +321,13 @@ FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool sq
     }
     if (slot < 0) {
       slot = 0;
-      for (int i = 1; i < candidates; ++i) slot = best_m[i] < best_m[slot] ? i : slot;
+      for (int i = 1; i < kCandidates; ++i) slot = best_m[i] < best_m[slot] ? i : slot;
     }
     if (m > best_m[slot]) {
       best_m[slot] = m;
       best_p[slot] = p;
       lowest_kept = best_m[0];
-      for (int i = 1; i < candidates; ++i) lowest_kept = best_m[i] < lowest_kept ? best_m[i] : lowest_kept;
+      for (int i = 1; i < kCandidates; ++i) lowest_kept = best_m[i] < lowest_kept ? best_m[i] : lowest_kept;
     }
   };
 
@@ -380,7 +378,7 @@ FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool sq
   }
 
   float best = 0.0f;
-  for (int c = 0; c < candidates; ++c) {
+  for (int c = 0; c < kCandidates; ++c) {
     if (best_m[c] < 0.0f) continue;
     Vec2 p = best_p[c];
     Vec2 from = p;  // where the last move came from: known to be lower

@@ -161,6 +161,31 @@ TEST(ScenePlan, APositionOnlySceneHasNoDirectionField) {
   }
 }
 
+// A tunnel whose narrow end lies off the screen is steepest there, but only
+// the screen is rendered: max|G| is the screen's, against a 1 px scan of it.
+TEST(ScenePlan, MaxGradientIsTheScreensNotATunnelEndsOffIt) {
+  TunnelParams t;
+  t.x_start = -100.0f;
+  t.length = 600.0f;
+  t.width_start = 5.0f;
+  t.width_end = 60.0f;
+  SceneDefinition s;
+  s.rendering = Rendering::Directional;
+  ASSERT_TRUE(s.add(FieldElement::tunnel_valley(t)));
+  ScenePlan plan;
+  ASSERT_EQ(plan.prepare(s, nullptr, 0), PrepareStatus::Ok);
+  double scanned = 0.0;
+  for (int y = 0; y <= 480; ++y) {
+    for (int x = 0; x <= 800; ++x) {
+      const Vec2 g = plan.field({static_cast<float>(x), static_cast<float>(y)});
+      scanned = std::fmax(scanned, std::hypot(static_cast<double>(g.x), static_cast<double>(g.y)));
+    }
+  }
+  const double found = static_cast<double>(plan.stats().max_gradient);
+  EXPECT_GT(found, scanned * (1.0 - 1e-4));
+  EXPECT_LT(found, scanned * (1.0 + 1e-3));
+}
+
 TEST(ScenePlan, FlatFieldRendersNeutral) {
   SceneDefinition s;
   s.rendering = Rendering::Directional;
