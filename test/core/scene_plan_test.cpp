@@ -130,12 +130,17 @@ TEST(ScenePlan, AHeightTableRefusesAVortexUnlessItWeighsNothing) {
   EXPECT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok);
 }
 
-// A position-only table costs one evaluation per node and no search:
-// 8 px over 800 x 480 is 101 x 61 nodes.
-TEST(ScenePlan, APositionTableCountsOneEvaluationPerNode) {
+// The frictionmap (position only) from a float table of 8 px: 101 x 61 nodes.
+SceneDefinition frictionmap_table() {
   SceneDefinition s = scenes::frictionmap(Target::Middle);
   s.evaluation = Evaluation::Table;
   s.table = {8.0f, TableStorage::Float32, TableSource::TabulatedGradient};
+  return s;
+}
+
+// A position-only table costs one evaluation per node and no search.
+TEST(ScenePlan, APositionTableCountsOneEvaluationPerNode) {
+  const SceneDefinition s = frictionmap_table();
   ScenePlan plan;
   Arena arena;
   ASSERT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok);
@@ -148,9 +153,7 @@ TEST(ScenePlan, APositionTableCountsOneEvaluationPerNode) {
 // never read as one (it holds one channel, not two; the memory after it
 // holds NaN here).
 TEST(ScenePlan, APositionOnlySceneHasNoDirectionField) {
-  SceneDefinition s = scenes::frictionmap(Target::Middle);
-  s.evaluation = Evaluation::Table;
-  s.table = {8.0f, TableStorage::Float32, TableSource::TabulatedGradient};
+  const SceneDefinition s = frictionmap_table();
   ScenePlan plan;
   Arena arena;
   std::fill(arena.words.begin(), arena.words.end(), 0x7FC00000u);  // NaN
