@@ -166,6 +166,7 @@ TEST(PilotScenes, TunnelGradientMatchesNumericalDerivative) {
 TEST(PilotScenes, PilotCValleyIsTwoAtanHalf) {
   // H = |2 atan(u/2) - u| on the middle path: at u = 2, dH/du = (1/4 * 4) / (1 + 1) = 1/2.
   const SceneDefinition s = scenes::pilot_c_valley(Target::Middle);
+  EXPECT_EQ(s.rendering, Rendering::Directional);  // a height field, felt by direction
   EXPECT_NEAR(static_cast<double>(element_height(s.elements[0], {400, 242})), std::fabs(2 * std::atan(1.0) - 2), 1e-5);
   EXPECT_NEAR(static_cast<double>(element_gradient(s.elements[0], {400, 242}).y), 0.5, 1e-6);
 }
