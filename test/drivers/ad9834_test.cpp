@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "frictionfield/emulated/ad9834_model.hpp"
 #include "frictionfield/emulated/replay_mocks.hpp"
 
@@ -41,6 +43,9 @@ TEST(Ad9834Word, EdgesAndOtherUnits) {
   EXPECT_EQ(ad9834::frequency_word(40000000), 1u << 27);  // above Nyquist: clamped
   EXPECT_EQ(ad9834::frequency_word(400, 25000000), 4295u);  // AN-1070's 0x10C7
   EXPECT_EQ(ad9834::frequency_word(1000, 0), 0u);           // no clock: no tone
+  EXPECT_EQ(ad9834::frequency_word_millihz(1000000, 0), 0u);
+  EXPECT_EQ(ad9834::frequency_word_millihz(1000000, 75000001), 0u);  // no AD9834 runs that fast
+  EXPECT_EQ(ad9834::frequency_word(1000, 75000001), 0u);
   EXPECT_EQ(ad9834::frequency_word_millihz(34900000), 124912u);
   EXPECT_EQ(ad9834::frequency_word_millihz(34900500), 124914u);  // 124913.76
   EXPECT_EQ(ad9834::output_millihz(1u << 27), 37500000000u);
@@ -117,6 +122,25 @@ TEST(Ad9834, LsbOnlyWriteUsesHlbWithoutB28) {
   ASSERT_EQ(dds.set_frequency_word(0, 124912u), BusStatus::Ok);  // B28 back on first
   EXPECT_EQ(chip.output_word(), 124912u);
   EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+TEST(Ad9834, AnLsbWriteKeepsTheMsbsInTheDriversCopy) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);  // 124912 = 0x1E7F0
+  ASSERT_EQ(dds.set_frequency_lsbs(0, 5u), BusStatus::Ok);
+  EXPECT_EQ(dds.frequency_word_of(0), 0x1C005u);  // the upper 14 bits 0x1C000 stay
+  EXPECT_EQ(chip.output_word(), 0x1C005u);
+  EXPECT_EQ(dds.frequency_word_of(1), 124912u);
+}
+
+TEST(Ad9834, ABadLsbWriteSendsNothing) {
+  MockSpiBus16 spi({});
+  Ad9834 dds(spi, 0);
+  EXPECT_EQ(dds.set_frequency_lsbs(2, 1), BusStatus::InvalidArgument);
+  EXPECT_EQ(dds.set_frequency_lsbs(0, 1u << 28), BusStatus::InvalidArgument);
+  std::string why;
+  EXPECT_TRUE(spi.finished(&why)) << why;
 }
 
 TEST(Ad9834, TriangleAndArgumentChecks) {
