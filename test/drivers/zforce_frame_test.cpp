@@ -7,7 +7,6 @@
 
 #include <vector>
 
-#include "frictionfield/drivers/ber.hpp"
 #include "frictionfield/drivers/zforce_protocol.hpp"
 
 namespace ff::zforce {
@@ -77,22 +76,6 @@ TEST(ZforceRequests, MatchTheArduinoLibraryBytes) {
 TEST(ZforceRequests, TooSmallABufferGivesNothing) {
   uint8_t buf[8];
   EXPECT_EQ(build_enable(buf, sizeof(buf), true), 0u);
-}
-
-TEST(BerWriter, WidensALengthPast127) {
-  uint8_t buf[200];
-  ber::Writer w(buf, sizeof(buf));
-  w.begin(0x30);
-  uint8_t payload[130] = {};
-  w.octets(0x04, payload, sizeof(payload));
-  w.end();
-  ASSERT_TRUE(w.ok());
-  EXPECT_EQ(w.size(), 3u + 3u + 130u);
-  EXPECT_EQ(buf[1], 0x81);
-  EXPECT_EQ(buf[2], 133);
-  ber::Tlv t;
-  ASSERT_EQ(ber::read_tlv(buf, w.size(), t), ber::Status::Ok);
-  EXPECT_EQ(t.length, 133u);
 }
 
 TEST(ZforceDecoder, DecodesATouchNotification) {
