@@ -1,5 +1,6 @@
 #include "firmware/app/firmware_app.hpp"
 
+#include "firmware/app/mouse_pixel.hpp"
 #include "frictionfield/core/fastrun.hpp"
 #include "frictionfield/core/geometry.hpp"
 #include "frictionfield/core/scenes.hpp"
@@ -9,17 +10,6 @@ namespace ff::firmware {
 
 using protocol::Message;
 using protocol::MessageType;
-
-namespace {
-
-// The filtered position as a mouse pixel: rounded, on screen whatever it is.
-int screen_pixel(float v, float max) {
-  if (!(v > 0.0f)) return 0;  // NaN too
-  if (v >= max) return static_cast<int>(max);
-  return static_cast<int>(v + 0.5f);
-}
-
-}  // namespace
 
 FirmwareApp::FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pipeline)
     : board_(board),
@@ -185,8 +175,8 @@ void FirmwareApp::move_mouse(uint32_t now_us) {
   last_mouse_us_ += kMouseIntervalUs;
   if (now_us - last_mouse_us_ >= kMouseIntervalUs) last_mouse_us_ = now_us;  // after a stall: no burst
   if (!present_.load(std::memory_order_acquire)) return;
-  if (!board_.mouse_move_to(screen_pixel(mouse_x_.load(std::memory_order_relaxed), kScreenMaxX),
-                            screen_pixel(mouse_y_.load(std::memory_order_relaxed), kScreenMaxY))) {
+  if (!board_.mouse_move_to(mouse_pixel(mouse_x_.load(std::memory_order_relaxed), kScreenMaxX),
+                            mouse_pixel(mouse_y_.load(std::memory_order_relaxed), kScreenMaxY))) {
     ++counters_.mouse_moves_skipped;
   }
 }
