@@ -3,7 +3,6 @@
 #include "firmware/app/mouse_pixel.hpp"
 #include "frictionfield/core/fastrun.hpp"
 #include "frictionfield/core/geometry.hpp"
-#include "frictionfield/core/scenes.hpp"
 #include "frictionfield/drivers/ad9834_registers.hpp"
 
 namespace ff::firmware {
@@ -24,9 +23,9 @@ FirmwareApp::FirmwareApp(const Peripherals& io, Board& board, HapticPipeline& pi
 }
 
 void FirmwareApp::begin(uint32_t now_us, const DacCalibration& wiring) {
-  // The plate rests until a scene is set, in the board's own DAC direction.
+  // The plate rests until a finger comes, in the board's own DAC direction;
+  // until a scene is set, the finger feels Condition's default, the neutral scene.
   Condition resting;
-  resting.scene = scenes::neutral();
   resting.amplitude.calibration = wiring;
   pipeline_.set_condition(resting);
   condition_.calibration = wiring;

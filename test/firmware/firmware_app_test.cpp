@@ -334,6 +334,14 @@ TEST(FirmwareApp, MouseEvery3msAtTheFilteredPositionWhileTheFingerIsDown) {
   }
 }
 
+TEST(FirmwareApp, BeforeAnySceneIsSetAFingerFeelsTheNeutralScene) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.run_until(1500000);
+  EXPECT_EQ(d.dac_at(999500), 0);      // no finger: at rest
+  EXPECT_EQ(d.dac_at(1500000), 2048);  // A = 0.5: round(2047.5)
+}
+
 TEST(FirmwareApp, QueryConditionAnswersWhatRendersNow) {
   Device d;
   Message q = command(MessageType::QueryCondition, 1);

@@ -45,5 +45,28 @@ TEST(BindingDecreasing, IdleWithAFingerDownAndAfterLiftOffIsTheRestCode) {
   EXPECT_NE(dac_code_at(1400000), 4095) << "a finger on the heightmap: the plate renders";
 }
 
+TEST(BindingDecreasing, BeforeAnyConditionTheQueryAnswersTheBoardsWiring) {
+  // A host that asks first, then sets a scene with the calibration it was told,
+  // keeps the board's direction: code 4095 rests the plate.
+  BindingRig rig;
+  rig.boot();
+  rig.run_until(1000000);
+  Message q;
+  q.type = MessageType::QueryCondition;
+  rig.udp_send(q);
+  rig.run_until(1050000);
+  std::vector<Message> answers;
+  for (const Message& m : rig.udp_received()) {
+    if (m.type == MessageType::Condition) answers.push_back(m);
+  }
+  ASSERT_EQ(answers.size(), 1u);
+  const ff::DacCalibration& c = answers[0].condition.calibration;
+  ASSERT_EQ(c.count, 2);
+  EXPECT_EQ(c.amplitude[0], 0.0f);
+  EXPECT_EQ(c.code[0], 4095.0f);
+  EXPECT_EQ(c.amplitude[1], 1.0f);
+  EXPECT_EQ(c.code[1], 0.0f);
+}
+
 }  // namespace
 }  // namespace teensy_model
