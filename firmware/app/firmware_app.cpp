@@ -34,7 +34,7 @@ void FirmwareApp::begin(uint32_t now_us, const DacCalibration& wiring) {
   zforce_.begin(now_us);
   load_cells_.start(now_us);
   heartbeat_us_.store(now_us, std::memory_order_release);
-  last_mouse_us_ = ticks_seen_us_ = stream_due_since_us_ = last_loop_us_ = now_us;
+  ticks_seen_us_ = last_loop_us_ = now_us;  // the mouse and stream clocks start when first used
   seen_ticks_ = pipeline_.ticks();
 }
 

@@ -144,7 +144,9 @@ struct Device {
   bool host_reads = true;
 
   // unplugged: the zForce neither announces its boot nor acknowledges its address.
-  explicit Device(bool sensor_unplugged = false) : zforce_model(model_options(sensor_unplugged)) {
+  // begin_us: when setup() calls begin() (after Ethernet.begin(), which may take seconds).
+  explicit Device(bool sensor_unplugged = false, uint32_t begin_us = 0)
+      : now(begin_us), zforce_model(model_options(sensor_unplugged)) {
     const ZforceConfig config;
     i2c.attach(config.address, zforce_model);
     zforce_model.set_calibration(config.calibration);
@@ -152,7 +154,8 @@ struct Device {
     for (uint8_t ch = 0; ch < 4; ++ch) adc.set(ch, 100);
     board.dac = &dac;
     app = std::make_unique<FirmwareApp>(Peripherals{dds, 0, i2c, zforce_model, dac, adc}, board, *pipeline);
-    app->begin(0);
+    clock.set(now);
+    app->begin(now);
     if (!sensor_unplugged) {
       while (app->sensor().state() != ZforceState::Running && now < 1000000) step();  // configures the zForce
     }
@@ -340,6 +343,29 @@ TEST(FirmwareApp, BeforeAnySceneIsSetAFingerFeelsTheNeutralScene) {
   d.run_until(1500000);
   EXPECT_EQ(d.dac_at(999500), 0);      // no finger: at rest
   EXPECT_EQ(d.dac_at(1500000), 2048);  // A = 0.5: round(2047.5)
+}
+
+TEST(FirmwareApp, BeginningLateStartsEveryClockThen) {
+  // begin() 3 s after reset: no watchdog trip even if the first tick comes
+  // before the first loop pass (the timer starts in setup()), no tick stall
+  // if the first loop pass comes first, no long loop pass, and the unplugged
+  // zForce is given its whole boot wait (300 ms) from then.
+  constexpr uint32_t kBegin = 3000000;
+  Device tick_first(/*sensor_unplugged=*/true, kBegin);
+  tick_first.tick_at(kBegin + 500);
+  EXPECT_EQ(tick_first.counters().watchdog_trips, 0u);
+
+  Device d(/*sensor_unplugged=*/true, kBegin);
+  d.run_until(kBegin + 290000);
+  EXPECT_EQ(d.app->sensor().state(), ZforceState::Booting);
+  d.board.send_udp(command(MessageType::QueryStatus, 4));
+  d.run_until(kBegin + 400000);
+  EXPECT_NE(d.app->sensor().state(), ZforceState::Booting);
+  EXPECT_EQ(d.counters().watchdog_trips, 0u);
+  EXPECT_EQ(d.counters().tick_stalls, 0u);
+  const std::vector<Message> status = d.board.udp_of(MessageType::Status);
+  ASSERT_EQ(status.size(), 1u);
+  EXPECT_LE(status[0].status.loop_pass_max_us, 500u);
 }
 
 TEST(FirmwareApp, QueryConditionAnswersWhatRendersNow) {
