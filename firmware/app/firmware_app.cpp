@@ -352,7 +352,10 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       const CycleStats tick = tick_cycles_.read();
       st.tick_cycles_mean = tick.mean;
       st.tick_cycles_max = tick.max;
-      st.protocol_errors = counters_.protocol_errors;
+      const FirmwareCounters c = counters();
+      st.protocol_errors = c.protocol_errors;
+      st.watchdog_trips = c.watchdog_trips;
+      st.stream_overruns = c.stream_overruns;
       st.force_mN = force_.force_mN;
       st.over_force = force_.over_force;
       st.finger_present = present_.load(std::memory_order_acquire);

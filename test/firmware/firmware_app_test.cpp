@@ -442,6 +442,10 @@ TEST(FirmwareApp, StalledLoopRestsThePlateAfter50msAndRendersAgainWhenItReturns)
   EXPECT_EQ(d.dac_at(1400000), kFrictionmapOnPath);
   EXPECT_EQ(d.counters().watchdog_trips, 1u);
   EXPECT_EQ(d.board.kicks.size(), kicks + 1000);  // once per loop pass again: 100 ms / 100 us
+  d.board.send_udp(command(MessageType::QueryStatus));  // the host is told of the trip
+  d.run_until(1410000);
+  ASSERT_EQ(d.board.udp_of(MessageType::Status).size(), 1u);
+  EXPECT_EQ(d.board.udp_of(MessageType::Status)[0].status.watchdog_trips, 1u);
   // The tick ran through the stall: its clock never leapt.
   const FaultCounters faults = d.pipeline->faults();
   EXPECT_EQ(faults[Fault::BadTickTime], 0u);
@@ -608,6 +612,10 @@ TEST(FirmwareApp, AHostThatStopsReadingCostsCountedRecordsNeverABlockedLoop) {
   EXPECT_GE(ticks.back().t_us, 1790000u);
   EXPECT_EQ(d.board.undecodable, 0);
   EXPECT_EQ(d.counters().watchdog_trips, 0u);
+  d.board.send_hid(command(MessageType::QueryStatus));  // the host is told what it lost
+  d.run_until(1910000);
+  ASSERT_EQ(d.board.hid_of(MessageType::Status).size(), 1u);
+  EXPECT_EQ(d.board.hid_of(MessageType::Status)[0].status.stream_overruns, c.stream_overruns);
 }
 
 TEST(FirmwareApp, AFloodOfDatagramsIsTakenFourPerLoop) {
