@@ -35,7 +35,6 @@ void FirmwareApp::begin(uint32_t now_us, const DacCalibration& wiring) {
   load_cells_.start(now_us);
   heartbeat_us_.store(now_us, std::memory_order_release);
   ticks_seen_us_ = last_loop_us_ = now_us;  // the mouse and stream clocks start when first used
-  seen_ticks_ = pipeline_.ticks();
 }
 
 // ---- the 2 kHz interrupt ----------------------------------------------------

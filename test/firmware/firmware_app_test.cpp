@@ -56,6 +56,8 @@ class FakeBoard final : public Board {
     return true;
   }
   bool udp_send(const UdpEndpoint& /*to*/, const uint8_t* data, size_t size) override {
+    ++udp_attempts;
+    if (udp_unanswered) return false;  // no ARP answer: the send timed out
     Message m;
     if (protocol::decode(data, size, m) == protocol::DecodeStatus::Ok) {
       udp_out.push_back(m);
@@ -121,6 +123,8 @@ class FakeBoard final : public Board {
   size_t queued = 0;
   uint32_t cycle_counter = 0;
   int undecodable = 0, reboots = 0, dac_at_reboot = -1;
+  bool udp_unanswered = false;
+  int udp_attempts = 0;
   const emulated::RecordingDac* dac = nullptr;
 
  private:
@@ -511,6 +515,10 @@ TEST(FirmwareApp, StoppedTickIsCaughtByTheLoopWhichRestsThePlate) {
   EXPECT_EQ(d.dac_at(1300000), kFrictionmapOnPath);
   EXPECT_GT(d.board.kicks.back(), 1250000u);
   EXPECT_EQ(d.counters().tick_stalls, 1u);
+  d.ticks_alive = false;  // a second stall is caught as the first was
+  d.run_until(1350000);
+  EXPECT_EQ(d.dac.last(), 0);
+  EXPECT_EQ(d.counters().tick_stalls, 2u);
 }
 
 TEST(FirmwareApp, StatusOverHidCarriesTheTickCostAndFaults) {
@@ -616,6 +624,20 @@ TEST(FirmwareApp, AHostThatStopsReadingCostsCountedRecordsNeverABlockedLoop) {
   d.run_until(1910000);
   ASSERT_EQ(d.board.hid_of(MessageType::Status).size(), 1u);
   EXPECT_EQ(d.board.hid_of(MessageType::Status)[0].status.stream_overruns, c.stream_overruns);
+}
+
+TEST(FirmwareApp, AnAddressThatDoesNotAnswerIsCountedAndLeftAloneUntilItSpeaks) {
+  Device d;
+  d.board.udp_unanswered = true;
+  d.board.send_udp(command(MessageType::QueryStatus));  // the reply, then force every 30 ms
+  d.run_until(1300000);
+  EXPECT_EQ(d.board.udp_attempts, 1);
+  EXPECT_EQ(d.counters().udp_send_failures, 1u);
+  d.board.udp_unanswered = false;
+  d.board.send_udp(command(MessageType::QueryStatus));
+  d.run_until(1310000);
+  EXPECT_EQ(d.board.udp_of(MessageType::Status).size(), 1u);
+  EXPECT_EQ(d.counters().udp_send_failures, 1u);
 }
 
 TEST(FirmwareApp, AFloodOfDatagramsIsTakenFourPerLoop) {
