@@ -148,7 +148,6 @@ void FirmwareApp::read_sensor(uint32_t now_us) {
     sensor_failed_us_ = now_us;
   } else if (now_us - sensor_failed_us_ >= kSensorRetryUs) {
     // Unplugged or powered late: no samples, so the pipeline is idle; try again.
-    sensor_failed_ = false;
     ++counters_.sensor_restarts;
     zforce_.begin(now_us);
   }

@@ -44,6 +44,7 @@ class FakeBoard final : public Board {
 
   struct Move { uint32_t t_us; int x, y; };
   bool mouse_move_to(int x, int y) override {
+    if (mouse_queue_full) return false;  // the USB host stopped polling the mouse
     mouse.push_back({now_, x, y});
     return true;
   }
@@ -123,7 +124,7 @@ class FakeBoard final : public Board {
   size_t queued = 0;
   uint32_t cycle_counter = 0;
   int undecodable = 0, reboots = 0, dac_at_reboot = -1;
-  bool udp_unanswered = false;
+  bool udp_unanswered = false, mouse_queue_full = false;
   int udp_attempts = 0;
   const emulated::RecordingDac* dac = nullptr;
 
@@ -339,6 +340,29 @@ TEST(FirmwareApp, MouseEvery3msAtTheFilteredPositionWhileTheFingerIsDown) {
     const double finger_x = 100.0 + 300.0 * (mouse[i].t_us - 1000000.0) * 1e-6;
     ASSERT_NEAR(mouse[i].x, finger_x, 3.0) << mouse[i].t_us;
   }
+}
+
+TEST(FirmwareApp, AfterAStalledLoopTheMouseGoesOnEvery3msWithoutABurst) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.run_until(1500000);
+  d.loop_alive = false;
+  d.run_until(1540000);
+  d.loop_alive = true;
+  d.run_until(1600000);
+  const auto& mouse = d.board.mouse;
+  for (size_t i = 1; i < mouse.size(); ++i) ASSERT_GE(mouse[i].t_us - mouse[i - 1].t_us, kMouseIntervalUs) << i;
+  EXPECT_GE(mouse.back().t_us, 1597000u);
+}
+
+TEST(FirmwareApp, MovesTheUsbHostDidNotTakeAreCounted) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  d.run_until(1500000);
+  EXPECT_EQ(d.counters().mouse_moves_skipped, 0u);
+  d.board.mouse_queue_full = true;
+  d.run_until(1530000);  // 10 moves due
+  EXPECT_EQ(d.counters().mouse_moves_skipped, 10u);
 }
 
 TEST(FirmwareApp, BeforeAnySceneIsSetAFingerFeelsTheNeutralScene) {
@@ -707,6 +731,30 @@ TEST(FirmwareApp, AFailedSensorIsStartedAgainAndThePlateRestsMeanwhile) {
   EXPECT_EQ(d.counters().sensor_restarts, 1u);
   EXPECT_EQ(d.app->sensor().state(), ZforceState::Running);
   EXPECT_EQ(d.dac_at(5500000), 2048);  // the neutral scene, with the finger back
+}
+
+TEST(FirmwareApp, AFailedSensorIsTriedAgainOneRetryPeriodAfterEachFailure) {
+  Device d(/*sensor_unplugged=*/true);
+  std::vector<uint32_t> failed_at, restarted_at;
+  bool failed = false;
+  uint32_t restarts = 0;
+  while (d.now < 8000000) {
+    d.step();
+    const bool now_failed = d.app->sensor().state() == ZforceState::Failed;
+    if (now_failed && !failed) failed_at.push_back(d.now);
+    failed = now_failed;
+    if (d.counters().sensor_restarts != restarts) {
+      restarts = d.counters().sensor_restarts;
+      restarted_at.push_back(d.now);
+    }
+  }
+  ASSERT_GE(restarted_at.size(), 2u);
+  ASSERT_GE(failed_at.size(), restarted_at.size());
+  for (size_t i = 0; i < restarted_at.size(); ++i) {
+    // The loop that sees the failure starts the wait; one that sees it kSensorRetryUs later restarts.
+    EXPECT_GE(restarted_at[i] - failed_at[i], kSensorRetryUs) << i;
+    EXPECT_LE(restarted_at[i] - failed_at[i], kSensorRetryUs + 100u) << i;
+  }
 }
 
 TEST(FirmwareApp, RebootRestsThePlateFirst) {
