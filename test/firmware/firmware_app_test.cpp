@@ -605,6 +605,21 @@ TEST(FirmwareApp, StreamsEveryTickAndReportWithoutLossWhileTheHostReads) {
   const auto acks = d.board.hid_of(MessageType::Ack);
   ASSERT_EQ(acks.size(), 2u);
   EXPECT_EQ(acks[1].ack.command, MessageType::StopStream);
+  EXPECT_EQ(acks[0].sequence, 9);  // a reply echoes its command's sequence; the stream is no reply
+  for (const Message& m : d.board.hid_out) {
+    if (m.type == MessageType::Samples || m.type == MessageType::Ticks || m.type == MessageType::Force) {
+      ASSERT_EQ(m.sequence, 0) << static_cast<int>(m.type);
+    }
+  }
+}
+
+TEST(FirmwareApp, TicksStreamedWithoutAFingerAreNoReplyEither) {
+  Device d;
+  d.board.send_hid(command(MessageType::StartStream, 9));
+  d.run_until(1200000);
+  const auto ticks = d.board.hid_of(MessageType::Ticks);
+  ASSERT_FALSE(ticks.empty());
+  for (const Message& m : ticks) ASSERT_EQ(m.sequence, 0);
 }
 
 TEST(FirmwareApp, AHostThatStopsReadingCostsCountedRecordsNeverABlockedLoop) {
