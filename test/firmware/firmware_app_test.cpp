@@ -81,6 +81,7 @@ class FakeBoard final : public Board {
       Message m;
       if (protocol::decode(reassembler.frame(), reassembler.size(), m) == protocol::DecodeStatus::Ok) {
         hid_out.push_back(m);
+        hid_out_us.push_back(now_);
       } else {
         ++undecodable;
       }
@@ -119,7 +120,7 @@ class FakeBoard final : public Board {
   std::vector<Move> mouse;
   std::deque<std::vector<uint8_t>> udp_in, hid_in;
   std::vector<Message> udp_out, hid_out;
-  std::vector<uint32_t> udp_out_us, kicks;
+  std::vector<uint32_t> udp_out_us, hid_out_us, kicks;
   protocol::HidReassembler reassembler;
   size_t queued = 0;
   uint32_t cycle_counter = 0;
@@ -611,6 +612,59 @@ TEST(FirmwareApp, StreamsEveryTickAndReportWithoutLossWhileTheHostReads) {
       ASSERT_EQ(m.sequence, 0) << static_cast<int>(m.type);
     }
   }
+}
+
+TEST(FirmwareApp, AStreamedRecordWaitsAtMostTheFlushTime) {
+  // Every 40th tick (50 per second): a Ticks message of 32 would take 0.64 s
+  // to fill; a record goes out within kStreamFlushUs instead, also after the
+  // host stopped reading for 50 ms.
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  Message start = command(MessageType::StartStream);
+  start.stream.tick_decimation = 40;
+  d.board.send_hid(start);
+  d.run_until(1300000);
+  d.host_reads = false;
+  d.run_until(1350000);
+  d.host_reads = true;
+  d.run_until(1600000);
+  size_t records = 0;
+  for (size_t i = 0; i < d.board.hid_out.size(); ++i) {
+    const Message& m = d.board.hid_out[i];
+    const uint32_t sent = d.board.hid_out_us[i];
+    if (sent >= 1300000 && sent < 1360000) continue;  // waited for the host
+    if (m.type == MessageType::Ticks) {
+      for (int k = 0; k < m.ticks.count; ++k, ++records) {
+        ASSERT_LE(sent - m.ticks.ticks[k].t_us, kStreamFlushUs + 100u) << sent;
+      }
+    }
+    if (m.type == MessageType::Samples) {
+      for (int k = 0; k < m.samples.count; ++k, ++records) {
+        ASSERT_LE(sent - m.samples.samples[k].t_us, kStreamFlushUs + 1000u) << sent;
+      }
+    }
+  }
+  EXPECT_GT(records, 100u);
+}
+
+TEST(FirmwareApp, StoppingWhileTheHostIsNotReadingCountsWhatIsDropped) {
+  Device d;  // no finger: ticks only
+  d.run_until(1099900);
+  Message start = command(MessageType::StartStream);
+  start.stream.tick_decimation = 1;
+  d.board.send_hid(start);
+  d.run_until(1200000);
+  d.host_reads = false;
+  d.run_until(1249900);
+  d.board.send_hid(command(MessageType::StopStream));
+  d.run_until(1250000);
+  d.host_reads = true;
+  d.run_until(1400000);
+  size_t ticks = 0;
+  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks += m.ticks.count;
+  // Ticks 1.1 .. 1.2495 s: 300, each sent or counted.
+  EXPECT_GT(d.counters().stream_overruns, 0u);
+  EXPECT_EQ(ticks + d.counters().stream_overruns, 300u);
 }
 
 TEST(FirmwareApp, TicksStreamedWithoutAFingerAreNoReplyEither) {
