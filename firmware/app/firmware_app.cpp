@@ -238,8 +238,7 @@ void FirmwareApp::stream(uint32_t now_us, bool final) {
   if (sent_all) stream_due_since_us_ = now_us;
   if (final && !sent_all) {  // the host stopped the stream but has no room: drop the rest
     counters_.stream_overruns += pending_samples_.count + pending_ticks_.count + ring_.size();
-    pending_samples_.count = 0;
-    pending_taken_ = 0;
+    pending_samples_.count = 0;  // counted once, even if the host stops the stream again
     pending_ticks_.count = 0;
     protocol::TickRecord r;
     while (ring_.pop(r)) {

@@ -645,26 +645,40 @@ TEST(FirmwareApp, AStreamedRecordWaitsAtMostTheFlushTime) {
     }
   }
   EXPECT_GT(records, 100u);
+  // Force, every 30 ms, is not kept for the host: each one it had no room for is counted.
+  const std::vector<Message> force = d.board.hid_of(MessageType::Force);
+  ASSERT_GT(force.size(), 2u);
+  uint32_t missing = 0;
+  for (size_t i = 1; i < force.size(); ++i) missing += (force[i].force.t_us - force[i - 1].force.t_us + 15000) / 30000 - 1;
+  EXPECT_GT(missing, 0u);
+  EXPECT_EQ(d.counters().hid_frames_dropped, missing);
 }
 
-TEST(FirmwareApp, StoppingWhileTheHostIsNotReadingCountsWhatIsDropped) {
-  Device d;  // no finger: ticks only
+TEST(FirmwareApp, StoppingWhileTheHostIsNotReadingCountsWhatIsDroppedOnce) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
   d.run_until(1099900);
   Message start = command(MessageType::StartStream);
   start.stream.tick_decimation = 1;
   d.board.send_hid(start);
+  d.run_until(1100000);
+  const uint32_t reports_before = d.app->sensor().count(ZforceCount::Samples);
   d.run_until(1200000);
   d.host_reads = false;
   d.run_until(1249900);
   d.board.send_hid(command(MessageType::StopStream));
   d.run_until(1250000);
+  const uint32_t reports_streamed = d.app->sensor().count(ZforceCount::Samples) - reports_before;
+  d.board.send_hid(command(MessageType::StopStream));  // asked again: nothing is counted twice
+  d.run_until(1260000);
   d.host_reads = true;
   d.run_until(1400000);
-  size_t ticks = 0;
+  size_t ticks = 0, samples = 0;
   for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks += m.ticks.count;
-  // Ticks 1.1 .. 1.2495 s: 300, each sent or counted.
+  for (const Message& m : d.board.hid_of(MessageType::Samples)) samples += m.samples.count;
+  // Ticks 1.1 .. 1.2495 s (300) and every report: each sent or counted.
   EXPECT_GT(d.counters().stream_overruns, 0u);
-  EXPECT_EQ(ticks + d.counters().stream_overruns, 300u);
+  EXPECT_EQ(ticks + samples + d.counters().stream_overruns, 300u + reports_streamed);
 }
 
 TEST(FirmwareApp, TicksStreamedWithoutAFingerAreNoReplyEither) {
