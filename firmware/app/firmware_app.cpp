@@ -239,6 +239,7 @@ void FirmwareApp::stream(uint32_t now_us, bool final) {
   if (final && !sent_all) {  // the host stopped the stream but has no room: drop the rest
     counters_.stream_overruns += pending_samples_.count + pending_ticks_.count + ring_.size();
     pending_samples_.count = 0;  // counted once, even if the host stops the stream again
+    pending_taken_ = 0;
     pending_ticks_.count = 0;
     protocol::TickRecord r;
     while (ring_.pop(r)) {
@@ -372,19 +373,15 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       out_.type = MessageType::Condition;
       out_.condition = condition_;
       break;
-    case MessageType::StartStream: {
-      pending_samples_.count = 0;
-      pending_taken_ = 0;
-      pending_ticks_.count = 0;
-      protocol::TickRecord r;
-      while (ring_.pop(r)) {
-      }
+    case MessageType::StartStream:
+      // Nothing is held here: a stop sent or dropped it all, and the tick,
+      // an interrupt, pushes only while streaming_ is set. Started again
+      // while streaming, the records held go on in the new stream.
       stream_due_since_us_ = now_us;
       decimation_.store(in_.stream.tick_decimation, std::memory_order_relaxed);  // >= 1: the codec checks
       stream_channel_ = channel;
       streaming_.store(true, std::memory_order_release);
       break;
-    }
     case MessageType::StopStream: {
       streaming_.store(false, std::memory_order_release);
       const uint8_t sequence = out_.sequence;
