@@ -376,8 +376,8 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
     case MessageType::StartStream:
       // Nothing is held here: a stop sent or dropped it all, and the tick,
       // an interrupt, pushes only while streaming_ is set. Started again
-      // while streaming, the records held go on in the new stream.
-      stream_due_since_us_ = now_us;
+      // while streaming, the records held go on in the new stream. The
+      // flush clock starts at this loop pass's stream(), with nothing to send.
       decimation_.store(in_.stream.tick_decimation, std::memory_order_relaxed);  // >= 1: the codec checks
       stream_channel_ = channel;
       streaming_.store(true, std::memory_order_release);
@@ -386,9 +386,8 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       streaming_.store(false, std::memory_order_release);
       const uint8_t sequence = out_.sequence;
       stream(now_us, true);  // uses out_ for what is left
-      out_.type = MessageType::Ack;
+      out_.type = MessageType::Ack;  // out_.ack is as handle_command set it: the stream does not touch it
       out_.sequence = sequence;
-      out_.ack = {MessageType::StopStream, protocol::AckStatus::Ok, 0};
       break;
     }
     case MessageType::SetCarrier: {

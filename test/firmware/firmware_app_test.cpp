@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -93,6 +94,7 @@ class FakeBoard final : public Board {
   void reboot_to_bootloader() override {
     ++reboots;
     dac_at_reboot = dac ? dac->last() : -1;
+    if (while_rebooting) while_rebooting();  // the reset takes a moment: a tick may land
   }
 
   // The hosts.
@@ -126,6 +128,7 @@ class FakeBoard final : public Board {
   uint32_t cycle_counter = 0;
   int undecodable = 0, reboots = 0, dac_at_reboot = -1;
   bool udp_unanswered = false, mouse_queue_full = false;
+  std::function<void()> while_rebooting;
   int udp_attempts = 0;
   const emulated::RecordingDac* dac = nullptr;
 
@@ -631,6 +634,13 @@ TEST(FirmwareApp, StreamsEveryTickAndReportWithoutLossWhileTheHostReads) {
   }
   EXPECT_EQ(samples, reports_streamed);
   EXPECT_NEAR(static_cast<double>(samples), 40.0, 1.0);  // 200 Hz for 0.2 s
+  // Records wait to fill a message, up to kStreamFlushUs from the start: no early scrap.
+  for (size_t i = 0; i < d.board.hid_out.size(); ++i) {
+    if (d.board.hid_out[i].type == MessageType::Ticks) {
+      EXPECT_GE(d.board.hid_out_us[i], 1100000u + kStreamFlushUs);
+      break;
+    }
+  }
   EXPECT_FALSE(d.board.hid_of(MessageType::Force).empty());  // telemetry joins the stream
   EXPECT_EQ(d.counters().stream_overruns, 0u);
   EXPECT_EQ(d.counters().hid_frames_dropped, 0u);
@@ -927,10 +937,16 @@ TEST(FirmwareApp, RebootRestsThePlateFirst) {
   d.board.send_udp(condition(protocol::ConditionKind::Frictionmap));
   d.run_until(1200000);
   EXPECT_EQ(d.dac.last(), kFrictionmapOnPath);
+  int dac_after_tick = -1;
+  d.board.while_rebooting = [&] {
+    d.tick_at(d.now + 250);
+    dac_after_tick = d.dac.last();
+  };
   d.board.send_hid(command(MessageType::RebootToBootloader));
   d.run_until(1201000);
   EXPECT_EQ(d.board.reboots, 1);
   EXPECT_EQ(d.board.dac_at_reboot, 0);
+  EXPECT_EQ(dac_after_tick, 0);  // the tick keeps it resting until the reset
   ASSERT_EQ(d.board.hid_of(MessageType::Ack).size(), 1u);  // acknowledged before the reset
 }
 
