@@ -302,6 +302,10 @@ TEST(FirmwareApp, TrialOverUdpSceneSwitchMidTraceMalformedPacketsLiftOff) {
   EXPECT_EQ(d.counters().protocol_errors, 4u);
   EXPECT_EQ(d.counters().conditions_set, 2u);
   for (uint32_t t = 1500000; t <= 1700000; t += 500) ASSERT_EQ(d.dac_at(t), kFrictionmapOnPath) << t;
+  d.board.send_udp(command(MessageType::QueryStatus));  // the host can read the count
+  d.run_until(1710000);
+  ASSERT_FALSE(d.board.udp_of(MessageType::Status).empty());
+  EXPECT_EQ(d.board.udp_of(MessageType::Status).back().status.protocol_errors, 4u);
 
   // A scene the core refuses (a 1 px float table: 1.5 MiB, over the 96 KiB
   // slot): Ack refused with the reason; the scene stays.
