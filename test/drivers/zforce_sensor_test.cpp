@@ -414,6 +414,38 @@ TEST(ZforceSensor, ConfiguresAgainAfterTheSensorReboots) {
   EXPECT_EQ(rig.model.requests(), 12u);
 }
 
+TEST(ZforceSensor, BeginningAgainMidwayConfiguresFromTheFirstStep) {
+  // As the firmware does after a failure: begin() again, whichever step the
+  // configuration had reached, sends all six requests again.
+  ZforceRig rig;
+  rig.sensor.begin(0);
+  uint32_t t = 0;
+  while (rig.model.requests() < 4 && t < 2000000) {  // three steps answered, the fourth asked
+    t += 1000;
+    rig.model.advance_to(t);
+    SensorSample s;
+    while (rig.sensor.poll(t, s)) {
+    }
+  }
+  ASSERT_EQ(rig.model.requests(), 4u);
+  rig.configure(t + 1000);
+  EXPECT_EQ(rig.sensor.state(), ZforceState::Running);
+  EXPECT_EQ(rig.model.requests(), 4u + 6u);
+}
+
+TEST(ZforceSensor, AConfigOfZeroesIsMadeUsable) {
+  ZforceConfig c;
+  c.resolution_x = 0;
+  c.resolution_y = 0;
+  c.max_attempts = 0;
+  c.calibration = ScreenCalibration{};
+  ZforceRig rig(c);
+  EXPECT_EQ(rig.sensor.config().resolution_x, 1u);
+  EXPECT_EQ(rig.sensor.config().resolution_y, 1u);
+  EXPECT_EQ(rig.sensor.config().max_attempts, 1u);
+  EXPECT_TRUE(rig.sensor.config().calibration.valid());
+}
+
 TEST(ZforceSensor, CalibrationFlipsSwapsAndOffsetsByHand) {
   // The sensor reports (400, 400) units for a finger at (100, 100) px.
   const std::vector<SensorSample> at{{100000, 100.0f, 100.0f, true}};
