@@ -431,6 +431,7 @@ TEST(ZforceSensor, BeginningAgainMidwayConfiguresFromTheFirstStep) {
   rig.configure(t + 1000);
   EXPECT_EQ(rig.sensor.state(), ZforceState::Running);
   EXPECT_EQ(rig.model.requests(), 4u + 6u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ConfigRetry), 0u);  // the unanswered fourth is forgotten, not retried
 }
 
 TEST(ZforceSensor, AConfigOfZeroesIsMadeUsable) {
