@@ -434,6 +434,21 @@ TEST(ZforceSensor, BeginningAgainMidwayConfiguresFromTheFirstStep) {
   EXPECT_EQ(rig.sensor.count(ZforceCount::ConfigRetry), 0u);  // the unanswered fourth is forgotten, not retried
 }
 
+TEST(ZforceSensor, BeginningAgainForgetsTheFinger) {
+  // A restart in the middle of a stroke: the driver knows no finger after it,
+  // so the finger's next move is taken up as one whose down was lost.
+  ZforceRig rig;
+  rig.configure();
+  rig.model.load_trace(stroke(100000, 200));  // 1 s
+  rig.run(100000, 200000);
+  ASSERT_TRUE(rig.sensor.finger_present());
+  const uint32_t running = rig.configure(200500);
+  ASSERT_EQ(rig.sensor.state(), ZforceState::Running);
+  const std::vector<SensorSample> after = rig.run(running + 500, 1100000);
+  ASSERT_FALSE(after.empty());
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
+}
+
 TEST(ZforceSensor, AConfigOfZeroesIsMadeUsable) {
   ZforceConfig c;
   c.resolution_x = 0;
