@@ -449,6 +449,28 @@ TEST(ZforceSensor, BeginningAgainForgetsTheFinger) {
   EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
 }
 
+TEST(ZforceSensor, BeginningAgainForgetsWhichFingersWereIgnored) {
+  // A second finger lands while the first is tracked and is ignored; it stays
+  // when the first lifts, still ignored. After a restart the driver knows of
+  // no finger: the second's next move is taken up.
+  ZforceRig rig;
+  rig.configure();
+  std::vector<SensorSample> trace = stroke(100000, 40);  // to 0.3 s
+  trace.push_back({305000, 0.0f, 0.0f, false});
+  for (uint32_t t = 310000; t <= 1200000; t += 5000) trace.push_back({t, 0.0f, 0.0f, false});  // the second alone
+  ZforceModel::SecondFinger second;
+  second.from_us = 150000;
+  second.to_us = 1200000;
+  rig.model.load_trace(trace, &second);
+  EXPECT_EQ(rig.run(100000, 400000).size(), 41u);  // the first finger's reports and its lift: nothing else
+  const uint32_t running = rig.configure(400500);
+  ASSERT_EQ(rig.sensor.state(), ZforceState::Running);
+  const std::vector<SensorSample> after = rig.run(running + 500, 1100000);
+  ASSERT_FALSE(after.empty());
+  EXPECT_EQ(after.back().x, 400.0f);
+  EXPECT_EQ(after.back().y, 100.0f);
+}
+
 TEST(ZforceSensor, AConfigOfZeroesIsMadeUsable) {
   ZforceConfig c;
   c.resolution_x = 0;
