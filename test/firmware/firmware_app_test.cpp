@@ -232,6 +232,37 @@ Message command(MessageType type, uint8_t sequence = 9) {
   return m;
 }
 
+// StartStream over USB, taken by the loop pass at `t_us` (the loop reads the
+// sensor, then takes the command): the sensor's report count then.
+uint32_t start_stream(Device& d, uint32_t t_us, uint8_t decimation) {
+  d.run_until(t_us - 100);
+  Message start = command(MessageType::StartStream);
+  start.stream.tick_decimation = decimation;
+  d.board.send_hid(start);
+  d.run_until(t_us);
+  return d.app->sensor().count(ZforceCount::Samples);
+}
+
+// StopStream over USB, taken by the loop pass at `t_us`: the sensor's report count then.
+uint32_t stop_stream(Device& d, uint32_t t_us) {
+  d.run_until(t_us - 100);
+  d.board.send_hid(command(MessageType::StopStream));
+  d.run_until(t_us);
+  return d.app->sensor().count(ZforceCount::Samples);
+}
+
+// The tick records and reports the USB host got, in order.
+std::vector<protocol::TickRecord> ticks_received(const Device& d) {
+  std::vector<protocol::TickRecord> ticks;
+  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks.insert(ticks.end(), m.ticks.ticks, m.ticks.ticks + m.ticks.count);
+  return ticks;
+}
+size_t samples_received(const Device& d) {
+  size_t samples = 0;
+  for (const Message& m : d.board.hid_of(MessageType::Samples)) samples += m.samples.count;
+  return samples;
+}
+
 // Codes the thesis' scenes give on the middle path, moving right (v_hat = (1, 0)):
 // frictionmap |u| = 0 <= 10: A = 1 -> 4095. Heightmap: grad Z_path = 0 on the
 // path, grad Z_cone = (-1, 0), so G = (-0.5, 0); max|G| over the screen is
@@ -613,22 +644,12 @@ TEST(FirmwareApp, StreamsEveryTickAndReportWithoutLossWhileTheHostReads) {
   Device d;
   d.zforce_model.load_trace(stroke());
   d.board.send_udp(condition(protocol::ConditionKind::Frictionmap));
-  d.run_until(1099900);
-  Message start = command(MessageType::StartStream);
-  start.stream.tick_decimation = 1;
-  d.board.send_hid(start);
-  d.run_until(1100000);  // the loop reads the sensor, then takes the command
-  const uint32_t reports_before = d.app->sensor().count(ZforceCount::Samples);
-  d.run_until(1299900);
-  d.board.send_hid(command(MessageType::StopStream));
-  d.run_until(1300000);
-  const uint32_t reports_streamed = d.app->sensor().count(ZforceCount::Samples) - reports_before;
+  const uint32_t reports_before = start_stream(d, 1100000, 1);
+  const uint32_t reports_streamed = stop_stream(d, 1300000) - reports_before;
   d.run_until(1400000);
 
-  std::vector<protocol::TickRecord> ticks;
-  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks.insert(ticks.end(), m.ticks.ticks, m.ticks.ticks + m.ticks.count);
-  size_t samples = 0;
-  for (const Message& m : d.board.hid_of(MessageType::Samples)) samples += m.samples.count;
+  const std::vector<protocol::TickRecord> ticks = ticks_received(d);
+  const size_t samples = samples_received(d);
   // Streaming from the loop at 1.1 s to the loop at 1.3 s: ticks 1.1 .. 1.2995 s, all 400, in order.
   ASSERT_EQ(ticks.size(), 400u);
   for (size_t i = 0; i < ticks.size(); ++i) {
@@ -702,38 +723,22 @@ TEST(FirmwareApp, AStreamedRecordWaitsAtMostTheFlushTime) {
 TEST(FirmwareApp, StoppingWhileTheHostIsNotReadingCountsWhatIsDroppedOnce) {
   Device d;
   d.zforce_model.load_trace(stroke());
-  d.run_until(1099900);
-  Message start = command(MessageType::StartStream);
-  start.stream.tick_decimation = 1;
-  d.board.send_hid(start);
-  d.run_until(1100000);
-  const uint32_t reports_before = d.app->sensor().count(ZforceCount::Samples);
+  const uint32_t reports_before = start_stream(d, 1100000, 1);
   d.run_until(1200000);
   d.host_reads = false;
-  d.run_until(1249900);
-  d.board.send_hid(command(MessageType::StopStream));
-  d.run_until(1250000);
-  const uint32_t reports_streamed = d.app->sensor().count(ZforceCount::Samples) - reports_before;
+  const uint32_t reports_streamed = stop_stream(d, 1250000) - reports_before;
   d.board.send_hid(command(MessageType::StopStream));  // asked again: nothing is counted twice
   d.run_until(1260000);
   d.host_reads = true;
   d.run_until(1400000);
-  size_t ticks = 0, samples = 0;
-  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks += m.ticks.count;
-  for (const Message& m : d.board.hid_of(MessageType::Samples)) samples += m.samples.count;
   // Ticks 1.1 .. 1.2495 s (300) and every report: each sent or counted.
   EXPECT_GT(d.counters().stream_overruns, 0u);
-  EXPECT_EQ(ticks + samples + d.counters().stream_overruns, 300u + reports_streamed);
+  EXPECT_EQ(ticks_received(d).size() + samples_received(d) + d.counters().stream_overruns, 300u + reports_streamed);
 
   // A new stream starts clean: its reports arrive, each with the tick that took it.
   const size_t messages_before = d.board.hid_out.size();
-  d.board.send_hid(start);
-  d.run_until(1400100);
-  const uint32_t reports_at_start = d.app->sensor().count(ZforceCount::Samples);
-  d.run_until(1499900);
-  d.board.send_hid(command(MessageType::StopStream));
-  d.run_until(1500000);
-  const uint32_t reports_again = d.app->sensor().count(ZforceCount::Samples) - reports_at_start;
+  const uint32_t reports_at_start = start_stream(d, 1400100, 1);
+  const uint32_t reports_again = stop_stream(d, 1500000) - reports_at_start;
   d.run_until(1600000);
   std::vector<Message> again;
   for (size_t i = messages_before; i < d.board.hid_out.size(); ++i) {
@@ -755,18 +760,12 @@ TEST(FirmwareApp, AStreamStartedAgainLosesNothing) {
   // a second StartStream at 1.2 s that halves the decimation.
   Device d;
   d.zforce_model.load_trace(stroke());
-  d.run_until(1099900);
-  Message start = command(MessageType::StartStream);
-  start.stream.tick_decimation = 2;
-  d.board.send_hid(start);
-  d.run_until(1199900);
-  start.stream.tick_decimation = 1;
-  d.board.send_hid(start);
+  start_stream(d, 1100000, 2);
+  start_stream(d, 1200000, 1);
   d.run_until(1299900);
   d.board.send_hid(command(MessageType::StopStream));
   d.run_until(1400000);
-  std::vector<protocol::TickRecord> ticks;
-  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks.insert(ticks.end(), m.ticks.ticks, m.ticks.ticks + m.ticks.count);
+  const std::vector<protocol::TickRecord> ticks = ticks_received(d);
   // 1.1 .. 1.1995 s every 2nd tick (100), 1.2 .. 1.2995 s every tick (200).
   ASSERT_EQ(ticks.size(), 300u);
   for (size_t i = 1; i < ticks.size(); ++i) ASSERT_GT(ticks[i].t_us, ticks[i - 1].t_us) << i;
@@ -788,12 +787,7 @@ TEST(FirmwareApp, TicksStreamedWithoutAFingerAreNoReplyEither) {
 TEST(FirmwareApp, AHostThatStopsReadingCostsCountedRecordsNeverABlockedLoop) {
   Device d;
   d.zforce_model.load_trace(stroke());
-  d.run_until(1099900);
-  Message start = command(MessageType::StartStream);
-  start.stream.tick_decimation = 2;
-  d.board.send_hid(start);
-  d.run_until(1100000);
-  const uint32_t reports_before = d.app->sensor().count(ZforceCount::Samples);
+  const uint32_t reports_before = start_stream(d, 1100000, 2);
   d.run_until(1200000);
   d.host_reads = false;  // ffctl hangs for 0.4 s
   d.run_until(1600000);
@@ -802,16 +796,11 @@ TEST(FirmwareApp, AHostThatStopsReadingCostsCountedRecordsNeverABlockedLoop) {
   EXPECT_TRUE(d.board.hid_of(MessageType::Status).empty());
   EXPECT_GE(d.counters().hid_frames_dropped, 1u);
   d.host_reads = true;
-  d.run_until(1799900);
-  d.board.send_hid(command(MessageType::StopStream));
-  d.run_until(1800000);
-  const uint32_t reports_streamed = d.app->sensor().count(ZforceCount::Samples) - reports_before;
+  const uint32_t reports_streamed = stop_stream(d, 1800000) - reports_before;
   d.run_until(1900000);
 
-  std::vector<protocol::TickRecord> ticks;
-  for (const Message& m : d.board.hid_of(MessageType::Ticks)) ticks.insert(ticks.end(), m.ticks.ticks, m.ticks.ticks + m.ticks.count);
-  size_t samples = 0;
-  for (const Message& m : d.board.hid_of(MessageType::Samples)) samples += m.samples.count;
+  const std::vector<protocol::TickRecord> ticks = ticks_received(d);
+  const size_t samples = samples_received(d);
   for (size_t i = 1; i < ticks.size(); ++i) ASSERT_GT(ticks[i].t_us, ticks[i - 1].t_us);
   // Every record streamed (every 2nd tick from 1.1 s to 1.8 s, and every report) arrived or was counted.
   const FirmwareCounters c = d.counters();
