@@ -633,7 +633,7 @@ TEST(FirmwareApp, TheStatusSaysWhereTheSensorPutsItsTimestamp) {
     d.board.send_udp(command(MessageType::QueryStatus));
     d.run_until(1501000);
     ASSERT_EQ(d.board.udp_of(MessageType::Status).size(), 1u);
-    const protocol::StatusMessage& st = d.board.udp_of(MessageType::Status)[0].status;
+    const protocol::StatusMessage st = d.board.udp_of(MessageType::Status)[0].status;  // a copy: udp_of returns a new vector
     EXPECT_GT(reports, 90u);
     EXPECT_EQ(st.zforce_layout_beside, inside ? 0u : reports) << inside;
     EXPECT_EQ(st.zforce_layout_inside, inside ? reports : 0u) << inside;
