@@ -208,7 +208,7 @@ void ZforceSensor::on_response(const zforce::Message& msg, uint32_t now_us) {
   attempts_ = 0;
   step_ = static_cast<Step>(step + 1);
   if (step_ == Step::kDone) state_ = ZforceState::Running;
-  deadline_us_ = now_us;
+  deadline_us_ = now_us + config_.response_timeout_us;
 }
 
 bool ZforceSensor::on_touches(const zforce::Message& msg, uint32_t t_us, SensorSample& out) {
@@ -256,7 +256,10 @@ bool ZforceSensor::on_touches(const zforce::Message& msg, uint32_t t_us, SensorS
 }
 
 bool ZforceSensor::poll(uint32_t now_us, SensorSample& out) {
-  if (state_ == ZforceState::Booting && deadline_reached(now_us, deadline_us_)) state_ = ZforceState::Configuring;
+  if (state_ == ZforceState::Booting && deadline_reached(now_us, deadline_us_)) {
+    state_ = ZforceState::Configuring;
+    deadline_us_ = now_us + config_.response_timeout_us;
+  }
   if (tracking_ && elapsed_since(now_us, tracked_seen_us_) > config_.track_timeout_us) {
     tracking_ = false;
     for (uint32_t& w : ignored_) w = 0;
@@ -276,6 +279,7 @@ bool ZforceSensor::poll(uint32_t now_us, SensorSample& out) {
           step_ = Step::TouchFormat;
           awaiting_ = false;
           attempts_ = 0;
+          deadline_us_ = now_us + config_.response_timeout_us;
           tracking_ = false;
         }
         break;
@@ -292,12 +296,16 @@ bool ZforceSensor::poll(uint32_t now_us, SensorSample& out) {
   }
 
   if (state_ == ZforceState::Configuring) {
-    if (awaiting_ && deadline_reached(now_us, deadline_us_)) {
+    // The deadline is the answer's, or, while DR keeps the next request back
+    // (a message the bus cannot read), the request's: either way an attempt.
+    if (deadline_reached(now_us, deadline_us_)) {
+      if (!awaiting_) ++attempts_;
       awaiting_ = false;
       if (attempts_ >= config_.max_attempts) {
         state_ = ZforceState::Failed;
       } else {
         add(ZforceCount::ConfigRetry);
+        deadline_us_ = now_us + config_.response_timeout_us;
       }
     }
     if (state_ == ZforceState::Configuring && !awaiting_ && !dr_.asserted()) send_step(now_us);

@@ -107,6 +107,34 @@ TEST(ZforceSensor, ConfigurationExchangeAndFirstTouchByteForByte) {
   EXPECT_EQ(sensor.errors(), 0u);
 }
 
+// DR up for a few polls because messages queued behind an answer is no lost
+// attempt: the next request waits for them, within the answer timeout.
+TEST(ZforceSensor, MessagesQueuedBehindAnAnswerDelayTheNextRequestWithoutARetry) {
+  const std::vector<uint8_t> answer_head = {0xEE, 0x0E};
+  const std::vector<uint8_t> answer = {0xEF, 0x0C, 0x40, 0x02, 0x02, 0x00, 0x66, 0x06, 0x41, 0x04, 0x01, 0xF6, 0x18, 0x04};
+  std::vector<I2cTransaction> script = {
+      expect_read(0x50, {0xEE, 0x0F}),
+      expect_read(0x50, {0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81, 0x02, 0x07, 0x80}),
+      expect_write(0x50, {0xEE, 0x08, 0xEE, 0x06, 0x40, 0x02, 0x02, 0x00, 0x66, 0x00}),
+  };
+  for (int i = 0; i < 5; ++i) {  // the answer, then four copies: five frames, one more than a poll reads
+    script.push_back(expect_read(0x50, answer_head));
+    script.push_back(expect_read(0x50, answer));
+  }
+  script.push_back(expect_write(0x50, {0xEE, 0x10, 0xEE, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02, 0x0C,
+                                       0x80, 0x81, 0x02, 0x07, 0x80}));
+  MockI2cInitiator bus(script);
+  ScriptDr dr(script, bus);
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  SensorSample s;
+  for (uint32_t t = 0; t <= 3000; t += 1000) EXPECT_FALSE(sensor.poll(t, s));  // the third poll sends
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+  EXPECT_EQ(sensor.count(ZforceCount::UnexpectedResponse), 4u);
+  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 0u);
+}
+
 TEST(ZforceSensor, ConfiguresTheEmulatedSensor) {
   ZforceRig rig;
   EXPECT_LT(rig.configure(), 20000u);
@@ -402,6 +430,38 @@ TEST(ZforceSensor, RetriesThenGivesUpOnASilentSensor) {
   EXPECT_EQ(rig.model.requests(), 3u);
 }
 
+// A sensor that holds DR while no read reaches it (a wedged sensor, a
+// shorted line, SDA stuck): nothing can be sent, since DR says a message
+// waits. Each request held back that long counts as an unanswered attempt,
+// so the driver fails as it would for a silent sensor, and the firmware
+// restarts it, instead of configuring for ever.
+TEST(ZforceSensor, GivesUpWhenDrStaysUpAndNoReadGetsThrough) {
+  struct StuckDr final : DataReadyInput {
+    bool asserted() const override { return true; }
+    bool take_edge(uint32_t&, uint32_t&) override { return false; }
+  } dr;
+  struct DeadBus final : I2cInitiator {
+    int writes = 0;
+    BusStatus do_write_read(uint8_t, const uint8_t*, size_t tx_len, uint8_t*, size_t, uint32_t) override {
+      if (tx_len > 0) ++writes;
+      return BusStatus::Timeout;
+    }
+  } bus;
+  const ZforceConfig config;  // boot wait 300 ms, then 3 attempts of 100 ms each
+  ZforceSensor sensor(bus, dr, config);
+  sensor.begin(0);
+  SensorSample s;
+  uint32_t failed_at = 0;
+  for (uint32_t t = 0; t <= 2000000 && failed_at == 0; t += 1000) {
+    EXPECT_FALSE(sensor.poll(t, s));
+    if (sensor.state() == ZforceState::Failed) failed_at = t;
+  }
+  EXPECT_EQ(failed_at, config.boot_wait_us + 3 * config.response_timeout_us);
+  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 2u);
+  EXPECT_GT(sensor.count(ZforceCount::BusError), 0u);
+  EXPECT_EQ(bus.writes, 0);
+}
+
 TEST(ZforceSensor, ConfiguresAgainAfterTheSensorReboots) {
   ZforceRig rig;
   rig.configure();
@@ -410,6 +470,20 @@ TEST(ZforceSensor, ConfiguresAgainAfterTheSensorReboots) {
                                  0x02, 0x07, 0x80});
   rig.run(50000, 80000, 1000);
   EXPECT_EQ(rig.sensor.count(ZforceCount::SensorRebooted), 1u);
+  EXPECT_EQ(rig.sensor.state(), ZforceState::Running);
+  EXPECT_EQ(rig.model.requests(), 12u);
+}
+
+TEST(ZforceSensor, MessagesQueuedBehindARebootDelayTheFirstRequestWithoutARetry) {
+  ZforceRig rig;
+  rig.configure();
+  ASSERT_EQ(rig.model.requests(), 6u);
+  for (int i = 0; i < 6; ++i) {  // six boot notifications at once: more than a poll reads
+    rig.model.schedule_raw(500000, {0xEE, 0x0F, 0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81,
+                                   0x02, 0x07, 0x80});
+  }
+  rig.run(500000, 530000, 1000);  // long after the last answer's deadline
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ConfigRetry), 0u);
   EXPECT_EQ(rig.sensor.state(), ZforceState::Running);
   EXPECT_EQ(rig.model.requests(), 12u);
 }
