@@ -81,6 +81,32 @@ FirmwareCounters FirmwareApp::counters() const {
   return c;
 }
 
+// Status carries the driver's state and counts as they are.
+static_assert(static_cast<int>(ZforceState::Booting) == static_cast<int>(protocol::SensorState::Booting) &&
+              static_cast<int>(ZforceState::Configuring) == static_cast<int>(protocol::SensorState::Configuring) &&
+              static_cast<int>(ZforceState::Running) == static_cast<int>(protocol::SensorState::Running) &&
+              static_cast<int>(ZforceState::Failed) == static_cast<int>(protocol::SensorState::Failed));
+static_assert(static_cast<int>(ZforceCount::kCount) <= protocol::kMaxSensorCounts);
+
+protocol::DeviceCounts FirmwareApp::device_counts(const FirmwareCounters& c) const {
+  using protocol::DeviceCount;
+  protocol::DeviceCounts d;
+  d[DeviceCount::ConditionsSet] = c.conditions_set;
+  d[DeviceCount::ConditionsRefused] = c.conditions_refused;
+  d[DeviceCount::SensorProfilesSet] = c.sensor_profiles_set;
+  d[DeviceCount::SensorProfilesRefused] = c.sensor_profiles_refused;
+  d[DeviceCount::TickStalls] = c.tick_stalls;
+  d[DeviceCount::HidFramesDropped] = c.hid_frames_dropped;
+  d[DeviceCount::SensorRestarts] = c.sensor_restarts;
+  d[DeviceCount::MouseMovesSkipped] = c.mouse_moves_skipped;
+  d[DeviceCount::UdpSendFailures] = c.udp_send_failures;
+  d[DeviceCount::ForceReadErrors] = load_cells_.read_errors();
+  d[DeviceCount::ForceRezeros] = load_cells_.rezeros();
+  d[DeviceCount::ForceRezerosRefused] = load_cells_.rezeros_refused();
+  d[DeviceCount::ForcePeriodsMissed] = load_cells_.missed_periods();
+  return d;
+}
+
 float FirmwareApp::carrier_hz() const {
   const uint32_t word = dds_.frequency_word_of(dds_.selected_frequency());
   return static_cast<float>(ad9834::output_millihz(word, dds_.mclk_hz())) * 0.001f;
@@ -367,6 +393,10 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       st.loop_pass_max_us = loop_pass_max_us_;
       st.zforce_layout_beside = zforce_.count(ZforceCount::TimestampBeside);
       st.zforce_layout_inside = zforce_.count(ZforceCount::TimestampInside);
+      st.device = device_counts(c);
+      st.sensor_state = static_cast<protocol::SensorState>(zforce_.state());
+      st.sensor_count_n = static_cast<uint8_t>(ZforceCount::kCount);
+      for (int i = 0; i < st.sensor_count_n; ++i) st.sensor_counts[i] = zforce_.count(static_cast<ZforceCount>(i));
       break;
     }
     case MessageType::QueryCondition:  // what renders now, as the SetCondition payload that set it

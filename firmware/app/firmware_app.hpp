@@ -33,7 +33,7 @@
 
 namespace ff::firmware {
 
-constexpr uint16_t kFirmwareVersion = 0x0100;    // 1.0
+constexpr uint16_t kFirmwareVersion = 0x0101;    // 1.1: Status carries the device and sensor counts
 constexpr uint32_t kDefaultCarrierHz = 34900;    // plate mode (0;12)
 constexpr uint32_t kMouseIntervalUs = 3000;      // thesis: cursor every 3 ms
 // Main loop silent this long: the tick rests the plate. Ten sensor periods;
@@ -97,6 +97,8 @@ class FirmwareApp {
   uint32_t loop_pass_max_us() const { return loop_pass_max_us_; }
 
   FirmwareCounters counters() const;
+  // counters() and the load cells' counts in the Status message's order.
+  protocol::DeviceCounts device_counts(const FirmwareCounters& c) const;
   // The code that rests the plate (the active scene's idle amplitude): for
   // the board's fault handlers.
   uint16_t rest_code() const { return pipeline_.amplitude_map().idle_code(); }

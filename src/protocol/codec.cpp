@@ -327,6 +327,12 @@ void put_payload(WireWriter& w, const Message& m) {
       }
       w.u8(static_cast<uint8_t>(Fault::kCount));
       for (int i = 0; i < static_cast<int>(Fault::kCount); ++i) w.u32(s.faults.count[i]);
+      w.u8(static_cast<uint8_t>(DeviceCount::kCount));
+      for (uint32_t v : s.device.count) w.u32(v);
+      w.u8(static_cast<uint8_t>(s.sensor_state));
+      const uint8_t n = s.sensor_count_n < kMaxSensorCounts ? s.sensor_count_n : kMaxSensorCounts;
+      w.u8(n);
+      for (int i = 0; i < n; ++i) w.u32(s.sensor_counts[i]);
       break;
     }
     case MessageType::Force:
@@ -433,11 +439,25 @@ bool get_payload(WireReader& r, Message& m) {
         *v = r.u32();
       }
       const uint8_t n = r.u8();  // newer firmware may count more faults: keep what we know
-      s.faults = FaultCounters{};
       for (int i = 0; i < n; ++i) {
         const uint32_t v = r.u32();
         if (i < static_cast<int>(Fault::kCount)) s.faults.count[i] = v;
       }
+      if (r.at_end()) return true;  // firmware 1.0 ends here: state unknown, no counts (as reset)
+      const uint8_t devices = r.u8();  // a newer firmware may count more: keep what we know
+      for (int i = 0; i < devices; ++i) {
+        const uint32_t v = r.u32();
+        if (i < static_cast<int>(DeviceCount::kCount)) s.device.count[i] = v;
+      }
+      const uint8_t state = r.u8();
+      if (state > static_cast<uint8_t>(SensorState::Unknown)) return false;
+      s.sensor_state = static_cast<SensorState>(state);
+      const uint8_t sensor = r.u8();
+      for (int i = 0; i < sensor; ++i) {
+        const uint32_t v = r.u32();
+        if (i < kMaxSensorCounts) s.sensor_counts[i] = v;
+      }
+      s.sensor_count_n = sensor < kMaxSensorCounts ? sensor : kMaxSensorCounts;
       return true;
     }
     case MessageType::Force: {

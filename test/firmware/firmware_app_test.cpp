@@ -232,6 +232,23 @@ Message command(MessageType type, uint8_t sequence = 9) {
   return m;
 }
 
+// The Status over USB, asked at `t_us` and answered within 10 ms.
+protocol::StatusMessage status_at(Device& d, uint32_t t_us) {
+  d.run_until(t_us);
+  d.board.send_hid(command(MessageType::QueryStatus, 77));
+  d.run_until(t_us + 10000);
+  const auto status = d.board.hid_of(MessageType::Status);
+  EXPECT_FALSE(status.empty());
+  return status.empty() ? protocol::StatusMessage() : status.back().status;
+}
+
+void expect_device_counts(const protocol::DeviceCounts& got, const protocol::DeviceCounts& want) {
+  for (int i = 0; i < static_cast<int>(protocol::DeviceCount::kCount); ++i) {
+    EXPECT_EQ(got.count[i], want.count[i]) << to_string(static_cast<protocol::DeviceCount>(i));
+  }
+}
+
+
 // StartStream over USB, taken by the loop pass at `t_us` (the loop reads the
 // sensor, then takes the command): the sensor's report count then.
 uint32_t start_stream(Device& d, uint32_t t_us, uint8_t decimation) {
@@ -404,6 +421,8 @@ TEST(FirmwareApp, MovesTheUsbHostDidNotTakeAreCounted) {
   d.board.mouse_queue_full = true;
   d.run_until(1530000);  // 10 moves due
   EXPECT_EQ(d.counters().mouse_moves_skipped, 10u);
+  d.board.mouse_queue_full = false;
+  EXPECT_EQ(status_at(d, 1530000).device[protocol::DeviceCount::MouseMovesSkipped], 10u);
 }
 
 TEST(FirmwareApp, BeforeAnySceneIsSetAFingerFeelsTheNeutralScene) {
@@ -521,6 +540,8 @@ TEST(FirmwareApp, StalledLoopRestsThePlateAfter50msAndRendersAgainWhenItReturns)
   d.run_until(1410000);
   ASSERT_EQ(d.board.udp_of(MessageType::Status).size(), 1u);
   EXPECT_EQ(d.board.udp_of(MessageType::Status)[0].status.watchdog_trips, 1u);
+  // The load cells' reading due 30 ms into the 100 ms stall came late: one period missed, not a burst.
+  EXPECT_EQ(d.board.udp_of(MessageType::Status)[0].status.device[protocol::DeviceCount::ForcePeriodsMissed], 1u);
   // The tick ran through the stall: its clock never leapt.
   const FaultCounters faults = d.pipeline->faults();
   EXPECT_EQ(faults[Fault::BadTickTime], 0u);
@@ -594,6 +615,7 @@ TEST(FirmwareApp, StoppedTickIsCaughtByTheLoopWhichRestsThePlate) {
   d.run_until(1350000);
   EXPECT_EQ(d.dac.last(), 0);
   EXPECT_EQ(d.counters().tick_stalls, 2u);
+  EXPECT_EQ(status_at(d, 1350000).device[protocol::DeviceCount::TickStalls], 2u);
 }
 
 TEST(FirmwareApp, StatusOverHidCarriesTheTickCostAndFaults) {
@@ -814,7 +836,10 @@ TEST(FirmwareApp, AHostThatStopsReadingCostsCountedRecordsNeverABlockedLoop) {
   d.board.send_hid(command(MessageType::QueryStatus));  // the host is told what it lost
   d.run_until(1910000);
   ASSERT_EQ(d.board.hid_of(MessageType::Status).size(), 1u);
-  EXPECT_EQ(d.board.hid_of(MessageType::Status)[0].status.stream_overruns, c.stream_overruns);
+  const protocol::StatusMessage st = d.board.hid_of(MessageType::Status)[0].status;
+  EXPECT_EQ(st.stream_overruns, c.stream_overruns);
+  EXPECT_EQ(st.device[protocol::DeviceCount::HidFramesDropped], c.hid_frames_dropped);
+  EXPECT_GE(c.hid_frames_dropped, 1u);
 }
 
 TEST(FirmwareApp, AnAddressThatDoesNotAnswerIsCountedAndLeftAloneUntilItSpeaks) {
@@ -827,7 +852,8 @@ TEST(FirmwareApp, AnAddressThatDoesNotAnswerIsCountedAndLeftAloneUntilItSpeaks) 
   d.board.udp_unanswered = false;
   d.board.send_udp(command(MessageType::QueryStatus));
   d.run_until(1310000);
-  EXPECT_EQ(d.board.udp_of(MessageType::Status).size(), 1u);
+  ASSERT_EQ(d.board.udp_of(MessageType::Status).size(), 1u);
+  EXPECT_EQ(d.board.udp_of(MessageType::Status)[0].status.device[protocol::DeviceCount::UdpSendFailures], 1u);
   EXPECT_EQ(d.counters().udp_send_failures, 1u);
 }
 
@@ -889,13 +915,18 @@ TEST(FirmwareApp, CarrierSetAndSweptByMessage) {
 TEST(FirmwareApp, AFailedSensorIsStartedAgainAndThePlateRestsMeanwhile) {
   Device d(/*sensor_unplugged=*/true);
   d.board.send_udp(condition(protocol::ConditionKind::Neutral));  // would play 0.5 with a finger
-  d.run_until(1500000);
+  const protocol::StatusMessage failed = status_at(d, 1490000);  // the host can tell why nothing is felt
   ASSERT_EQ(d.app->sensor().state(), ZforceState::Failed);
+  EXPECT_EQ(failed.sensor_state, protocol::SensorState::Failed);
+  EXPECT_GT(failed.sensor_counts[static_cast<int>(ZforceCount::BusError)], 0u);
+  EXPECT_EQ(failed.device[protocol::DeviceCount::SensorRestarts], 0u);
   for (const auto& w : d.dac.writes()) ASSERT_EQ(w.code, 0) << "at " << w.t_us;  // no finger: idle
   d.i2c.fail_next(0, BusStatus::Ok);  // plugged in again
   d.zforce_model.load_trace(stroke(5000000));
-  d.run_until(5500000);
+  const protocol::StatusMessage running = status_at(d, 5490000);
   EXPECT_EQ(d.counters().sensor_restarts, 1u);
+  EXPECT_EQ(running.device[protocol::DeviceCount::SensorRestarts], 1u);
+  EXPECT_EQ(running.sensor_state, protocol::SensorState::Running);
   EXPECT_EQ(d.app->sensor().state(), ZforceState::Running);
   EXPECT_EQ(d.dac_at(5500000), 2048);  // the neutral scene, with the finger back
 }
@@ -1028,6 +1059,57 @@ TEST(FirmwareApp, ARefusedSensorProfileIsCountedAndTheTrackerKeepsItsFinger) {
   // Not reconfigured: the finger tracked throughout, the scene rendered on.
   EXPECT_EQ(d.pipeline->faults()[Fault::TouchDown], 1u);
   for (uint32_t t = 1200000; t <= 1300000; t += 500) ASSERT_EQ(d.dac_at(t), kHeightmapOnPathMovingRight) << t;
+}
+
+
+TEST(FirmwareApp, TheStatusCarriesWhatTheFirmwareCountsAndTheSensorsState) {
+  using protocol::DeviceCount;
+  Device d;  // no finger all along: the load cells may re-zero
+  const auto send = [&d](const Message& m) {  // one at a time: every reply has room
+    d.board.send_hid(m);
+    d.run_until(d.now + 5000);
+  };
+  for (uint8_t i = 0; i < 3; ++i) send(condition(protocol::ConditionKind::Neutral, 1.0f, i));
+  Message general = condition(protocol::ConditionKind::General, 1.0f, 3);  // a 1 px float table: too large
+  general.condition.scene.rendering = Rendering::Directional;
+  general.condition.scene.evaluation = Evaluation::Table;
+  general.condition.scene.table = {1.0f, TableStorage::Float32, TableSource::TabulatedGradient};
+  general.condition.scene.add(FieldElement::vortex({400, 240}, 1.0f));
+  send(general);
+  SensorProfile slow = kMeasured;
+  slow.report_rate_hz = 5.0f;  // below 10 Hz
+  for (uint8_t i = 0; i < 2; ++i) send(sensor_profile(kMeasured, static_cast<uint8_t>(10 + i)));
+  for (uint8_t i = 0; i < 4; ++i) send(sensor_profile(slow, static_cast<uint8_t>(20 + i)));
+  d.run_until(1000000);  // tared long since (5 readings from 30 ms on)
+  d.adc.fail_next(5);    // each failed reading stops at its first channel: 5 readings lost
+  d.run_until(1200000);
+  for (uint8_t ch = 0; ch < 4; ++ch) d.adc.set(ch, 101);  // +4 counts, 42 mN: drift, re-zeroed
+  const protocol::StatusMessage st = status_at(d, 1500000);
+
+  protocol::DeviceCounts want;
+  want[DeviceCount::ConditionsSet] = 3;
+  want[DeviceCount::ConditionsRefused] = 1;
+  want[DeviceCount::SensorProfilesSet] = 2;
+  want[DeviceCount::SensorProfilesRefused] = 4;
+  want[DeviceCount::ForceReadErrors] = 5;
+  want[DeviceCount::ForceRezeros] = 5;  // once per reading while the step passes through the 5-reading mean
+  expect_device_counts(st.device, want);
+  EXPECT_EQ(st.sensor_state, protocol::SensorState::Running);
+  ASSERT_EQ(st.sensor_count_n, static_cast<uint8_t>(ZforceCount::kCount));
+  EXPECT_EQ(st.sensor_counts[static_cast<int>(ZforceCount::FramesRead)], 7u);  // boot complete and six answers
+  EXPECT_EQ(st.sensor_counts[static_cast<int>(ZforceCount::Samples)], 0u);
+}
+
+TEST(FirmwareApp, TheStatusSaysTheLoadCellsSawSomethingRestingOnThePlate) {
+  using protocol::DeviceCount;
+  Device d;
+  d.run_until(1000000);
+  for (uint8_t ch = 0; ch < 4; ++ch) d.adc.set(ch, 120);  // +80 counts: 16 a reading into the mean, 168 mN
+  const protocol::StatusMessage st = status_at(d, 1300000);
+  EXPECT_EQ(st.device[DeviceCount::ForceRezeros], 0u);
+  // Every reading from the step on (1.02 s, then each 30 ms to 1.29 s): 10.
+  EXPECT_EQ(st.device[DeviceCount::ForceRezerosRefused], 10u);
+  EXPECT_EQ(st.device[DeviceCount::ForcePeriodsMissed], 0u);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <cstring>
 #include <limits>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "frictionfield/core/scenes.hpp"
@@ -283,6 +285,87 @@ TEST(Codec, EveryFramingFaultIsRejected) {
   bad = good;
   bad[3] = 0x55;
   EXPECT_EQ(status_of(reseal(bad)), DecodeStatus::UnknownType);
+}
+
+// The Status tail after the fault counters, byte by byte: the device counts
+// (their number, then each), the sensor's state, the zForce counts.
+TEST(Codec, StatusEndsWithTheDeviceCountsTheSensorStateAndItsCounts) {
+  Message m;
+  m.type = MessageType::Status;
+  m.status.device[DeviceCount::ConditionsSet] = 0x01020304;
+  m.status.device[DeviceCount::ForcePeriodsMissed] = 0xA0B0C0D0;
+  m.status.sensor_state = SensorState::Failed;
+  m.status.sensor_count_n = 2;
+  m.status.sensor_counts[0] = 5;
+  m.status.sensor_counts[1] = 0x0100;
+  m.status.sensor_counts[2] = 77;  // beyond the count: not sent
+  const std::vector<uint8_t> f = frame_of(m);
+  std::vector<uint8_t> tail = {13, 0x04, 0x03, 0x02, 0x01};
+  tail.insert(tail.end(), 11 * 4, 0);
+  for (uint8_t b : {0xD0, 0xC0, 0xB0, 0xA0, 3, 2, 5, 0, 0, 0, 0, 1, 0, 0}) tail.push_back(b);
+  ASSERT_GT(f.size(), tail.size() + 2);
+  EXPECT_EQ(std::vector<uint8_t>(f.end() - 2 - tail.size(), f.end() - 2), tail);
+  const Message out = round_trip(m);
+  EXPECT_EQ(out.status.device[DeviceCount::ConditionsSet], 0x01020304u);
+  EXPECT_EQ(out.status.device[DeviceCount::ForcePeriodsMissed], 0xA0B0C0D0u);
+  EXPECT_EQ(out.status.sensor_state, SensorState::Failed);
+  ASSERT_EQ(out.status.sensor_count_n, 2);
+  EXPECT_EQ(out.status.sensor_counts[1], 0x0100u);
+  EXPECT_EQ(out.status.sensor_counts[2], 0u);
+}
+
+TEST(DeviceCount, EachHasItsOwnName) {
+  std::set<std::string> names;
+  for (int i = 0; i < static_cast<int>(DeviceCount::kCount); ++i) {
+    const std::string name = to_string(static_cast<DeviceCount>(i));
+    EXPECT_NE(name, "?");
+    EXPECT_TRUE(names.insert(name).second) << name;
+  }
+  EXPECT_STREQ(to_string(DeviceCount::kCount), "?");
+  EXPECT_STREQ(to_string(SensorState::Booting), "booting");
+  EXPECT_STREQ(to_string(SensorState::Configuring), "configuring");
+  EXPECT_STREQ(to_string(SensorState::Running), "running");
+  EXPECT_STREQ(to_string(SensorState::Failed), "failed");
+  EXPECT_STREQ(to_string(SensorState::Unknown), "unknown");
+}
+
+TEST(Codec, StatusTailsOfOtherFirmwareVersions) {
+  // The fixed part with no faults: version, kind 2, target 1, then zeros but for the fault count.
+  std::vector<uint8_t> fixed = {0x00, 0x01, 2, 1};
+  fixed.insert(fixed.end(), 4 + 6 * 4 + 4 + 1 + 4 + 7 * 4, 0);
+  fixed.push_back(0);  // no faults
+  const auto u32 = [](std::vector<uint8_t>& p, uint32_t v) {
+    for (int i = 0; i < 4; ++i) p.push_back(static_cast<uint8_t>(v >> (8 * i)));
+  };
+  Message out;
+  // Firmware 1.0 ended after the faults.
+  std::vector<uint8_t> f = frame_with_payload(MessageType::Status, fixed);
+  ASSERT_EQ(decode(f.data(), f.size(), out), DecodeStatus::Ok);
+  EXPECT_EQ(out.status.sensor_state, SensorState::Unknown);
+  EXPECT_EQ(out.status.sensor_count_n, 0);
+  // A newer one counting two more things, with 40 sensor counts: what is known is kept.
+  std::vector<uint8_t> p = fixed;
+  p.push_back(15);
+  for (uint32_t i = 1; i <= 15; ++i) u32(p, i);
+  p.push_back(2);
+  p.push_back(40);
+  for (uint32_t i = 100; i < 140; ++i) u32(p, i);
+  f = frame_with_payload(MessageType::Status, p);
+  ASSERT_EQ(decode(f.data(), f.size(), out), DecodeStatus::Ok);
+  for (int i = 0; i < static_cast<int>(DeviceCount::kCount); ++i) EXPECT_EQ(out.status.device.count[i], i + 1u);
+  EXPECT_EQ(out.status.sensor_state, SensorState::Running);
+  ASSERT_EQ(out.status.sensor_count_n, kMaxSensorCounts);
+  EXPECT_EQ(out.status.sensor_counts[kMaxSensorCounts - 1], 100u + kMaxSensorCounts - 1);
+  // A state past Unknown, or a tail cut short: malformed.
+  std::vector<uint8_t> bad = fixed;
+  bad.push_back(0);
+  bad.push_back(static_cast<uint8_t>(SensorState::Unknown) + 1);
+  bad.push_back(0);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Status, bad)), DecodeStatus::Malformed);
+  bad[bad.size() - 2] = static_cast<uint8_t>(SensorState::Failed);
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Status, bad)), DecodeStatus::Ok);
+  bad.pop_back();
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Status, bad)), DecodeStatus::Malformed);
 }
 
 TEST(Codec, EveryMalformedPayloadIsRejected) {

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "device_client.hpp"
+#include "frictionfield/drivers/zforce_sensor.hpp"
 #include "frictionfield/host/scene_spec.hpp"
 #include "frictionfield/host/sensor_profile_options.hpp"
 #include "halfkay.hpp"
@@ -119,6 +120,28 @@ void print_silicon(const ff::protocol::StatusMessage& s) {
               s.zforce_layout_beside, s.zforce_layout_inside);
 }
 
+// What the firmware and the zForce driver count, nonzero ones only: the
+// device's (refused conditions, restarts, lost frames...) and the sensor's
+// errors; frames read and samples show that it reports at all.
+void print_device_and_sensor(const ff::protocol::StatusMessage& s) {
+  using ff::protocol::DeviceCount;
+  bool any = false;
+  for (int i = 0; i < static_cast<int>(DeviceCount::kCount); ++i) {
+    if (s.device.count[i] == 0) continue;
+    std::printf("%s%s %u", any ? ", " : "device: ", ff::protocol::to_string(static_cast<DeviceCount>(i)),
+                s.device.count[i]);
+    any = true;
+  }
+  if (any) std::printf("\n");
+  std::printf("touch sensor: %s", ff::protocol::to_string(s.sensor_state));
+  for (int i = 0; i < s.sensor_count_n; ++i) {
+    if (s.sensor_counts[i] == 0) continue;
+    const char* name = i < static_cast<int>(ff::ZforceCount::kCount) ? ff::to_string(static_cast<ff::ZforceCount>(i)) : "other";
+    std::printf(", %s %u", name, s.sensor_counts[i]);
+  }
+  std::printf("\n");
+}
+
 void print_status(const ff::protocol::StatusMessage& s) {
   static const char* kinds[] = {"heightmap", "frictionmap", "neutral", "general scene"};
   static const char* targets[] = {"top", "middle", "bottom"};
@@ -140,6 +163,7 @@ void print_status(const ff::protocol::StatusMessage& s) {
     any = true;
   }
   std::printf(any ? "\n" : "faults: none\n");
+  print_device_and_sensor(s);
 }
 
 // The monitor's line: `changing` holds what counts as a change (counters,
@@ -158,6 +182,22 @@ void monitor_line(const ff::protocol::StatusMessage& s, std::string& line, std::
     any = true;
   }
   if (!any) changing += "none";
+  // The sensor's state and what went wrong with it or the device (not what
+  // moves all the time: frames read, samples, timestamp layouts).
+  changing += std::string(", sensor ") + ff::protocol::to_string(s.sensor_state);
+  for (int i = 0; i < static_cast<int>(ff::protocol::DeviceCount::kCount); ++i) {
+    if (s.device.count[i] == 0) continue;
+    changing += std::string(" ") + ff::protocol::to_string(static_cast<ff::protocol::DeviceCount>(i)) + "=" +
+                std::to_string(s.device.count[i]);
+  }
+  for (int i = 0; i < s.sensor_count_n && i < static_cast<int>(ff::ZforceCount::kCount); ++i) {
+    const auto c = static_cast<ff::ZforceCount>(i);
+    if (s.sensor_counts[i] == 0 || c == ff::ZforceCount::FramesRead || c == ff::ZforceCount::Samples ||
+        c == ff::ZforceCount::TimestampBeside || c == ff::ZforceCount::TimestampInside) {
+      continue;
+    }
+    changing += std::string(" ") + ff::to_string(c) + "=" + std::to_string(s.sensor_counts[i]);
+  }
   std::snprintf(buf, sizeof buf, "ticks %u, tick max %.1f%%, force %.0f mN, ", s.ticks,
                 100.0 * s.tick_cycles_max / kTickCycles, static_cast<double>(s.force_mN));
   line = buf + changing;

@@ -10,6 +10,7 @@
 #include "frictionfield/core/scene.hpp"
 #include "frictionfield/core/sensor_profile.hpp"
 #include "frictionfield/core/sensor_sample.hpp"
+#include "frictionfield/protocol/device_counts.hpp"
 
 namespace ff::protocol {
 
@@ -90,6 +91,13 @@ struct StatusMessage {
   uint32_t zforce_layout_beside = 0;
   uint32_t zforce_layout_inside = 0;
   FaultCounters faults;
+  // What the firmware counts beside the faults, the touch sensor's state and
+  // the zForce driver's own counts (ZforceCount order). A firmware before 1.1
+  // sends none of them: Unknown, and no counts.
+  DeviceCounts device;
+  SensorState sensor_state = SensorState::Unknown;
+  uint8_t sensor_count_n = 0;
+  uint32_t sensor_counts[kMaxSensorCounts] = {};
 };
 
 struct ForceMessage {

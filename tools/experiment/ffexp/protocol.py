@@ -29,6 +29,22 @@ FAULT_NAMES = ["non_finite_coordinate", "off_screen", "non_increasing_time", "ju
                "jump_confirmed", "stale_sample", "sensor_timeout", "lift_off", "touch_down",
                "mailbox_overflow", "bad_strength", "bad_calibration", "bad_tick_time",
                "sample_time_implausible", "time_base_reset", "bad_sensor_profile"]
+# What the firmware counts beside the faults (ff::protocol::DeviceCount), the
+# touch sensor's states, and the zForce driver's counts (ff::ZforceCount, its
+# to_string names with "_" for " "): each in its enum's order, as Status
+# carries them (firmware 1.1 on; test_exp_protocol checks them against the C++).
+DEVICE_COUNT_NAMES = ["conditions_set", "conditions_refused", "sensor_profiles_set", "sensor_profiles_refused",
+                      "tick_stalls", "hid_frames_dropped", "sensor_restarts", "mouse_moves_skipped",
+                      "udp_send_failures", "force_read_errors", "force_rezeros", "force_rezeros_refused",
+                      "force_periods_missed"]
+SENSOR_STATES = ["booting", "configuring", "running", "failed", "unknown"]
+ZFORCE_COUNT_NAMES = ["frames_read", "samples", "wrong_header", "length_over_max", "truncated", "malformed_tag",
+                      "unknown_tag", "impossible_value", "bus_error", "resync_bytes", "other_finger_ignored",
+                      "ghost_or_invalid", "resumed_without_down", "unexpected_response", "config_retry",
+                      "sensor_rebooted", "track_lost", "timestamp_beside_the_touches",
+                      "timestamp_inside_the_touches"]
+# zForce counts that move whenever the sensor reports: not worth a log line.
+ZFORCE_COUNTS_THAT_MOVE = {"frames_read", "samples", "timestamp_beside_the_touches", "timestamp_inside_the_touches"}
 
 
 class ProtocolError(Exception):
@@ -181,6 +197,9 @@ class Status:
     faults: list
     # isr cycles mean/max/p99, last preparation us, slowest loop pass us, zForce stamp layouts beside/inside
     silicon: tuple = ()
+    device: list = field(default_factory=list)         # DEVICE_COUNT_NAMES order ([] before firmware 1.1)
+    sensor_state: str = "unknown"
+    sensor_counts: list = field(default_factory=list)  # ZFORCE_COUNT_NAMES order
 
     @property
     def firmware(self):
@@ -192,6 +211,12 @@ class Status:
                  stream_overruns=self.stream_overruns)
         for i, v in enumerate(self.faults):
             c[FAULT_NAMES[i] if i < len(FAULT_NAMES) else f"fault{i}"] = v
+        for i, v in enumerate(self.device):
+            c[DEVICE_COUNT_NAMES[i] if i < len(DEVICE_COUNT_NAMES) else f"device{i}"] = v
+        for i, v in enumerate(self.sensor_counts):
+            name = ZFORCE_COUNT_NAMES[i] if i < len(ZFORCE_COUNT_NAMES) else f"zforce{i}"
+            if name not in ZFORCE_COUNTS_THAT_MOVE:
+                c["zforce_" + name] = v
         return c
 
 
@@ -269,11 +294,24 @@ def decode(data):
         if t == STATUS and len(p) >= STATUS_FIXED.size:
             v = STATUS_FIXED.unpack_from(p)
             n = v[-1]
-            if len(p) != STATUS_FIXED.size + 4 * n:
-                raise ProtocolError("malformed Status")
+            at = STATUS_FIXED.size + 4 * n
             faults = list(struct.unpack_from(f"<{n}I", p, STATUS_FIXED.size))
+            device, state, sensor = [], "unknown", []
+            if len(p) > at:  # firmware 1.1 on: device counts, sensor state, zForce counts
+                m = p[at]
+                device = list(struct.unpack_from(f"<{m}I", p, at + 1))
+                at += 1 + 4 * m
+                if len(p) < at + 2 or p[at] >= len(SENSOR_STATES):
+                    raise ProtocolError("malformed Status")
+                state = SENSOR_STATES[p[at]]
+                k = p[at + 1]
+                sensor = list(struct.unpack_from(f"<{k}I", p, at + 2))
+                at += 2 + 4 * k
+            if len(p) != at:
+                raise ProtocolError("malformed Status")
             return seq, Status(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10],
-                               bool(v[11] & 1), bool(v[11] & 2), v[12], faults, tuple(v[13:20]))
+                               bool(v[11] & 1), bool(v[11] & 2), v[12], faults, tuple(v[13:20]), device, state,
+                               sensor)
         if t == TICKS and p and len(p) == 1 + 10 * p[0]:
             ticks = []
             for i in range(p[0]):
@@ -310,11 +348,17 @@ def force(seq, t_us, force_mn, over_force=False):
     return frame(FORCE, seq, struct.pack("<I", t_us) + _f32(force_mn) + struct.pack("<B", int(over_force)))
 
 
-def status(seq, firmware_version=0x0200, force_mn=0.0, faults=(), **kw):
+def status(seq, firmware_version=0x0200, force_mn=0.0, faults=(), device=None, sensor_state=2, sensor_counts=(),
+           **kw):
+    """device=None: a firmware 1.0 Status, ending after the faults."""
     fixed = STATUS_FIXED.pack(firmware_version, kw.get("kind", 2), kw.get("target", 1), kw.get("strength", 1.0),
                               kw.get("ticks", 0), 0, 0, kw.get("protocol_errors", 0), 0, 0, force_mn, 0,
                               34900.0, 0, 0, 0, 0, 0, 0, 0, len(faults))
-    return frame(STATUS, seq, fixed + struct.pack(f"<{len(faults)}I", *faults))
+    p = fixed + struct.pack(f"<{len(faults)}I", *faults)
+    if device is not None:
+        p += struct.pack(f"<B{len(device)}I", len(device), *device)
+        p += struct.pack(f"<BB{len(sensor_counts)}I", sensor_state, len(sensor_counts), *sensor_counts)
+    return frame(STATUS, seq, p)
 
 
 def ticks(seq, records):

@@ -53,6 +53,33 @@ def test_status_and_ticks_round_trip():
     assert t == [(10, 0.5, 2047, True), (510, 0.25, 1023, False)]
 
 
+def test_status_tail_round_trips_and_a_firmware_1_0_status_has_none():
+    old = protocol.decode(protocol.status(1, faults=[0, 2]))[1]
+    assert old.device == [] and old.sensor_state == "unknown" and old.sensor_counts == []
+    assert old.counters() == {"protocol_errors": 0, "watchdog_trips": 0, "stream_overruns": 0,
+                              "non_finite_coordinate": 0, "off_screen": 2}
+    device = list(range(1, len(protocol.DEVICE_COUNT_NAMES) + 1))
+    sensor = [50, 40, 0, 0, 0, 0, 0, 0, 3]  # frames read, samples, ..., bus error
+    m = protocol.decode(protocol.status(2, faults=[], device=device, sensor_state=3, sensor_counts=sensor))[1]
+    assert m.device == device and m.sensor_state == "failed" and m.sensor_counts == sensor
+    c = m.counters()
+    assert c["conditions_set"] == 1 and c["force_periods_missed"] == len(device)
+    assert c["zforce_bus_error"] == 3 and "zforce_frames_read" not in c and "zforce_samples" not in c
+
+
+@pytest.mark.parametrize("cut", [1, 2, 5])
+def test_a_status_tail_cut_short_is_malformed(cut):
+    f = protocol.status(2, device=[1, 2], sensor_state=2, sensor_counts=[7])
+    _, _, p = protocol.unframe(f)
+    with pytest.raises(protocol.ProtocolError):
+        protocol.decode(protocol.frame(protocol.STATUS, 2, p[:-cut]))
+
+
+def test_a_sensor_state_past_unknown_is_malformed():
+    with pytest.raises(protocol.ProtocolError):
+        protocol.decode(protocol.status(2, device=[], sensor_state=5))
+
+
 def test_nan_refused():
     with pytest.raises(protocol.ProtocolError):
         protocol.Condition("heightmap", "top", float("nan")).payload()
@@ -99,3 +126,28 @@ def test_a_sensor_profile_reply_decodes_and_a_non_finite_one_is_malformed():
             protocol.decode(protocol.frame(protocol.SENSOR_PROFILE, 8, bad))
     with pytest.raises(protocol.ProtocolError):
         protocol.set_sensor_profile(9, protocol.SensorProfile(white_noise_px=float("inf")))
+
+
+def _enum_members(header, enum):
+    """The members of `enum class <enum>` in order, without kCount."""
+    import re
+    body = re.search(r"enum class " + enum + r"\b[^{]*\{(.*?)\}", header, re.S).group(1)
+    body = re.sub(r"//[^\n]*", "", body)
+    return [m.strip() for m in body.split(",") if m.strip() and m.strip() != "kCount"]
+
+
+def test_device_sensor_and_zforce_names_are_the_firmwares_in_its_order():
+    import re
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[3]
+    header = (root / "include/frictionfield/protocol/device_counts.hpp").read_text()
+    source = (root / "src/protocol/device_counts.cpp").read_text()
+    names = dict(re.findall(r'case DeviceCount::(\w+): return "(\w+)";', source))
+    assert protocol.DEVICE_COUNT_NAMES == [names[m] for m in _enum_members(header, "DeviceCount")]
+    states = dict(re.findall(r'case SensorState::(\w+): return "(\w+)";', source))
+    states["Unknown"] = "unknown"
+    assert protocol.SENSOR_STATES == [states[m] for m in _enum_members(header, "SensorState")]
+    header = (root / "include/frictionfield/drivers/zforce_sensor.hpp").read_text()
+    source = (root / "src/drivers/zforce_sensor.cpp").read_text()
+    names = dict(re.findall(r'case ZforceCount::(\w+): return "([\w ]+)";', source))
+    assert protocol.ZFORCE_COUNT_NAMES == [names[m].replace(" ", "_") for m in _enum_members(header, "ZforceCount")]

@@ -311,6 +311,8 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = ffctl(udp(device) + "status");
   EXPECT_NE(r.out.find("condition: frictionmap, target bottom, strength 0.33"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("device: conditions_set 1\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("touch sensor: running, frames read "), std::string::npos) << r.out;
   r = ffctl(udp(device) + "carrier 35000");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   r = ffctl(udp(device) + "status");
@@ -428,6 +430,8 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
   EXPECT_LT(lines, 30) << text;  // not every 50 ms query: only changes
   EXPECT_NE(text.find("finger down"), std::string::npos) << text;
   EXPECT_NE(text.find("finger up"), std::string::npos) << text;
+  EXPECT_NE(text.find(", sensor running"), std::string::npos) << text;
+  EXPECT_EQ(text.find("frames read"), std::string::npos) << text;  // what moves all the time is no change
   EXPECT_EQ(text.find('\r'), std::string::npos);  // no refreshing line into a file
 }
 

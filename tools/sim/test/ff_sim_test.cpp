@@ -102,8 +102,9 @@ TEST(FfSim, StartsInUnderASecondAndAnswersStatus) {
   ASSERT_NE(sim.port, 0) << "no ready line";
   EXPECT_LT(std::chrono::duration<double>(sim.ready_after).count(), 1.0);
   const Message st = sim.status();
-  EXPECT_EQ(st.status.firmware_version, 0x0100);
+  EXPECT_EQ(st.status.firmware_version, 0x0101);  // 1.1, the firmware unchanged
   EXPECT_FALSE(st.status.finger_present);
+  EXPECT_EQ(st.status.sensor_state, ff::protocol::SensorState::Running);  // the emulated zForce configured
 }
 
 TEST(FfSim, AFingerFromDatagramsRendersTheSceneAndPressesTheLoadCells) {
