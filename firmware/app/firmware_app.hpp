@@ -97,8 +97,6 @@ class FirmwareApp {
   uint32_t loop_pass_max_us() const { return loop_pass_max_us_; }
 
   FirmwareCounters counters() const;
-  // counters() and the load cells' counts in the Status message's order.
-  protocol::DeviceCounts device_counts(const FirmwareCounters& c) const;
   // The code that rests the plate (the active scene's idle amplitude): for
   // the board's fault handlers.
   uint16_t rest_code() const { return pipeline_.amplitude_map().idle_code(); }
@@ -109,6 +107,8 @@ class FirmwareApp {
 
  private:
   enum class Channel : uint8_t { Udp, Hid };
+  // counters() and the load cells' counts in the Status message's order.
+  protocol::DeviceCounts device_counts(const FirmwareCounters& c) const;
   bool tick_alive(uint32_t now_us);
   void read_sensor(uint32_t now_us);
   void read_host(uint32_t now_us);
