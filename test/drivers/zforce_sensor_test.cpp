@@ -326,20 +326,28 @@ TEST(ZforceSensor, InjectedGarbageBetweenReportsChangesNothing) {
 
 TEST(ZforceSensor, ABadFrameJustBeforeAGoodOneDoesNotSwallowIt) {
   // Both are waiting when the main loop comes round: the drain of the bad one
-  // must stop at the good one's DR edge.
+  // must stop at the good one's DR edge, and keep that edge's time for it.
   ZforceRig rig;
   rig.configure();
   const std::vector<SensorSample> trace = stroke(100000, 10);
   rig.model.load_trace(trace);
-  rig.model.inject(trace[4].t_us - 100, Fault::BadHeader);
+  ASSERT_EQ(trace[4].t_us, 120100u);  // stroke()'s jitter: between the loop passes at 120 and 125 ms
+  rig.model.inject(trace[4].t_us - 50, Fault::BadHeader);
   std::vector<SensorSample> got;
   for (uint32_t t = 100000; t <= trace.back().t_us + 5000; t += 5000) {  // a slow loop: both due at once
     rig.model.advance_to(t);
     SensorSample s;
-    while (rig.sensor.poll(t, s)) got.push_back(s);
+    while (rig.sensor.poll(t + 300, s)) got.push_back(s);  // the loop reads 300 us after the sensor's time
   }
   ASSERT_EQ(got.size(), trace.size());
   EXPECT_EQ(got[4].x, trace[4].x);
+  // DR rose for it when the drain emptied the bad one, at the sensor's 125 ms: not the poll's 125.3 ms.
+  EXPECT_EQ(got[4].t_us, 125000u);
+  for (size_t i = 0; i < got.size(); ++i) {  // the kept edge is used once
+    if (i != 4) {
+      EXPECT_EQ(got[i].t_us, trace[i].t_us) << i;
+    }
+  }
   EXPECT_EQ(rig.sensor.count(ZforceCount::WrongHeader), 1u);
 }
 
@@ -356,6 +364,23 @@ TEST(ZforceSensor, ABusErrorLosesOneReport) {
   want.erase(want.begin() + 4);
   expect_samples(got, want);
   EXPECT_EQ(rig.sensor.count(ZforceCount::BusError), 1u);
+}
+
+TEST(ZforceSensor, ABusErrorWhileDrainingIsCountedToo) {
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000, 10);
+  rig.model.load_trace(trace);
+  std::vector<SensorSample> got = rig.run(100000, trace[3].t_us + 500);
+  rig.bus.fail_next(2, BusStatus::Timeout);  // the header read, then the drain's first byte
+  const std::vector<SensorSample> rest = rig.run(trace[4].t_us + 100, trace.back().t_us + 1000);
+  got.insert(got.end(), rest.begin(), rest.end());
+  // The drain stops at its failed read; neither failed read took a byte, so
+  // the next poll reads the report whole (its DR edge was taken: the poll's time).
+  ASSERT_EQ(got.size(), trace.size());
+  EXPECT_EQ(got[4].x, trace[4].x);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::BusError), 2u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResyncBytes), 0u);
 }
 
 TEST(ZforceSensor, ALostDownIsRecoveredFromTheMoves) {
@@ -428,6 +453,10 @@ TEST(ZforceSensor, RetriesThenGivesUpOnASilentSensor) {
   EXPECT_EQ(rig.sensor.state(), ZforceState::Failed);
   EXPECT_EQ(rig.sensor.count(ZforceCount::ConfigRetry), 2u);
   EXPECT_EQ(rig.model.requests(), 3u);
+  rig.configure(3000000);  // begun again, as the firmware does: three attempts again
+  EXPECT_EQ(rig.sensor.state(), ZforceState::Failed);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ConfigRetry), 4u);
+  EXPECT_EQ(rig.model.requests(), 6u);
 }
 
 // A sensor that holds DR while no read reaches it (a wedged sensor, a
