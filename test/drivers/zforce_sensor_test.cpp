@@ -240,6 +240,30 @@ TEST(ZforceSensor, ASecondFingerLeftBehindIsNotAdopted) {
   EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 0u);
 }
 
+TEST(ZforceSensor, AnIgnoredFingerThatLiftedIsIgnoredNoMore) {
+  // Finger 1 comes while finger 0 is tracked (ignored), lifts, and later moves
+  // again after a lost down, when no finger is tracked: it is taken up.
+  ZforceRig rig;
+  rig.configure();
+  const auto frame = [&](uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
+    const std::vector<uint32_t> xs(ids.size(), 800), ys(ids.size(), 960);
+    rig.model.schedule_raw(t_us, rig.model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
+                                                       static_cast<int>(ids.size()), t_us));
+  };
+  frame(100000, {0}, {0});        // 0 down: tracked
+  frame(105000, {0, 1}, {1, 0});  // 1 down: ignored
+  frame(110000, {0, 1}, {1, 2});  // 1 up
+  frame(115000, {0}, {2});        // 0 up: nothing tracked
+  frame(120000, {1}, {1});        // 1 moves, its down lost
+  const std::vector<SensorSample> got = rig.run(100000, 125000);
+  ASSERT_EQ(got.size(), 5u);  // 0's down, move, move, up; then 1
+  EXPECT_FALSE(got[3].touch);
+  EXPECT_TRUE(got[4].touch);
+  EXPECT_EQ(got[4].t_us, 120000u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::OtherFingerIgnored), 1u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
+}
+
 TEST(ZforceSensor, TheFirstFingerDownIsTheOneTracked) {
   // The other finger lands first (a frame with it alone), then the one the
   // trace follows: the first stays tracked, as the thesis' sensor would have it.
