@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "frictionfield/emulated/replay_mocks.hpp"
@@ -405,6 +406,35 @@ TEST(ZforceSensor, ABusErrorWhileDrainingIsCountedToo) {
   EXPECT_EQ(got[4].x, trace[4].x);
   EXPECT_EQ(rig.sensor.count(ZforceCount::BusError), 2u);
   EXPECT_EQ(rig.sensor.count(ZforceCount::ResyncBytes), 0u);
+}
+
+TEST(ZforceSensor, AFailedPayloadReadIsCountedAndTheRestDrained) {
+  const std::vector<I2cTransaction> script = {
+      expect_read(0x50, {0xEE, 0x0F}),                                    // a good header
+      expect_read(0x50, std::vector<uint8_t>(15, 0), BusStatus::Timeout),  // its payload lost
+      expect_read(0x50, {0x40}),                                          // drained while DR stays up
+  };
+  MockI2cInitiator bus(script);
+  struct OneMessageDr final : DataReadyInput {  // up for the three reads, one rising edge
+    const MockI2cInitiator& bus;
+    bool edge = true;
+    explicit OneMessageDr(const MockI2cInitiator& b) : bus(b) {}
+    bool asserted() const override { return bus.used() < 3; }
+    bool take_edge(uint32_t& t_us, uint32_t& edges) override {
+      t_us = 500;
+      edges = 1;
+      return std::exchange(edge, false);
+    }
+  } dr(bus);
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  SensorSample s;
+  EXPECT_FALSE(sensor.poll(1000, s));
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+  EXPECT_EQ(sensor.count(ZforceCount::BusError), 1u);
+  EXPECT_EQ(sensor.count(ZforceCount::ResyncBytes), 1u);
+  EXPECT_EQ(sensor.count(ZforceCount::FramesRead), 0u);
 }
 
 TEST(ZforceSensor, ALostDownIsRecoveredFromTheMoves) {
