@@ -4,7 +4,7 @@ One folder per participant (P07/):
   session.json  header written once (atomically): who, seed, versions, scene hashes
   frames.csv    one row per 80 Hz frame: monotonic time, finger, force, lateness
   trials.csv    one row per finished trial
-  events.csv    device fault counters when they change, device lost/back, pauses, resumes
+  events.csv    device fault/error counters when they change, device lost/back, pauses, resumes
   exclusions.csv  trials a person decided to drop (trial,reason); see exclusions.py
 
 Rows are appended and flushed one by one and the files fsync'ed at each

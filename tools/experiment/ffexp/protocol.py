@@ -43,7 +43,9 @@ ZFORCE_COUNT_NAMES = ["frames_read", "samples", "wrong_header", "length_over_max
                       "ghost_or_invalid", "resumed_without_down", "unexpected_response", "config_retry",
                       "sensor_rebooted", "track_lost", "timestamp_beside_the_touches",
                       "timestamp_inside_the_touches"]
-# zForce counts that move whenever the sensor reports: not worth a log line.
+# Counts of normal operation (a trial's condition, the load cells' re-zeroing
+# between touches, every zForce report): not worth a log line.
+ROUTINE_COUNTS = {"conditions_set", "sensor_profiles_set", "force_rezeros"}
 ZFORCE_COUNTS_THAT_MOVE = {"frames_read", "samples", "timestamp_beside_the_touches", "timestamp_inside_the_touches"}
 
 
@@ -206,13 +208,15 @@ class Status:
         return f"{self.firmware_version >> 8}.{self.firmware_version & 0xFF}"
 
     def counters(self):
-        """The counters worth logging when they change."""
+        """The counters worth logging when they change: faults, refusals and errors."""
         c = dict(protocol_errors=self.protocol_errors, watchdog_trips=self.watchdog_trips,
                  stream_overruns=self.stream_overruns)
         for i, v in enumerate(self.faults):
             c[FAULT_NAMES[i] if i < len(FAULT_NAMES) else f"fault{i}"] = v
         for i, v in enumerate(self.device):
-            c[DEVICE_COUNT_NAMES[i] if i < len(DEVICE_COUNT_NAMES) else f"device{i}"] = v
+            name = DEVICE_COUNT_NAMES[i] if i < len(DEVICE_COUNT_NAMES) else f"device{i}"
+            if name not in ROUTINE_COUNTS:
+                c[name] = v
         for i, v in enumerate(self.sensor_counts):
             name = ZFORCE_COUNT_NAMES[i] if i < len(ZFORCE_COUNT_NAMES) else f"zforce{i}"
             if name not in ZFORCE_COUNTS_THAT_MOVE:
