@@ -437,6 +437,25 @@ TEST(ZforceSensor, AFailedPayloadReadIsCountedAndTheRestDrained) {
   EXPECT_EQ(sensor.count(ZforceCount::FramesRead), 0u);
 }
 
+TEST(ZforceSensor, AFailedReadWhileSkippingAnOverlongFrameIsCounted) {
+  const std::vector<I2cTransaction> script = {
+      expect_read(0x50, {0xEE, 200}),                                      // 200 bytes announced: over 128
+      expect_read(0x50, std::vector<uint8_t>(128, 0), BusStatus::Timeout),  // skipping them fails at once
+  };
+  MockI2cInitiator bus(script);
+  ScriptDr dr(script, bus);
+  dr.gate = 2;
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  SensorSample s;
+  EXPECT_FALSE(sensor.poll(1000, s));
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+  EXPECT_EQ(sensor.count(ZforceCount::LengthOverMax), 1u);
+  EXPECT_EQ(sensor.count(ZforceCount::BusError), 1u);
+  EXPECT_EQ(sensor.count(ZforceCount::ResyncBytes), 0u);  // nothing skipped: the rest is left to DR
+}
+
 TEST(ZforceSensor, ALostDownIsRecoveredFromTheMoves) {
   ZforceRig rig;
   rig.configure();
