@@ -48,24 +48,82 @@ class ScriptDr final : public DataReadyInput {
   size_t last_ = SIZE_MAX;
 };
 
+// Frames of the byte-for-byte exchange below, for scripts that vary it.
+const std::vector<uint8_t> kBootHead = {0xEE, 0x0F};
+const std::vector<uint8_t> kBoot = {0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81, 0x02, 0x07, 0x80};
+const std::vector<uint8_t> kAskTouchFormat = {0xEE, 0x08, 0xEE, 0x06, 0x40, 0x02, 0x02, 0x00, 0x66, 0x00};
+const std::vector<uint8_t> kTouchFormatHead = {0xEE, 0x0E};
+const std::vector<uint8_t> kTouchFormat = {0xEF, 0x0C, 0x40, 0x02, 0x02, 0x00, 0x66, 0x06, 0x41, 0x04, 0x01, 0xF6, 0x18, 0x04};
+const std::vector<uint8_t> kAskResolution = {0xEE, 0x10, 0xEE, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02,
+                                             0x0C, 0x80, 0x81, 0x02, 0x07, 0x80};
+const std::vector<uint8_t> kResolutionHead = {0xEE, 0x10};
+const std::vector<uint8_t> kResolution = {0xEF, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02, 0x0C, 0x80, 0x81,
+                                          0x02, 0x07, 0x80};
+const std::vector<uint8_t> kAskFrequency = {0xEE, 0x0F, 0xEE, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x68, 0x07, 0x80, 0x02,
+                                            0x00, 0xC8, 0x82, 0x01, 0x32};
+
+// Polls every millisecond until the script is used up (or 2 s pass).
+uint32_t poll_through(ZforceSensor& sensor, const MockI2cInitiator& bus, size_t transactions) {
+  SensorSample s;
+  uint32_t t = 0;
+  for (; t < 2000000 && bus.used() < transactions; t += 1000) sensor.poll(t, s);
+  return t;
+}
+
+TEST(ZforceSensor, EachStepHasItsOwnThreeAttempts) {
+  // touchFormat answered at its second attempt, resolution at its third.
+  const std::vector<I2cTransaction> script = {
+      expect_read(0x50, kBootHead),         expect_read(0x50, kBoot),
+      expect_write(0x50, kAskTouchFormat),  expect_write(0x50, kAskTouchFormat),
+      expect_read(0x50, kTouchFormatHead),  expect_read(0x50, kTouchFormat),
+      expect_write(0x50, kAskResolution),   expect_write(0x50, kAskResolution),
+      expect_write(0x50, kAskResolution),   expect_read(0x50, kResolutionHead),
+      expect_read(0x50, kResolution),       expect_write(0x50, kAskFrequency),
+  };
+  MockI2cInitiator bus(script);
+  ScriptDr dr(script, bus);
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  poll_through(sensor, bus, script.size());
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+  EXPECT_EQ(sensor.state(), ZforceState::Configuring);
+  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 3u);
+}
+
+TEST(ZforceSensor, ABootNotificationWhileAwaitingAnAnswerAsksAgainAtOnce) {
+  const std::vector<I2cTransaction> script = {
+      expect_read(0x50, kBootHead),        expect_read(0x50, kBoot),
+      expect_write(0x50, kAskTouchFormat),  // unanswered: the sensor rebooted instead
+      expect_read(0x50, kBootHead),        expect_read(0x50, kBoot),
+      expect_write(0x50, kAskTouchFormat),
+  };
+  MockI2cInitiator bus(script);
+  ScriptDr dr(script, bus);
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  const uint32_t done = poll_through(sensor, bus, script.size());
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+  EXPECT_LT(done, 10000u);  // not after the 100 ms answer timeout
+  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 0u);
+}
+
 TEST(ZforceSensor, ConfigurationExchangeAndFirstTouchByteForByte) {
   const std::vector<I2cTransaction> script = {
       // Boot complete.
-      expect_read(0x50, {0xEE, 0x0F}),
-      expect_read(0x50, {0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81, 0x02, 0x07, 0x80}),
+      expect_read(0x50, kBootHead),
+      expect_read(0x50, kBoot),
       // touchFormat -> the default 9-byte descriptor.
-      expect_write(0x50, {0xEE, 0x08, 0xEE, 0x06, 0x40, 0x02, 0x02, 0x00, 0x66, 0x00}),
-      expect_read(0x50, {0xEE, 0x0E}),
-      expect_read(0x50, {0xEF, 0x0C, 0x40, 0x02, 0x02, 0x00, 0x66, 0x06, 0x41, 0x04, 0x01, 0xF6, 0x18, 0x04}),
+      expect_write(0x50, kAskTouchFormat),
+      expect_read(0x50, kTouchFormatHead),
+      expect_read(0x50, kTouchFormat),
       // resolution 3200 x 1920.
-      expect_write(0x50, {0xEE, 0x10, 0xEE, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02, 0x0C, 0x80, 0x81,
-                          0x02, 0x07, 0x80}),
-      expect_read(0x50, {0xEE, 0x10}),
-      expect_read(0x50, {0xEF, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02, 0x0C, 0x80, 0x81, 0x02, 0x07,
-                         0x80}),
+      expect_write(0x50, kAskResolution),
+      expect_read(0x50, kResolutionHead),
+      expect_read(0x50, kResolution),
       // frequency 200 Hz finger, 50 Hz idle, to the platform.
-      expect_write(0x50, {0xEE, 0x0F, 0xEE, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x68, 0x07, 0x80, 0x02, 0x00, 0xC8, 0x82,
-                          0x01, 0x32}),
+      expect_write(0x50, kAskFrequency),
       expect_read(0x50, {0xEE, 0x0F}),
       expect_read(0x50, {0xEF, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x68, 0x07, 0x80, 0x02, 0x00, 0xC8, 0x82, 0x01, 0x32}),
       // two reported touches.
@@ -262,6 +320,49 @@ TEST(ZforceSensor, AnIgnoredFingerThatLiftedIsIgnoredNoMore) {
   EXPECT_TRUE(got[4].touch);
   EXPECT_EQ(got[4].t_us, 120000u);
   EXPECT_EQ(rig.sensor.count(ZforceCount::OtherFingerIgnored), 1u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
+}
+
+// Finger 1's up is lost while finger 0 is tracked; it comes down again and is
+// tracked, lifts, and moves once more after a lost down: taken up again.
+TEST(ZforceSensor, AFingerOnceIgnoredIsForgivenWhenItIsTracked) {
+  ZforceRig rig;
+  rig.configure();
+  const auto frame = [&](uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
+    const std::vector<uint32_t> xs(ids.size(), 800), ys(ids.size(), 960);
+    rig.model.schedule_raw(t_us, rig.model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
+                                                       static_cast<int>(ids.size()), t_us));
+  };
+  frame(100000, {0}, {0});        // 0 down: tracked
+  frame(105000, {0, 1}, {1, 0});  // 1 down: ignored
+  frame(110000, {0}, {2});        // 0 up; 1's up lost
+  frame(115000, {1}, {0});        // 1 down: tracked
+  frame(120000, {1}, {2});        // 1 up
+  frame(125000, {1}, {1});        // 1 moves, its down lost
+  const std::vector<SensorSample> got = rig.run(100000, 130000);
+  ASSERT_EQ(got.size(), 6u);  // 0: down, move, up; 1: down, up, move
+  EXPECT_TRUE(got[5].touch);
+  EXPECT_EQ(got[5].t_us, 125000u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
+}
+
+// The tracked finger and an ignored one both go silent (their ups lost): once
+// the tracked one is forgotten, the other is no longer ignored either.
+TEST(ZforceSensor, ForgettingASilentFingerForgivesTheIgnoredOnes) {
+  ZforceRig rig;
+  rig.configure();
+  const auto frame = [&](uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
+    const std::vector<uint32_t> xs(ids.size(), 800), ys(ids.size(), 960);
+    rig.model.schedule_raw(t_us, rig.model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
+                                                       static_cast<int>(ids.size()), t_us));
+  };
+  frame(100000, {0}, {0});        // 0 down: tracked
+  frame(105000, {0, 1}, {1, 0});  // 1 down: ignored; then silence, both ups lost
+  frame(400000, {1}, {1});        // 1 moves, 295 ms later (over the 200 ms track timeout)
+  const std::vector<SensorSample> got = rig.run(100000, 405000);
+  ASSERT_EQ(got.size(), 3u);
+  EXPECT_EQ(got[2].t_us, 400000u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::TrackLost), 1u);
   EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
 }
 
