@@ -51,6 +51,12 @@ class ScriptDr final : public DataReadyInput {
 // Frames of the byte-for-byte exchange below, for scripts that vary it.
 const std::vector<uint8_t> kBootHead = {0xEE, 0x0F};
 const std::vector<uint8_t> kBoot = {0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81, 0x02, 0x07, 0x80};
+// The boot-complete notification whole, as the emulated sensor schedules raw frames.
+std::vector<uint8_t> boot_frame() {
+  std::vector<uint8_t> f = kBootHead;
+  f.insert(f.end(), kBoot.begin(), kBoot.end());
+  return f;
+}
 const std::vector<uint8_t> kAskTouchFormat = {0xEE, 0x08, 0xEE, 0x06, 0x40, 0x02, 0x02, 0x00, 0x66, 0x00};
 const std::vector<uint8_t> kTouchFormatHead = {0xEE, 0x0E};
 const std::vector<uint8_t> kTouchFormat = {0xEF, 0x0C, 0x40, 0x02, 0x02, 0x00, 0x66, 0x06, 0x41, 0x04, 0x01, 0xF6, 0x18, 0x04};
@@ -89,6 +95,28 @@ TEST(ZforceSensor, EachStepHasItsOwnThreeAttempts) {
   EXPECT_TRUE(bus.finished(&why)) << why;
   EXPECT_EQ(sensor.state(), ZforceState::Configuring);
   EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 3u);
+}
+
+TEST(ZforceSensor, ARebootGrantsTheFirstStepItsThreeAttemptsAgain) {
+  // Two unanswered requests, a reboot, then the first request answered at its
+  // second attempt: the attempts before the reboot do not count.
+  const std::vector<I2cTransaction> script = {
+      expect_read(0x50, kBootHead),        expect_read(0x50, kBoot),
+      expect_write(0x50, kAskTouchFormat), expect_write(0x50, kAskTouchFormat),
+      expect_read(0x50, kBootHead),        expect_read(0x50, kBoot),
+      expect_write(0x50, kAskTouchFormat), expect_write(0x50, kAskTouchFormat),
+      expect_read(0x50, kTouchFormatHead), expect_read(0x50, kTouchFormat),
+      expect_write(0x50, kAskResolution),
+  };
+  MockI2cInitiator bus(script);
+  ScriptDr dr(script, bus);
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  poll_through(sensor, bus, script.size());
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+  EXPECT_EQ(sensor.state(), ZforceState::Configuring);
+  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 2u);
 }
 
 TEST(ZforceSensor, ABootNotificationWhileAwaitingAnAnswerAsksAgainAtOnce) {
@@ -669,12 +697,25 @@ TEST(ZforceSensor, ConfiguresAgainAfterTheSensorReboots) {
   ZforceRig rig;
   rig.configure();
   ASSERT_EQ(rig.model.requests(), 6u);
-  rig.model.schedule_raw(50000, {0xEE, 0x0F, 0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81,
-                                 0x02, 0x07, 0x80});
+  rig.model.schedule_raw(50000, boot_frame());
   rig.run(50000, 80000, 1000);
   EXPECT_EQ(rig.sensor.count(ZforceCount::SensorRebooted), 1u);
   EXPECT_EQ(rig.sensor.state(), ZforceState::Running);
   EXPECT_EQ(rig.model.requests(), 12u);
+}
+
+TEST(ZforceSensor, ARebootForgetsTheTrackedFinger) {
+  // The sensor restarts mid-stroke: its numbering starts afresh, so the
+  // finger's next move is one whose down was lost, not the old track.
+  ZforceRig rig;
+  rig.configure();
+  const std::vector<SensorSample> trace = stroke(100000, 10);
+  rig.model.load_trace(trace);
+  rig.model.schedule_raw(trace[4].t_us + 1000, boot_frame());
+  const std::vector<SensorSample> got = rig.run(100000, trace.back().t_us + 1000);
+  EXPECT_EQ(got.size(), trace.size());
+  EXPECT_EQ(rig.sensor.count(ZforceCount::SensorRebooted), 1u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
 }
 
 TEST(ZforceSensor, MessagesQueuedBehindARebootDelayTheFirstRequestWithoutARetry) {
@@ -682,8 +723,7 @@ TEST(ZforceSensor, MessagesQueuedBehindARebootDelayTheFirstRequestWithoutARetry)
   rig.configure();
   ASSERT_EQ(rig.model.requests(), 6u);
   for (int i = 0; i < 6; ++i) {  // six boot notifications at once: more than a poll reads
-    rig.model.schedule_raw(500000, {0xEE, 0x0F, 0xF0, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x63, 0x07, 0x80, 0x01, 0x00, 0x81,
-                                   0x02, 0x07, 0x80});
+    rig.model.schedule_raw(500000, boot_frame());
   }
   rig.run(500000, 530000, 1000);  // long after the last answer's deadline
   EXPECT_EQ(rig.sensor.count(ZforceCount::ConfigRetry), 0u);
