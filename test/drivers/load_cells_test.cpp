@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "frictionfield/emulated/scripted_adc.hpp"
@@ -62,6 +63,31 @@ TEST(LoadCells, TaresOnTheFirstFiveReadingsThenAverages) {
   EXPECT_NEAR(static_cast<double>(r.force_mN), 44 * kMnPerCount, kTol);  // 462.37
   EXPECT_FALSE(r.over_force);
   r = rig.next(true);  // [50 x 5]: 525.42 mN
+  EXPECT_NEAR(static_cast<double>(r.force_mN), 50 * kMnPerCount, kTol);
+  EXPECT_TRUE(r.over_force);
+}
+
+TEST(LoadCells, AConfigOfZeroesAndNaNsIsRepairedToTheDefaults) {
+  ScriptedAdc adc{4, 13};
+  for (uint8_t ch = 0; ch < 4; ++ch) adc.set(ch, 250);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  LoadCellConfig bad;
+  bad.period_us = 0;
+  bad.millinewton_per_count = nan;
+  bad.over_force_mN = nan;
+  bad.rezero_limit_mN = -1.0f;
+  LoadCellMonitor cells(adc, bad);
+  cells.start(0);
+  LoadReading r;
+  EXPECT_FALSE(cells.step(29999, false, r));  // every 30 ms
+  uint32_t t = 0;
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(cells.step(t += 30000, false, r));
+  ASSERT_TRUE(r.tared);
+  adc.set(0, 255);  // +5 counts of drift: re-zeroed (52.54 mN, under the 100 mN limit)
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(cells.step(t += 30000, false, r));
+  EXPECT_TRUE(r.rezeroed);
+  adc.set(0, 305);  // +50 counts pressed: 525.42 mN, over 0.5 N
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(cells.step(t += 30000, true, r));
   EXPECT_NEAR(static_cast<double>(r.force_mN), 50 * kMnPerCount, kTol);
   EXPECT_TRUE(r.over_force);
 }
