@@ -18,7 +18,6 @@ void LoadCellMonitor::start(uint32_t now_us) {
   started_ = true;
   tared_ = false;
   zero_counts_ = 0.0f;
-  head_ = 0;
   filled_ = 0;
   next_us_ = now_us + config_.period_us;
 }
@@ -43,7 +42,7 @@ bool LoadCellMonitor::step(uint32_t now_us, bool finger_present, LoadReading& ou
     ++missed_periods_;
     next_us_ = now_us + config_.period_us;
   }
-  uint32_t sum = 0;
+  uint32_t sum;
   if (!read_sum(sum)) return false;  // counted; the previous reading stands
 
   out = LoadReading{};

@@ -150,6 +150,33 @@ TEST(LoadCells, AFingerDuringTheTareStartsItAgain) {
   EXPECT_TRUE(rig.next().tared);  // the fifth finger-free reading after the touch
 }
 
+TEST(LoadCells, StartingAgainTaresAfresh) {
+  Rig rig;
+  rig.tare();
+  rig.adc.set(0, 105);  // 5 counts more, then started again: the new zero is 1005
+  rig.next(true);
+  rig.cells.start(rig.t);
+  EXPECT_FALSE(rig.cells.tared());
+  EXPECT_EQ(rig.cells.zero_counts(), 0.0f);
+  rig.tare();
+  EXPECT_FLOAT_EQ(rig.cells.zero_counts(), 1005.0f);  // of the five readings since, not the window before
+  EXPECT_NEAR(static_cast<double>(rig.next(true).force_mN), 0.0, kTol);
+}
+
+TEST(LoadCells, AReadingReusedByTheCallerSaysOnlyWhatHappenedThisTime) {
+  Rig rig;
+  rig.tare();
+  rig.adc.set(0, 105);  // drift, re-zeroed at the fifth finger-free reading
+  LoadReading r;
+  uint32_t t = rig.t;
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(rig.cells.step(t += 30000, false, r));
+  ASSERT_TRUE(r.rezeroed);
+  ASSERT_TRUE(rig.cells.step(t += 30000, true, r));
+  EXPECT_FALSE(r.rezeroed);
+  EXPECT_TRUE(r.tared);
+  EXPECT_EQ(r.t_us, t);
+}
+
 TEST(LoadCells, AFailedConversionSkipsOneReading) {
   Rig rig;
   LoadReading r;
