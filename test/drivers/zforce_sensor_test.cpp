@@ -68,13 +68,24 @@ const std::vector<uint8_t> kResolution = {0xEF, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x
 const std::vector<uint8_t> kAskFrequency = {0xEE, 0x0F, 0xEE, 0x0D, 0x40, 0x02, 0x00, 0x00, 0x68, 0x07, 0x80, 0x02,
                                             0x00, 0xC8, 0x82, 0x01, 0x32};
 
-// Polls every millisecond until the script is used up (or 2 s pass).
-uint32_t poll_through(ZforceSensor& sensor, const MockI2cInitiator& bus, size_t transactions) {
-  SensorSample s;
-  uint32_t t = 0;
-  for (; t < 2000000 && bus.used() < transactions; t += 1000) sensor.poll(t, s);
-  return t;
-}
+// The driver on a replayed script from begin(0), polled every millisecond
+// until the script is used up (or 2 s pass); the script must outlive it.
+struct ScriptRun {
+  MockI2cInitiator bus;
+  ScriptDr dr;
+  ZforceSensor sensor;
+  uint32_t done_us = 0;  // when the last transaction had happened
+  explicit ScriptRun(const std::vector<I2cTransaction>& script) : bus(script), dr(script, bus), sensor(bus, dr) {
+    sensor.begin(0);
+    SensorSample s;
+    for (;; done_us += 1000) {
+      sensor.poll(done_us, s);
+      if (bus.used() >= script.size() || done_us >= 2000000) break;
+    }
+    std::string why;
+    EXPECT_TRUE(bus.finished(&why)) << why;
+  }
+};
 
 TEST(ZforceSensor, EachStepHasItsOwnThreeAttempts) {
   // touchFormat answered at its second attempt, resolution at its third.
@@ -86,15 +97,9 @@ TEST(ZforceSensor, EachStepHasItsOwnThreeAttempts) {
       expect_write(0x50, kAskResolution),   expect_read(0x50, kResolutionHead),
       expect_read(0x50, kResolution),       expect_write(0x50, kAskFrequency),
   };
-  MockI2cInitiator bus(script);
-  ScriptDr dr(script, bus);
-  ZforceSensor sensor(bus, dr);
-  sensor.begin(0);
-  poll_through(sensor, bus, script.size());
-  std::string why;
-  EXPECT_TRUE(bus.finished(&why)) << why;
-  EXPECT_EQ(sensor.state(), ZforceState::Configuring);
-  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 3u);
+  const ScriptRun run(script);
+  EXPECT_EQ(run.sensor.state(), ZforceState::Configuring);
+  EXPECT_EQ(run.sensor.count(ZforceCount::ConfigRetry), 3u);
 }
 
 TEST(ZforceSensor, ARebootGrantsTheFirstStepItsThreeAttemptsAgain) {
@@ -108,15 +113,9 @@ TEST(ZforceSensor, ARebootGrantsTheFirstStepItsThreeAttemptsAgain) {
       expect_read(0x50, kTouchFormatHead), expect_read(0x50, kTouchFormat),
       expect_write(0x50, kAskResolution),
   };
-  MockI2cInitiator bus(script);
-  ScriptDr dr(script, bus);
-  ZforceSensor sensor(bus, dr);
-  sensor.begin(0);
-  poll_through(sensor, bus, script.size());
-  std::string why;
-  EXPECT_TRUE(bus.finished(&why)) << why;
-  EXPECT_EQ(sensor.state(), ZforceState::Configuring);
-  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 2u);
+  const ScriptRun run(script);
+  EXPECT_EQ(run.sensor.state(), ZforceState::Configuring);
+  EXPECT_EQ(run.sensor.count(ZforceCount::ConfigRetry), 2u);
 }
 
 TEST(ZforceSensor, ABootNotificationWhileAwaitingAnAnswerAsksAgainAtOnce) {
@@ -126,15 +125,9 @@ TEST(ZforceSensor, ABootNotificationWhileAwaitingAnAnswerAsksAgainAtOnce) {
       expect_read(0x50, kBootHead),        expect_read(0x50, kBoot),
       expect_write(0x50, kAskTouchFormat),
   };
-  MockI2cInitiator bus(script);
-  ScriptDr dr(script, bus);
-  ZforceSensor sensor(bus, dr);
-  sensor.begin(0);
-  const uint32_t done = poll_through(sensor, bus, script.size());
-  std::string why;
-  EXPECT_TRUE(bus.finished(&why)) << why;
-  EXPECT_LT(done, 10000u);  // not after the 100 ms answer timeout
-  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 0u);
+  const ScriptRun run(script);
+  EXPECT_LT(run.done_us, 10000u);  // not after the 100 ms answer timeout
+  EXPECT_EQ(run.sensor.count(ZforceCount::ConfigRetry), 0u);
 }
 
 TEST(ZforceSensor, ConfigurationExchangeAndFirstTouchByteForByte) {
@@ -210,16 +203,10 @@ TEST(ZforceSensor, MessagesQueuedBehindAnAnswerDelayTheNextRequestWithoutARetry)
   }
   script.push_back(expect_write(0x50, {0xEE, 0x10, 0xEE, 0x0E, 0x40, 0x02, 0x02, 0x00, 0x69, 0x08, 0x80, 0x02, 0x0C,
                                        0x80, 0x81, 0x02, 0x07, 0x80}));
-  MockI2cInitiator bus(script);
-  ScriptDr dr(script, bus);
-  ZforceSensor sensor(bus, dr);
-  sensor.begin(0);
-  SensorSample s;
-  for (uint32_t t = 0; t <= 3000; t += 1000) EXPECT_FALSE(sensor.poll(t, s));  // the third poll sends
-  std::string why;
-  EXPECT_TRUE(bus.finished(&why)) << why;
-  EXPECT_EQ(sensor.count(ZforceCount::UnexpectedResponse), 4u);
-  EXPECT_EQ(sensor.count(ZforceCount::ConfigRetry), 0u);
+  const ScriptRun run(script);
+  EXPECT_EQ(run.done_us, 2000u);  // the third poll sends
+  EXPECT_EQ(run.sensor.count(ZforceCount::UnexpectedResponse), 4u);
+  EXPECT_EQ(run.sensor.count(ZforceCount::ConfigRetry), 0u);
 }
 
 TEST(ZforceSensor, ConfiguresTheEmulatedSensor) {
@@ -327,21 +314,24 @@ TEST(ZforceSensor, ASecondFingerLeftBehindIsNotAdopted) {
   EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 0u);
 }
 
+// A touch notification at `t_us`: fingers `ids` with their events (0 down,
+// 1 move, 2 up), all at (800, 960) sensor units.
+void touches(ZforceModel& model, uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
+  const std::vector<uint32_t> xs(ids.size(), 800), ys(ids.size(), 960);
+  model.schedule_raw(t_us, model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
+                                             static_cast<int>(ids.size()), t_us));
+}
+
 TEST(ZforceSensor, AnIgnoredFingerThatLiftedIsIgnoredNoMore) {
   // Finger 1 comes while finger 0 is tracked (ignored), lifts, and later moves
   // again after a lost down, when no finger is tracked: it is taken up.
   ZforceRig rig;
   rig.configure();
-  const auto frame = [&](uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
-    const std::vector<uint32_t> xs(ids.size(), 800), ys(ids.size(), 960);
-    rig.model.schedule_raw(t_us, rig.model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
-                                                       static_cast<int>(ids.size()), t_us));
-  };
-  frame(100000, {0}, {0});        // 0 down: tracked
-  frame(105000, {0, 1}, {1, 0});  // 1 down: ignored
-  frame(110000, {0, 1}, {1, 2});  // 1 up
-  frame(115000, {0}, {2});        // 0 up: nothing tracked
-  frame(120000, {1}, {1});        // 1 moves, its down lost
+  touches(rig.model, 100000, {0}, {0});        // 0 down: tracked
+  touches(rig.model, 105000, {0, 1}, {1, 0});  // 1 down: ignored
+  touches(rig.model, 110000, {0, 1}, {1, 2});  // 1 up
+  touches(rig.model, 115000, {0}, {2});        // 0 up: nothing tracked
+  touches(rig.model, 120000, {1}, {1});        // 1 moves, its down lost
   const std::vector<SensorSample> got = rig.run(100000, 125000);
   ASSERT_EQ(got.size(), 5u);  // 0's down, move, move, up; then 1
   EXPECT_FALSE(got[3].touch);
@@ -356,17 +346,12 @@ TEST(ZforceSensor, AnIgnoredFingerThatLiftedIsIgnoredNoMore) {
 TEST(ZforceSensor, AFingerOnceIgnoredIsForgivenWhenItIsTracked) {
   ZforceRig rig;
   rig.configure();
-  const auto frame = [&](uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
-    const std::vector<uint32_t> xs(ids.size(), 800), ys(ids.size(), 960);
-    rig.model.schedule_raw(t_us, rig.model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
-                                                       static_cast<int>(ids.size()), t_us));
-  };
-  frame(100000, {0}, {0});        // 0 down: tracked
-  frame(105000, {0, 1}, {1, 0});  // 1 down: ignored
-  frame(110000, {0}, {2});        // 0 up; 1's up lost
-  frame(115000, {1}, {0});        // 1 down: tracked
-  frame(120000, {1}, {2});        // 1 up
-  frame(125000, {1}, {1});        // 1 moves, its down lost
+  touches(rig.model, 100000, {0}, {0});        // 0 down: tracked
+  touches(rig.model, 105000, {0, 1}, {1, 0});  // 1 down: ignored
+  touches(rig.model, 110000, {0}, {2});        // 0 up; 1's up lost
+  touches(rig.model, 115000, {1}, {0});        // 1 down: tracked
+  touches(rig.model, 120000, {1}, {2});        // 1 up
+  touches(rig.model, 125000, {1}, {1});        // 1 moves, its down lost
   const std::vector<SensorSample> got = rig.run(100000, 130000);
   ASSERT_EQ(got.size(), 6u);  // 0: down, move, up; 1: down, up, move
   EXPECT_TRUE(got[5].touch);
@@ -379,14 +364,9 @@ TEST(ZforceSensor, AFingerOnceIgnoredIsForgivenWhenItIsTracked) {
 TEST(ZforceSensor, ForgettingASilentFingerForgivesTheIgnoredOnes) {
   ZforceRig rig;
   rig.configure();
-  const auto frame = [&](uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
-    const std::vector<uint32_t> xs(ids.size(), 800), ys(ids.size(), 960);
-    rig.model.schedule_raw(t_us, rig.model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
-                                                       static_cast<int>(ids.size()), t_us));
-  };
-  frame(100000, {0}, {0});        // 0 down: tracked
-  frame(105000, {0, 1}, {1, 0});  // 1 down: ignored; then silence, both ups lost
-  frame(400000, {1}, {1});        // 1 moves, 295 ms later (over the 200 ms track timeout)
+  touches(rig.model, 100000, {0}, {0});        // 0 down: tracked
+  touches(rig.model, 105000, {0, 1}, {1, 0});  // 1 down: ignored; then silence, both ups lost
+  touches(rig.model, 400000, {1}, {1});        // 1 moves, 295 ms later (over the 200 ms track timeout)
   const std::vector<SensorSample> got = rig.run(100000, 405000);
   ASSERT_EQ(got.size(), 3u);
   EXPECT_EQ(got[2].t_us, 400000u);
