@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 namespace ff::protocol {
@@ -82,6 +83,17 @@ TEST(HidChannel, ReportsBeyondTheLongestFrameAreCounted) {
   EXPECT_EQ(r.errors(), 1u);
 }
 
+// A frame and its reports.
+struct Split {
+  std::vector<uint8_t> frame;
+  uint8_t reports[kMaxHidReports][kHidReportBytes];
+  size_t n = 0;
+  explicit Split(std::vector<uint8_t> f, uint8_t fill = 0) : frame(std::move(f)) {
+    std::memset(reports, fill, sizeof reports);
+    n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
+  }
+};
+
 // Pushes `n` reports in order; how many of them completed a frame.
 int push_all(HidReassembler& r, const uint8_t (*reports)[kHidReportBytes], size_t n) {
   int complete = 0;
@@ -90,65 +102,54 @@ int push_all(HidReassembler& r, const uint8_t (*reports)[kHidReportBytes], size_
 }
 
 TEST(HidChannel, TheLastReportIsPaddedWithZeroes) {
-  const std::vector<uint8_t> frame = status_frame();
-  uint8_t reports[kMaxHidReports][kHidReportBytes];
-  std::memset(reports, 0xAA, sizeof reports);
-  const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
-  const size_t used = frame.size() - (n - 1) * kHidChunkBytes;  // bytes of the frame in the last report
+  const Split s(status_frame(), 0xAA);
+  const size_t used = s.frame.size() - (s.n - 1) * kHidChunkBytes;  // bytes of the frame in the last report
   ASSERT_LT(used, kHidChunkBytes);
-  for (size_t i = 1 + used; i < kHidReportBytes; ++i) EXPECT_EQ(reports[n - 1][i], 0) << i;
+  for (size_t i = 1 + used; i < kHidReportBytes; ++i) EXPECT_EQ(s.reports[s.n - 1][i], 0) << i;
 }
 
 TEST(HidChannel, FramesBackToBackArriveWithoutErrors) {
-  const std::vector<uint8_t> frame = status_frame();
-  uint8_t reports[kMaxHidReports][kHidReportBytes];
-  const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
+  const Split s(status_frame());
   HidReassembler r;
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(push_all(r, reports, n), 1) << k;
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(push_all(r, s.reports, s.n), 1) << k;
   EXPECT_EQ(r.errors(), 0u);
 }
 
 TEST(HidChannel, AFrameWithoutItsFirstReportIsDroppedReportByReport) {
-  const std::vector<uint8_t> frame = status_frame();
-  uint8_t reports[kMaxHidReports][kHidReportBytes];
-  const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
-  ASSERT_GE(n, 3u);
+  const Split s(status_frame());
+  ASSERT_GE(s.n, 3u);
   HidReassembler r;
-  EXPECT_EQ(push_all(r, reports + 1, n - 1), 0);  // none starts a frame
-  EXPECT_EQ(r.errors(), n - 1);
-  EXPECT_EQ(push_all(r, reports, n), 1);  // the next whole frame arrives
-  EXPECT_EQ(r.errors(), n - 1);
+  EXPECT_EQ(push_all(r, s.reports + 1, s.n - 1), 0);  // none starts a frame
+  EXPECT_EQ(r.errors(), s.n - 1);
+  EXPECT_EQ(push_all(r, s.reports, s.n), 1);  // the next whole frame arrives
+  EXPECT_EQ(r.errors(), s.n - 1);
 }
 
 TEST(HidChannel, AFrameCutShortThenAWholeOneGivesTheWholeOne) {
-  const std::vector<uint8_t> cut = status_frame();
+  const Split cut(status_frame());
   Message m;
   m.type = MessageType::Status;
   m.status.ticks = 123456;  // different bytes from the first frame
-  std::vector<uint8_t> whole(kMaxFrame);
-  whole.resize(encode(m, whole.data(), whole.size()));
-  uint8_t a[kMaxHidReports][kHidReportBytes], b[kMaxHidReports][kHidReportBytes];
-  const size_t n = split_into_reports(cut.data(), cut.size(), a, kMaxHidReports);
-  const size_t nb = split_into_reports(whole.data(), whole.size(), b, kMaxHidReports);
+  std::vector<uint8_t> bytes(kMaxFrame);
+  bytes.resize(encode(m, bytes.data(), bytes.size()));
+  const Split whole(bytes);
   HidReassembler r;
-  EXPECT_EQ(push_all(r, a, n - 1), 0);  // its last report lost
-  EXPECT_EQ(push_all(r, b, nb), 1);
+  EXPECT_EQ(push_all(r, cut.reports, cut.n - 1), 0);  // its last report lost
+  EXPECT_EQ(push_all(r, whole.reports, whole.n), 1);
   EXPECT_EQ(r.errors(), 1u);  // the first report of the whole one, out of turn
-  EXPECT_EQ(std::vector<uint8_t>(r.frame(), r.frame() + r.size()), whole);
+  EXPECT_EQ(std::vector<uint8_t>(r.frame(), r.frame() + r.size()), whole.frame);
 }
 
 TEST(HidChannel, ReportsOutOfOrderLoseTheFrameAndCountEach) {
-  const std::vector<uint8_t> frame = status_frame();
-  uint8_t reports[kMaxHidReports][kHidReportBytes];
-  const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
-  ASSERT_GE(n, 4u);
+  const Split s(status_frame());
+  ASSERT_GE(s.n, 4u);
   HidReassembler r;
-  int complete = r.push(reports[0]) ? 1 : 0;
-  complete += r.push(reports[2]) ? 1 : 0;  // 1 overtaken: the frame is lost from here
-  complete += r.push(reports[1]) ? 1 : 0;
-  complete += push_all(r, reports + 3, n - 3);
+  int complete = r.push(s.reports[0]) ? 1 : 0;
+  complete += r.push(s.reports[2]) ? 1 : 0;  // 1 overtaken: the frame is lost from here
+  complete += r.push(s.reports[1]) ? 1 : 0;
+  complete += push_all(r, s.reports + 3, s.n - 3);
   EXPECT_EQ(complete, 0);
-  EXPECT_EQ(r.errors(), n - 1);  // every report after the first
+  EXPECT_EQ(r.errors(), s.n - 1);  // every report after the first
 }
 
 TEST(HidChannel, AfterTooManyReportsTheNextFrameArrivesWhole) {
@@ -159,12 +160,10 @@ TEST(HidChannel, AfterTooManyReportsTheNextFrameArrivesWhole) {
     EXPECT_FALSE(r.push(report));
   }
   EXPECT_EQ(r.errors(), 1u);
-  const std::vector<uint8_t> frame = status_frame();
-  uint8_t reports[kMaxHidReports][kHidReportBytes];
-  const size_t n = split_into_reports(frame.data(), frame.size(), reports, kMaxHidReports);
-  EXPECT_EQ(push_all(r, reports, n), 1);
+  const Split s(status_frame());
+  EXPECT_EQ(push_all(r, s.reports, s.n), 1);
   EXPECT_EQ(r.errors(), 1u);
-  EXPECT_EQ(std::vector<uint8_t>(r.frame(), r.frame() + r.size()), frame);
+  EXPECT_EQ(std::vector<uint8_t>(r.frame(), r.frame() + r.size()), s.frame);
 }
 
 TEST(HidChannel, ALastReportShorterThanTheHeaderSaysIsCounted) {
