@@ -1,9 +1,8 @@
 #include "frictionfield/core/velocity_noise.hpp"
 
 #include <cmath>
-#include <complex>
-#include <utility>
 
+#include "frictionfield/core/complex_solve.hpp"
 #include "frictionfield/core/tick_math.hpp"
 
 namespace ff {
@@ -16,37 +15,6 @@ constexpr int kDoublings = 40;         // 2^40 reports: decades at 5 kHz
 constexpr float kInitialSpeedPxS = 1000.0f;
 
 bool settled(float now, float before) { return std::fabs(now - before) <= kSettled * std::fabs(now); }
-
-using Complex = std::complex<float>;
-
-// Products and quotients written out in float. std::complex's own operators
-// call libgcc's __mulsc3 / __divsc3 for C99's infinity rules, and on the M4
-// __divsc3 computes in software double; the pivots here are finite and non-zero.
-Complex times(Complex a, Complex b) {
-  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
-}
-float magnitude2(Complex a) { return a.real() * a.real() + a.imag() * a.imag(); }
-Complex over(Complex a, Complex b) { return times(a, std::conj(b)) * (1.0f / magnitude2(b)); }
-
-// Solves a x = b (n <= 5) by Gaussian elimination with partial pivoting.
-void solve(Complex a[5][5], Complex b[5], int n) {
-  for (int col = 0; col < n; ++col) {
-    int pivot = col;
-    for (int r = col + 1; r < n; ++r)
-      if (magnitude2(a[r][col]) > magnitude2(a[pivot][col])) pivot = r;
-    for (int j = 0; j < n; ++j) std::swap(a[col][j], a[pivot][j]);
-    std::swap(b[col], b[pivot]);
-    for (int r = col + 1; r < n; ++r) {
-      const Complex f = over(a[r][col], a[col][col]);
-      for (int j = col; j < n; ++j) a[r][j] -= times(f, a[col][j]);
-      b[r] -= times(f, b[col]);
-    }
-  }
-  for (int r = n - 1; r >= 0; --r) {
-    for (int j = r + 1; j < n; ++j) b[r] -= times(a[r][j], b[j]);
-    b[r] = over(b[r], a[r][r]);
-  }
-}
 
 }  // namespace
 
@@ -130,13 +98,13 @@ float resting_velocity_variance(const SteadyStateFilter& f, const SensorProfile&
     float worst = 0.0f;
     for (int k = -2; k <= 2; ++k) {  // the band's edges, centre and quarters
       const SinCos w = sincos_turns((band.centre_hz + 0.5f * static_cast<float>(k) * band.half_width_hz) * T);
-      const Complex inverse_z(w.cos, -w.sin);
-      Complex a[5][5], x[5];
+      const ComplexF inverse_z(w.cos, -w.sin);
+      ComplexF a[kMaxComplexSolve][kMaxComplexSolve], x[kMaxComplexSolve];
       for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) a[i][j] = Complex(i == j ? 1.0f : 0.0f) - M[i][j] * inverse_z;
-        x[i] = Complex(K[i]);
+        for (int j = 0; j < n; ++j) a[i][j] = ComplexF(i == j ? 1.0f : 0.0f) - M[i][j] * inverse_z;
+        x[i] = ComplexF(K[i]);
       }
-      solve(a, x, n);
+      solve_in_place(a, x, n);
       const float gain2 = magnitude2(x[1]);
       if (gain2 > worst) worst = gain2;
     }
