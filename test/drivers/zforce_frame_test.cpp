@@ -94,6 +94,27 @@ TEST(ZforceDecoder, DecodesATouchNotification) {
   EXPECT_EQ(m.timestamp, 32u);
 }
 
+TEST(ZforceDecoder, TakesTheDeviceIndexFromTheAddress) {
+  Bytes b = kTouch;
+  b[7] = 0x05;  // address 40 02 02 05: an air device, the sixth
+  Message m;
+  ASSERT_EQ(decode(b, m), FrameError::None);
+  EXPECT_EQ(m.device_type, kDeviceTypeAir);
+  EXPECT_EQ(m.device_index, 5);
+}
+
+TEST(ZforceDecoder, ANewMessageForgetsTheLastOne) {
+  // The driver decodes every frame into one Message: a response after a
+  // touch must not still carry the touch or its timestamp.
+  Message m;
+  ASSERT_EQ(decode(kTouch, m), FrameError::None);
+  ASSERT_EQ(decode({0xEE, 0x09, 0xEF, 0x07, 0x40, 0x02, 0x02, 0x00, 0x65, 0x01, 0x00}, m), FrameError::None);
+  EXPECT_EQ(m.kind, MessageKind::Response);
+  EXPECT_EQ(m.touch_count, 0);
+  EXPECT_FALSE(m.has_timestamp);
+  EXPECT_EQ(m.timestamp, 0u);
+}
+
 // The same touch with the timestamp inside the touch sequence: A0 0E { 42 09 ... 58 01 20 }.
 // Lengths by hand: touch sequence 11 + 3 = 14 (0x0E), notification 4 + 2 + 14 = 20 (0x14).
 const Bytes kTouchStampInside{0xEE, 0x16, 0xF0, 0x14, 0x40, 0x02, 0x02, 0x00, 0xA0, 0x0E, 0x42, 0x09,
@@ -181,6 +202,11 @@ TEST(ZforceDecoder, TouchDescriptorRules) {
   EXPECT_EQ(parse_touch_descriptor(no_id, 2, f), FrameError::ImpossibleValue);
   const uint8_t bit23[] = {0x00, 0xF6, 0x18, 0x05};  // bit 23: no such field
   EXPECT_EQ(parse_touch_descriptor(bit23, 4, f), FrameError::ImpossibleValue);
+  const uint8_t no_data[] = {0x00};  // the unused-bits octet alone
+  EXPECT_EQ(parse_touch_descriptor(no_data, 1, f), FrameError::MalformedTag);
+  EXPECT_EQ(parse_touch_descriptor(no_data, 0, f), FrameError::MalformedTag);
+  const uint8_t forty_bits[] = {0x00, 0xF6, 0x18, 0x04, 0x00, 0x00};  // the default's fields, then 16 more bits
+  EXPECT_EQ(parse_touch_descriptor(forty_bits, 6, f), FrameError::ImpossibleValue);
   const uint8_t ok[] = {0x01, 0xF6, 0x18, 0x04};
   ASSERT_EQ(parse_touch_descriptor(ok, 4, f), FrameError::None);
   EXPECT_EQ(f.fields, TouchFormat::assumed_default().fields);
@@ -196,6 +222,17 @@ TEST(ZforceDecoder, LengthOverMax) {
   b[0] = 0xEE;
   b[1] = 129;
   EXPECT_EQ(decode(b), FrameError::LengthOverMax);
+}
+
+TEST(ZforceDecoder, APayloadOverMaxIsRefusedEvenWhenWellFormed) {
+  // 130 bytes: a response (EF 81 7F) of an address and an Enable member of
+  // 121 bytes, valid BER, but longer than any frame the sensor sends.
+  Bytes p{0xEF, 0x81, 0x7F, 0x40, 0x02, 0x02, 0x00, 0x65, 0x79};
+  p.resize(130, 0x00);
+  FrameDecoder d;
+  Message m;
+  EXPECT_EQ(d.decode_payload(p.data(), p.size(), m), FrameError::LengthOverMax);
+  EXPECT_EQ(d.decode_payload(p.data(), kMaxFramePayload + 1, m), FrameError::LengthOverMax);
 }
 
 TEST(ZforceDecoder, Truncated) {
@@ -220,6 +257,9 @@ TEST(ZforceDecoder, MalformedTags) {
   b = kTouch;
   b.push_back(0x00);  // a byte after the message
   b[1] = static_cast<uint8_t>(b[1] + 1);
+  EXPECT_EQ(decode(b), FrameError::MalformedTag);
+  b = kTouch;
+  b.push_back(0x00);  // a byte after the frame its length byte declares
   EXPECT_EQ(decode(b), FrameError::MalformedTag);
   // Timestamp before the notification; two notifications; address not first.
   EXPECT_EQ(decode({0xEE, 0x0B, 0xF0, 0x09, 0x40, 0x02, 0x02, 0x00, 0x58, 0x01, 0x20, 0xA0, 0x00}),
