@@ -130,7 +130,6 @@ FrameError FrameDecoder::decode_response(const uint8_t* p, size_t n, Message& ou
     } else if (is_message_member(t.tag)) {
       if (out.response_to == 0) out.response_to = t.tag;
       if (t.tag == kTouchFormat) {
-        if (!t.constructed) return FrameError::MalformedTag;
         ber::Tlv d;
         if (t.length > 0) {
           const ber::Status ds = ber::read_tlv(t.value, t.length, d);
