@@ -91,6 +91,8 @@ TEST(Codec, ThesisConditionRoundTripsAndBecomesTheBuiltInScene) {
   Message m = condition(ConditionKind::Heightmap);
   m.condition.target = Target::Top;
   m.condition.strength = 0.66f;
+  m.condition.idle_amplitude = 0.125f;
+  m.condition.s_curve = 0.25f;
   const Message out = round_trip(m);
   EXPECT_EQ(out.condition.kind, ConditionKind::Heightmap);
   EXPECT_EQ(out.condition.target, Target::Top);
@@ -98,6 +100,8 @@ TEST(Codec, ThesisConditionRoundTripsAndBecomesTheBuiltInScene) {
   const Condition c = out.condition.to_condition();
   EXPECT_EQ(host::format_scene_text(c.scene), host::format_scene_text(scenes::heightmap(Target::Top)));
   EXPECT_FLOAT_EQ(c.amplitude.strength, 0.66f);
+  EXPECT_FLOAT_EQ(c.amplitude.idle_amplitude, 0.125f);
+  EXPECT_FLOAT_EQ(c.amplitude.s_curve, 0.25f);
   // A thesis condition is short: 7 header + 15 condition + 2 x 8 calibration + 2 CRC.
   EXPECT_EQ(frame_of(m).size(), 7u + 15u + 16u + 2u);
 }
@@ -607,6 +611,10 @@ TEST(Codec, ASensorProfileNeedsItsWholePayloadAndFiniteNumbersButNotValidOnes) {
 }
 
 TEST(Codec, ErrorCodesNameTheFailedCheck) {
+  EXPECT_EQ(error_code_for(DecodeStatus::TooShort), ErrorCode::TooShort);
+  EXPECT_EQ(error_code_for(DecodeStatus::BadMagic), ErrorCode::BadMagic);
+  EXPECT_EQ(error_code_for(DecodeStatus::BadVersion), ErrorCode::BadVersion);
+  EXPECT_EQ(error_code_for(DecodeStatus::BadLength), ErrorCode::BadLength);
   EXPECT_EQ(error_code_for(DecodeStatus::BadCrc), ErrorCode::BadCrc);
   EXPECT_EQ(error_code_for(DecodeStatus::UnknownType), ErrorCode::UnknownType);
   EXPECT_EQ(error_code_for(DecodeStatus::Malformed), ErrorCode::Malformed);
