@@ -127,7 +127,6 @@ void put_element(WireWriter& w, const FieldElement& e) {
 bool get_element(WireReader& r, FieldElement& e) {
   const uint8_t kind = r.u8();
   if (kind > static_cast<uint8_t>(ElementKind::Texture)) return false;
-  e = FieldElement{};
   e.kind = static_cast<ElementKind>(kind);
   e.weight = r.f32();
   switch (e.kind) {

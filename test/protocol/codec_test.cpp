@@ -49,6 +49,16 @@ std::vector<uint8_t> frame_with_payload(MessageType type, const std::vector<uint
   return reseal(f);
 }
 
+// The frame with `count` bytes at `at` replaced by `with`, its length and CRC mended.
+std::vector<uint8_t> spliced(std::vector<uint8_t> f, size_t at, size_t count, const std::vector<uint8_t>& with) {
+  f.erase(f.begin() + static_cast<std::ptrdiff_t>(at), f.begin() + static_cast<std::ptrdiff_t>(at + count));
+  f.insert(f.begin() + static_cast<std::ptrdiff_t>(at), with.begin(), with.end());
+  const size_t payload = f.size() - 7 - 2;  // less header and CRC
+  f[5] = uint8_t(payload);
+  f[6] = uint8_t(payload >> 8);
+  return reseal(f);
+}
+
 DecodeStatus status_of(const std::vector<uint8_t>& f) {
   Message out;
   return decode(f.data(), f.size(), out);
@@ -449,6 +459,39 @@ TEST(Codec, EveryMalformedPayloadIsRejected) {
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Ack, {0x01, 2, 0})), DecodeStatus::Malformed);
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Error, {0, 1})), DecodeStatus::Malformed);
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Force, {0, 0, 0, 0, 0, 0, 0, 0, 2})), DecodeStatus::Malformed);
+}
+
+TEST(Codec, ElementAndCurveKindsAndPolylineSizesAreChecked) {
+  // A general condition of one element: the element from byte 55 (7 header,
+  // 15 condition, 16 calibration, 17 scene), its kind, weight, then its own fields.
+  constexpr size_t kElement = 7 + 15 + 16 + 17, kCurve = kElement + 5, kCount = kCurve + 1;
+  Message g = condition(ConditionKind::General);
+  g.condition.scene.element_count = 1;
+  FieldElement& e = g.condition.scene.elements[0];
+  // Kind 6, nothing after its weight: only the kind's own check can refuse
+  // it, for the payload's length is then what a kind without fields would have.
+  e.kind = ElementKind::Vortex;
+  std::vector<uint8_t> f = spliced(frame_of(g), kElement + 5, 8, {});  // the centre gone
+  f[kElement] = 6;
+  EXPECT_EQ(status_of(reseal(f)), DecodeStatus::Malformed);
+  // Curve kind 3 laid out as a sine (every kind but the polyline has six numbers).
+  e = FieldElement{};
+  e.kind = ElementKind::PathSink;
+  e.valley.curve.kind = CurveKind::Sine;
+  f = frame_of(g);
+  ASSERT_EQ(f[kCurve], static_cast<uint8_t>(CurveKind::Sine));
+  f[kCurve] = 3;
+  EXPECT_EQ(status_of(reseal(f)), DecodeStatus::Malformed);
+  // A polyline of one point more than it may have, its points all there.
+  e.valley.curve.kind = CurveKind::Polyline;
+  e.valley.curve.count = kMaxPolylinePoints;
+  for (int i = 0; i < kMaxPolylinePoints; ++i) e.valley.curve.points[i] = {10.0f * static_cast<float>(i), 100.0f};
+  f = frame_of(g);
+  ASSERT_EQ(status_of(f), DecodeStatus::Ok);
+  ASSERT_EQ(f[kCount], kMaxPolylinePoints);
+  f = spliced(f, kCount + 1 + 8 * kMaxPolylinePoints, 0, std::vector<uint8_t>(8, 0));
+  f[kCount] = kMaxPolylinePoints + 1;
+  EXPECT_EQ(status_of(reseal(f)), DecodeStatus::Malformed);
 }
 
 TEST(Codec, ABadHeaderLeavesTheOutputUntouchedAMalformedPayloadLeavesItDefault) {
