@@ -94,5 +94,19 @@ TEST(FrequencySweep, RefusesUnusableConfigurations) {
   EXPECT_FALSE(sweep.step(1000, step));
 }
 
+TEST(FrequencySweep, ARefusedBeginEndsTheSweepBeforeIt) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  FrequencySweep sweep(dds);
+  ASSERT_TRUE(sweep.begin(SweepConfig{}, 0));
+  SweepStep step;
+  ASSERT_TRUE(sweep.step(1000, step));
+  SweepConfig bad;
+  bad.duration_us = 0;
+  EXPECT_FALSE(sweep.begin(bad, 1500));
+  EXPECT_FALSE(sweep.step(2000, step)) << "the old sweep must not go on";
+  EXPECT_FALSE(sweep.running());
+}
+
 }  // namespace
 }  // namespace ff

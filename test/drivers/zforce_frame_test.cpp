@@ -74,8 +74,13 @@ TEST(ZforceRequests, MatchTheArduinoLibraryBytes) {
 }
 
 TEST(ZforceRequests, TooSmallABufferGivesNothing) {
-  uint8_t buf[8];
+  uint8_t buf[8] = {};
   EXPECT_EQ(build_enable(buf, sizeof(buf), true), 0u);
+  // No room even for the header: nothing written, not even the frame's start.
+  EXPECT_EQ(build_enable(buf, 1, true), 0u);
+  EXPECT_EQ(build_enable(buf, 0, true), 0u);
+  EXPECT_EQ(buf[0], 0u);
+  EXPECT_EQ(build_enable(nullptr, 64, true), 0u);
 }
 
 TEST(ZforceDecoder, DecodesATouchNotification) {
