@@ -241,9 +241,7 @@ FrameError FrameDecoder::decode_touch(const uint8_t* p, size_t n, Touch& out) co
       case TouchField::X2: case TouchField::X3: t.x = (t.x << 8) | b; break;
       case TouchField::Y1: t.y = b; break;
       case TouchField::Y2: case TouchField::Y3: t.y = (t.y << 8) | b; break;
-      case TouchField::SizeX1: t.size_x = b; break;
-      case TouchField::SizeX2: case TouchField::SizeX3: t.size_x = (t.size_x << 8) | b; break;
-      default: break;  // z, size y/z, orientation, confidence, pressure: not used
+      default: break;  // z, sizes, orientation, confidence, pressure: not used
     }
   }
   if (event > kMaxTouchEvent) return FrameError::ImpossibleValue;

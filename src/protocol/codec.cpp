@@ -229,7 +229,6 @@ bool get_condition(WireReader& r, ConditionMessage& c) {
   c.s_curve = r.f32();
   const uint8_t points = r.u8();
   if (points < 2 || points > kMaxCalibrationPoints) return false;
-  c.calibration = DacCalibration{};
   c.calibration.count = points;
   for (int i = 0; i < points; ++i) {
     c.calibration.amplitude[i] = r.f32();

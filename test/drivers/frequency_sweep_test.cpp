@@ -14,6 +14,19 @@ using emulated::Ad9834Model;
 // word(t) = w0 + (w1 - w0) t / T, truncated, w0 = 89478 (25 kHz), w1 = 250540 (70 kHz).
 uint32_t closed_form(uint32_t t_us) { return 89478u + static_cast<uint32_t>(161062ull * t_us / 30000000ull); }
 
+// The chip behind a bus that can be made to time out.
+class FailingSpi final : public SpiBus16 {
+ public:
+  explicit FailingSpi(SpiBus16& chip) : chip_(chip) {}
+  bool failing = false;
+
+ private:
+  BusStatus do_write(const SpiConfig& config, uint8_t chip_select, const uint16_t* words, size_t count) override {
+    return failing ? BusStatus::Timeout : chip_.write(config, chip_select, words, count);
+  }
+  SpiBus16& chip_;
+};
+
 TEST(FrequencySweep, ThesisChirpStepsEveryMillisecond) {
   Ad9834Model chip;
   Ad9834 dds(chip, 0);
@@ -56,6 +69,50 @@ TEST(FrequencySweep, FallingBehindSkipsInsteadOfBursting) {
   EXPECT_FALSE(sweep.step(100000, step));
   EXPECT_FALSE(sweep.step(100999, step));
   EXPECT_TRUE(sweep.step(101000, step));
+}
+
+TEST(FrequencySweep, KeepsToItsScheduleWhenALoopPassIsLate) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);
+  FrequencySweep sweep(dds);
+  ASSERT_TRUE(sweep.begin(SweepConfig{}, 0));
+  SweepStep step;
+  ASSERT_TRUE(sweep.step(1300, step));  // 300 us late: the next is still due at 2000, not 2300
+  EXPECT_FALSE(sweep.step(1999, step));
+  EXPECT_TRUE(sweep.step(2000, step));
+}
+
+TEST(FrequencySweep, TheLastStepIsDatedAtTheEndAndLandsOnTheStopWord) {
+  Ad9834Model chip;
+  Ad9834 dds(chip, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);
+  FrequencySweep sweep(dds);
+  SweepConfig c;
+  c.duration_us = 10000;
+  ASSERT_TRUE(sweep.begin(c, 0));
+  SweepStep step;
+  ASSERT_TRUE(sweep.step(25000, step));  // a loop pass long after the end
+  EXPECT_EQ(step.elapsed_us, 10000u);
+  EXPECT_EQ(step.word, 250540u);
+  EXPECT_FALSE(sweep.running());
+  EXPECT_EQ(sweep.word_at(40000u), 250540u) << "past the end: the stop word, not beyond it";
+}
+
+TEST(FrequencySweep, ABeginThatCannotWriteCountsNoSteps) {
+  Ad9834Model chip;
+  FailingSpi bus(chip);
+  Ad9834 dds(bus, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);
+  FrequencySweep sweep(dds);
+  ASSERT_TRUE(sweep.begin(SweepConfig{}, 0));
+  SweepStep step;
+  ASSERT_TRUE(sweep.step(1000, step));
+  ASSERT_EQ(sweep.steps_written(), 2u);
+  bus.failing = true;
+  EXPECT_FALSE(sweep.begin(SweepConfig{}, 5000));
+  EXPECT_FALSE(sweep.running());
+  EXPECT_EQ(sweep.steps_written(), 0u);
 }
 
 TEST(FrequencySweep, SweepsDownwardsToo) {

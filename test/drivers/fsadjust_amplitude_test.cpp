@@ -61,6 +61,23 @@ TEST(FsAdjustAmplitude, InvalidCalibrationFallsBackToLinear) {
   EXPECT_EQ(amp.set_amplitude(1.0f), BusStatus::Ok);
 }
 
+TEST(FsAdjustAmplitude, AnInvalidDecreasingCalibrationIsNotUsedAsItIs) {
+  // Decreasing codes whose last amplitude is 0.5, not 1. Used as it is,
+  // amplitude 1 would write code 0; repaired to linear: 4095, and 1024 for 0.25.
+  MockDac dac;
+  {
+    InSequence order;
+    EXPECT_CALL(dac, do_write(4095)).WillOnce(Return(BusStatus::Ok));
+    EXPECT_CALL(dac, do_write(1024)).WillOnce(Return(BusStatus::Ok));
+  }
+  DacCalibration bad = DacCalibration::inverted();
+  bad.amplitude[1] = 0.5f;
+  FsAdjustAmplitude amp(dac, bad);
+  EXPECT_TRUE(amp.calibration_repaired());
+  EXPECT_EQ(amp.set_amplitude(1.0f), BusStatus::Ok);
+  EXPECT_EQ(amp.set_amplitude(0.25f), BusStatus::Ok);
+}
+
 TEST(FsAdjustAmplitude, CountsDacFailuresAndKeepsTheLastGoodCode) {
   MockDac dac;
   EXPECT_CALL(dac, do_write(100)).WillOnce(Return(BusStatus::Ok));

@@ -94,7 +94,6 @@ TEST(ZforceDecoder, DecodesATouchNotification) {
   EXPECT_EQ(m.touches[0].event, TouchEvent::Down);
   EXPECT_EQ(m.touches[0].x, 400u);
   EXPECT_EQ(m.touches[0].y, 960u);
-  EXPECT_EQ(m.touches[0].size_x, 48u);
   EXPECT_TRUE(m.has_timestamp);
   EXPECT_EQ(m.timestamp, 32u);
 }

@@ -28,7 +28,6 @@ struct Touch {
   TouchEvent event = TouchEvent::Invalid;
   uint32_t x = 0;  // sensor units, 0..resolution
   uint32_t y = 0;
-  uint32_t size_x = 0;
 };
 
 enum class MessageKind : uint8_t { Touches, BootComplete, Response, OtherNotification };
