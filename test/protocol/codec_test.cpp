@@ -343,11 +343,33 @@ TEST(DeviceCount, EachHasItsOwnName) {
   EXPECT_STREQ(to_string(SensorState::Unknown), "unknown");
 }
 
+// A Status payload of firmware 1.0 (it ends after the faults): version, kind 2,
+// target 1, then zeros: strength, six counters, force, flags (byte
+// kStatusFlags), carrier, seven more counters, and no faults.
+constexpr size_t kStatusFlags = 2 + 1 + 1 + 4 + 6 * 4 + 4;
+std::vector<uint8_t> status_payload_of_firmware_1_0() {
+  std::vector<uint8_t> p = {0x00, 0x01, 2, 1};
+  p.insert(p.end(), 4 + 6 * 4 + 4 + 1 + 4 + 7 * 4, 0);
+  p.push_back(0);  // no faults
+  return p;
+}
+
+TEST(Codec, StatusFieldsOutOfRangeAreMalformed) {
+  const auto status_with = [](size_t at, uint8_t value) {
+    std::vector<uint8_t> p = status_payload_of_firmware_1_0();
+    p[at] = value;
+    return status_of(frame_with_payload(MessageType::Status, p));
+  };
+  EXPECT_EQ(status_with(2, 3), DecodeStatus::Ok);  // kind 3: general
+  EXPECT_EQ(status_with(2, 4), DecodeStatus::Malformed);
+  EXPECT_EQ(status_with(3, 2), DecodeStatus::Ok);  // target 2
+  EXPECT_EQ(status_with(3, 3), DecodeStatus::Malformed);
+  EXPECT_EQ(status_with(kStatusFlags, 3), DecodeStatus::Ok);  // over force, finger present
+  EXPECT_EQ(status_with(kStatusFlags, 4), DecodeStatus::Malformed);
+}
+
 TEST(Codec, StatusTailsOfOtherFirmwareVersions) {
-  // The fixed part with no faults: version, kind 2, target 1, then zeros but for the fault count.
-  std::vector<uint8_t> fixed = {0x00, 0x01, 2, 1};
-  fixed.insert(fixed.end(), 4 + 6 * 4 + 4 + 1 + 4 + 7 * 4, 0);
-  fixed.push_back(0);  // no faults
+  const std::vector<uint8_t> fixed = status_payload_of_firmware_1_0();
   const auto u32 = [](std::vector<uint8_t>& p, uint32_t v) {
     for (int i = 0; i < 4; ++i) p.push_back(static_cast<uint8_t>(v >> (8 * i)));
   };
@@ -443,6 +465,12 @@ TEST(Codec, EveryMalformedPayloadIsRejected) {
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Samples, {25, 0})), DecodeStatus::Malformed);
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Samples, {0, 2})), DecodeStatus::Malformed);  // flags
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, {33})), DecodeStatus::Malformed);
+  std::vector<uint8_t> ticks(1 + 33 * 10, 0);  // 33 whole records: one more than a message holds
+  ticks[0] = 33;
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, ticks)), DecodeStatus::Malformed);
+  ticks.resize(1 + 32 * 10);
+  ticks[0] = 32;
+  EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, ticks)), DecodeStatus::Ok);
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0x00, 0x10})),
             DecodeStatus::Malformed);  // dac bit 12
   EXPECT_EQ(status_of(frame_with_payload(MessageType::Ticks, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0xFF, 0x8F})),
