@@ -34,8 +34,7 @@ class Words {
     ++next_;
     return true;
   }
-  bool point(Vec2& out) {  // "x,y"
-    if (done()) return false;
+  bool point(Vec2& out) {  // "x,y", after peek_point()
     const std::string& w = words_[next_];
     char* end = nullptr;
     const float x = std::strtof(w.c_str(), &end);

@@ -768,6 +768,48 @@ TEST(ZforceSensor, BeginningAgainForgetsWhichFingersWereIgnored) {
   EXPECT_EQ(after.back().y, 100.0f);
 }
 
+TEST(ZforceSensor, BeginningAgainForgetsAnEdgeKeptFromADrain) {
+  // Four wrong headers in one poll: each drain meets the next message's DR
+  // edge and keeps it, and the poll ends with the fourth's edge kept. Then the
+  // sensor is reset and begin() called: that message is gone, so the next
+  // message is dated by its own edge, not by the kept one.
+  const ZforceModel model;
+  const uint8_t id = 0, down = 0;
+  const uint32_t x = 800, y = 800;
+  const std::vector<uint8_t> touch = model.touch_frame(&id, &down, &x, &y, 1, 0);
+  std::vector<I2cTransaction> script(4, expect_read(0x50, {0x00, 0x05}));
+  script.push_back(expect_read(0x50, {touch[0], touch[1]}));
+  script.push_back(expect_read(0x50, std::vector<uint8_t>(touch.begin() + 2, touch.end())));
+  MockI2cInitiator bus(script);
+  struct EdgeListDr final : DataReadyInput {
+    bool up = true;
+    std::vector<uint32_t> edges = {100, 200, 300, 400, 500};
+    size_t next = 0;
+    bool asserted() const override { return up; }
+    bool take_edge(uint32_t& t_us, uint32_t& n) override {
+      if (!up || next == edges.size()) return false;
+      t_us = edges[next++];
+      n = 1;
+      return true;
+    }
+  } dr;
+  ZforceSensor sensor(bus, dr);
+  sensor.begin(0);
+  SensorSample s;
+  EXPECT_FALSE(sensor.poll(1000, s));
+  ASSERT_EQ(sensor.count(ZforceCount::WrongHeader), 4u);
+  ASSERT_EQ(dr.next, 5u);  // the fifth edge taken by the fourth drain, kept
+  dr.up = false;           // the reset: the fifth message is gone
+  sensor.begin(2000);
+  EXPECT_FALSE(sensor.poll(2500, s));
+  dr.up = true;  // the next message, with its own edge
+  dr.edges.push_back(3000);
+  ASSERT_TRUE(sensor.poll(3500, s));
+  EXPECT_EQ(s.t_us, 3000u);
+  std::string why;
+  EXPECT_TRUE(bus.finished(&why)) << why;
+}
+
 TEST(ZforceSensor, AConfigOfZeroesIsMadeUsable) {
   ZforceConfig c;
   c.resolution_x = 0;

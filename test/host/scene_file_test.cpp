@@ -52,6 +52,114 @@ TEST(SceneFile, RoundTripsEveryElementKind) {
   EXPECT_FLOAT_EQ(b.elements[3].tunnel.scale, 10.0f);
 }
 
+TEST(SceneFile, EveryValueLandsInItsField) {
+  // The round trip above cannot see a value that is never stored (both sides
+  // keep the default): here each one is read back against the text.
+  const char* text =
+      "rendering directional\n"
+      "evaluation table 8 float height\n"
+      "element point_sink weight -0.5 centre 600 400 radius 12 feather 15\n"
+      "element path_sink weight 0.7 a 0.5 band 10 20 curve polyline 0,300 300,200 799,250\n"
+      "element path_sink weight 0.2 curve sine 240 120 400 10\n"
+      "element tunnel weight 1 x_start 100 length 400 width 60 20 scale 10 y_centre 240\n"
+      "element saddle weight 0.001 centre 400 240\n"
+      "element texture weight 0.3 wavelength 100 80 height 5\n"
+      "element path_sink curve cubic -150 50 260 500\n";
+  SceneDefinition s;
+  std::string err;
+  ASSERT_TRUE(parse_scene_text(text, s, err)) << err;
+  EXPECT_EQ(s.rendering, Rendering::Directional);
+  EXPECT_EQ(s.evaluation, Evaluation::Table);
+  EXPECT_EQ(s.table.spacing_px, 8.0f);
+  EXPECT_EQ(s.table.storage, TableStorage::Float32);
+  ASSERT_EQ(s.element_count, 7);
+
+  const FieldElement& point = s.elements[0];
+  EXPECT_EQ(point.kind, ElementKind::PointSink);
+  EXPECT_EQ(point.weight, -0.5f);
+  EXPECT_EQ(point.point.centre.x, 600.0f);
+  EXPECT_EQ(point.point.centre.y, 400.0f);
+  EXPECT_EQ(point.point.radius, 12.0f);
+  EXPECT_EQ(point.point.feather, 15.0f);
+
+  const FieldElement& poly = s.elements[1];
+  EXPECT_EQ(poly.kind, ElementKind::PathSink);
+  EXPECT_EQ(poly.valley.a, 0.5f);
+  EXPECT_EQ(poly.valley.band_half_width, 10.0f);
+  EXPECT_EQ(poly.valley.band_feather, 20.0f);
+  EXPECT_EQ(poly.valley.curve.kind, CurveKind::Polyline);
+  ASSERT_EQ(poly.valley.curve.count, 3);
+  EXPECT_EQ(poly.valley.curve.points[1].x, 300.0f);
+  EXPECT_EQ(poly.valley.curve.points[1].y, 200.0f);
+  EXPECT_EQ(poly.valley.curve.points[2].x, 799.0f);
+
+  const PathCurve& sine = s.elements[2].valley.curve;
+  EXPECT_EQ(sine.kind, CurveKind::Sine);
+  EXPECT_EQ(sine.y0, 240.0f);
+  EXPECT_EQ(sine.amplitude, 120.0f);
+  EXPECT_EQ(sine.wavelength, 400.0f);
+  EXPECT_EQ(sine.x0, 10.0f);
+
+  const FieldElement& tunnel = s.elements[3];
+  EXPECT_EQ(tunnel.kind, ElementKind::Tunnel);
+  EXPECT_EQ(tunnel.tunnel.x_start, 100.0f);
+  EXPECT_EQ(tunnel.tunnel.length, 400.0f);
+  EXPECT_EQ(tunnel.tunnel.width_start, 60.0f);
+  EXPECT_EQ(tunnel.tunnel.width_end, 20.0f);
+  EXPECT_EQ(tunnel.tunnel.scale, 10.0f);
+  EXPECT_EQ(tunnel.tunnel.y_centre, 240.0f);
+
+  EXPECT_EQ(s.elements[4].kind, ElementKind::Saddle);
+  EXPECT_EQ(s.elements[4].weight, 0.001f);
+
+  const FieldElement& texture = s.elements[5];
+  EXPECT_EQ(texture.kind, ElementKind::Texture);
+  EXPECT_EQ(texture.texture.wavelength_x, 100.0f);
+  EXPECT_EQ(texture.texture.wavelength_y, 80.0f);
+  EXPECT_EQ(texture.texture.height, 5.0f);
+
+  const PathCurve& cubic = s.elements[6].valley.curve;
+  EXPECT_EQ(cubic.kind, CurveKind::Cubic);
+  EXPECT_EQ(cubic.rise, -150.0f);
+  EXPECT_EQ(cubic.x0, 50.0f);
+  EXPECT_EQ(cubic.y0, 260.0f);
+  EXPECT_EQ(cubic.length, 500.0f);
+}
+
+TEST(SceneFile, APolylinePointIsTwoFiniteNumbersAroundOneComma) {
+  const char* bad[] = {",5", "1,", "1,2x", "1x,2", "inf,2", "1,inf", "nan,1", "1,nan"};
+  for (const char* p : bad) {
+    const std::string text = std::string("element path_sink curve polyline 0,0 ") + p + " 900,0\n";
+    SceneDefinition s;
+    std::string err;
+    EXPECT_FALSE(parse_scene_text(text, s, err)) << p;
+    EXPECT_NE(err.find("x,y pairs"), std::string::npos) << p << ": " << err;
+  }
+  std::string sixteen = "element path_sink curve polyline";
+  for (int i = 0; i < 16; ++i) sixteen += " " + std::to_string(10 * i) + ",5";
+  SceneDefinition s;
+  std::string err;
+  ASSERT_TRUE(parse_scene_text(sixteen + "\n", s, err)) << err;
+  EXPECT_EQ(s.elements[0].valley.curve.count, 16);
+  EXPECT_FALSE(parse_scene_text(sixteen + " 200,5\n", s, err));
+  EXPECT_NE(err.find("more than 16 points"), std::string::npos) << err;
+}
+
+TEST(SceneFile, TheRenderingLineNamesTheMode) {
+  const struct { const char* line; Rendering mode; } cases[] = {
+      {"", Rendering::Directional},  // elements without a rendering line: a field to follow, not a flat 0.5
+      {"rendering constant\n", Rendering::Constant},
+      {"rendering position\n", Rendering::PositionOnly},
+      {"rendering directional\n", Rendering::Directional},
+  };
+  for (const auto& c : cases) {
+    SceneDefinition s;
+    std::string err;
+    ASSERT_TRUE(parse_scene_text(std::string(c.line) + "element vortex centre 1 1\n", s, err)) << err;
+    EXPECT_EQ(s.rendering, c.mode) << c.line;
+  }
+}
+
 TEST(SceneFile, ErrorsSayWhichLineAndWhy) {
   struct Case { const char* text; const char* says; };
   const Case cases[] = {
