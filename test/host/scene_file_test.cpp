@@ -160,6 +160,19 @@ TEST(SceneFile, TheRenderingLineNamesTheMode) {
   }
 }
 
+TEST(SceneFile, TheLastEvaluationLineHolds) {
+  SceneDefinition s;
+  std::string err;
+  ASSERT_TRUE(parse_scene_text("evaluation table 8\nevaluation closed\nelement vortex\n", s, err)) << err;
+  EXPECT_EQ(s.evaluation, Evaluation::ClosedForm);
+  ASSERT_TRUE(parse_scene_text("evaluation closed\nevaluation table 8\nelement vortex\n", s, err)) << err;
+  EXPECT_EQ(s.evaluation, Evaluation::Table);
+  EXPECT_EQ(s.table.storage, TableStorage::Int16);  // the defaults when the line stops at the spacing
+  EXPECT_EQ(s.table.source, TableSource::TabulatedGradient);
+  ASSERT_TRUE(parse_scene_text("rendering position\nbias -0.25\nelement vortex\n", s, err)) << err;
+  EXPECT_EQ(s.bias, -0.25f);
+}
+
 TEST(SceneFile, ErrorsSayWhichLineAndWhy) {
   struct Case { const char* text; const char* says; };
   const Case cases[] = {
@@ -171,6 +184,10 @@ TEST(SceneFile, ErrorsSayWhichLineAndWhy) {
       {"element vortex weight 1 centre 1 2 extra\n", "unknown key 'extra'"},
       {"frobnicate\n", "unknown directive"},
       {"evaluation table 4 int8\n", "int16 or float"},
+      {"evaluation table 4 int16 slope\n", "gradient or height"},
+      {"rendering position\nbias\n", "line 2: bias needs a number"},
+      {"rendering constant sideways\n", "line 1: unexpected 'sideways'"},
+      {"", "line 1: no directives"},
   };
   for (const Case& c : cases) {
     SceneDefinition s;
@@ -212,7 +229,7 @@ TEST(SceneFile, RefusesValuesItWouldOtherwiseClampOrIgnore) {
   EXPECT_FLOAT_EQ(s.constant, 1.0f);
 }
 
-TEST(SceneFile, RefusesADirectoryAndAnEmptyFile) {
+TEST(SceneFile, RefusesADirectoryAnEmptyFileAndAMissingOne) {
   SceneDefinition s;
   std::string err;
   const std::string dir = ::testing::TempDir();
@@ -222,6 +239,9 @@ TEST(SceneFile, RefusesADirectoryAndAnEmptyFile) {
   { std::ofstream(empty).flush(); }
   EXPECT_FALSE(read_scene_file(empty, s, err));
   EXPECT_NE(err.find("no directives"), std::string::npos) << err;
+  const std::string missing = dir + "/ff_no_such_scene.txt";
+  EXPECT_FALSE(read_scene_file(missing, s, err));
+  EXPECT_EQ(err.rfind(missing + ": cannot open: ", 0), 0u) << err;
 }
 
 }  // namespace
