@@ -52,6 +52,40 @@ TEST(SceneFile, RoundTripsEveryElementKind) {
   EXPECT_FLOAT_EQ(b.elements[3].tunnel.scale, 10.0f);
 }
 
+TEST(SceneFile, WritesEveryFloatBackExactly) {
+  // Nine significant digits name every float; six would turn 600.0001 into 600.
+  SceneDefinition a;
+  a.rendering = Rendering::Directional;
+  FieldElement e = FieldElement::point_sink({600.0001f, 0.1f}, 0.123456789f);
+  e.point.radius = 1.0f / 3.0f;
+  a.add(e);
+  SceneDefinition b;
+  std::string err;
+  ASSERT_TRUE(parse_scene_text(format_scene_text(a), b, err)) << err;
+  EXPECT_EQ(b.elements[0].point.centre.x, 600.0001f);
+  EXPECT_EQ(b.elements[0].point.centre.y, 0.1f);
+  EXPECT_EQ(b.elements[0].weight, 0.123456789f);
+  EXPECT_EQ(b.elements[0].point.radius, 1.0f / 3.0f);
+}
+
+TEST(SceneFile, WritesTheConstantAndTheBias) {
+  SceneDefinition constant;
+  constant.rendering = Rendering::Constant;
+  constant.constant = 0.25f;
+  SceneDefinition position;
+  position.rendering = Rendering::PositionOnly;
+  position.bias = -0.3f;
+  position.add(FieldElement::point_sink({1.0f, 2.0f}));
+  SceneDefinition back;
+  std::string err;
+  ASSERT_TRUE(parse_scene_text(format_scene_text(constant), back, err)) << err;
+  EXPECT_EQ(back.rendering, Rendering::Constant);
+  EXPECT_EQ(back.constant, 0.25f);
+  ASSERT_TRUE(parse_scene_text(format_scene_text(position), back, err)) << err;
+  EXPECT_EQ(back.rendering, Rendering::PositionOnly);
+  EXPECT_EQ(back.bias, -0.3f);
+}
+
 TEST(SceneFile, EveryValueLandsInItsField) {
   // The round trip above cannot see a value that is never stored (both sides
   // keep the default): here each one is read back against the text.
@@ -239,6 +273,10 @@ TEST(SceneFile, RefusesADirectoryAnEmptyFileAndAMissingOne) {
   { std::ofstream(empty).flush(); }
   EXPECT_FALSE(read_scene_file(empty, s, err));
   EXPECT_NE(err.find("no directives"), std::string::npos) << err;
+  const std::string bad = dir + "/ff_bad_scene.txt";
+  { std::ofstream(bad) << "rendering sideways\n"; }
+  EXPECT_FALSE(read_scene_file(bad, s, err));
+  EXPECT_EQ(err.rfind(bad + ": line 1: rendering is", 0), 0u) << err;
   const std::string missing = dir + "/ff_no_such_scene.txt";
   EXPECT_FALSE(read_scene_file(missing, s, err));
   EXPECT_EQ(err.rfind(missing + ": cannot open: ", 0), 0u) << err;
