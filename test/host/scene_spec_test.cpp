@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fstream>
+#include <sstream>
 
 #include "frictionfield/core/scenes.hpp"
 #include "frictionfield/host/scene_file.hpp"
@@ -86,6 +87,94 @@ TEST(SceneSpec, OutOfRangeWordsAreRefusedNotClamped) {
     std::string error;
     EXPECT_FALSE(make_condition(p.spec, c, error)) << words[0] << " " << words[1];
     EXPECT_FALSE(error.empty());
+  }
+}
+
+// The condition the words make, next to the one the core's builders make.
+Condition built(const std::vector<std::string>& words) {
+  const Parsed p = parse(words);
+  EXPECT_TRUE(p.ok) << p.error;
+  Condition c;
+  std::string error;
+  EXPECT_TRUE(make_condition(p.spec, c, error)) << error;
+  return c;
+}
+
+Condition of(const SceneDefinition& scene) {
+  Condition c;
+  c.scene = scene;
+  return c;
+}
+
+TEST(SceneSpec, EachSceneNameBuildsThatScene) {
+  const struct { std::vector<std::string> words; SceneDefinition scene; } cases[] = {
+      {{"--scene", "heightmap", "--target", "top"}, scenes::heightmap(Target::Top)},
+      {{"--scene", "heightmap", "--target", "middle"}, scenes::heightmap(Target::Middle)},
+      {{"--scene", "heightmap", "--target", "bottom"}, scenes::heightmap(Target::Bottom)},
+      {{"--scene", "frictionmap", "--target", "top"}, scenes::frictionmap(Target::Top)},
+      {{"--scene", "neutral"}, scenes::neutral()},
+      {{"--scene", "tunnel-converging"}, scenes::steering_tunnel(TunnelParams{}, scenes::TunnelMode::Converging)},
+      {{"--scene", "tunnel-diverging"}, scenes::steering_tunnel(TunnelParams{}, scenes::TunnelMode::Diverging)},
+      {{"--scene", "tunnel-neutral"}, scenes::steering_tunnel(TunnelParams{}, scenes::TunnelMode::Neutral)},
+      {{"--scene", "pilot-c", "--target", "bottom"}, scenes::pilot_c_valley(Target::Bottom)},
+      {{"--scene", "familiarisation-path"}, scenes::familiarisation_path()},
+      {{"--scene", "bump-map"}, scenes::bump_map()},
+      {{"--scene", "vortex"}, scenes::vortex()},
+  };
+  for (const auto& c : cases) {
+    EXPECT_EQ(condition_hash(built(c.words)), condition_hash(of(c.scene))) << c.words[1];
+  }
+}
+
+TEST(SceneSpec, EveryOptionReachesTheCondition) {
+  TunnelParams tunnel;
+  tunnel.x_start = 50.0f;
+  tunnel.length = 300.0f;
+  tunnel.width_start = 40.0f;
+  tunnel.width_end = 30.0f;
+  tunnel.scale = 10.0f;
+  EXPECT_EQ(condition_hash(built({"--scene", "tunnel-diverging", "--tunnel-x-start", "50", "--tunnel-length", "300",
+                                  "--width-start", "40", "--width-end", "30", "--tunnel-scale", "10"})),
+            condition_hash(of(scenes::steering_tunnel(tunnel, scenes::TunnelMode::Diverging))));
+
+  const Condition table = built({"--scene", "vortex", "--evaluation", "table", "--table-spacing", "8",
+                                 "--table-storage", "float", "--table-source", "height"});
+  EXPECT_EQ(table.scene.evaluation, Evaluation::Table);
+  EXPECT_EQ(table.scene.table.spacing_px, 8.0f);
+  EXPECT_EQ(table.scene.table.storage, TableStorage::Float32);
+  EXPECT_EQ(table.scene.table.source, TableSource::HeightCentralDifferences);
+  const Condition table_defaults = built({"--scene", "vortex", "--evaluation", "table"});
+  EXPECT_EQ(table_defaults.scene.table.storage, TableStorage::Int16);
+  EXPECT_EQ(table_defaults.scene.table.source, TableSource::TabulatedGradient);
+
+  const Condition amplitude = built({"--strength", "0.33", "--idle-amplitude", "0.2", "--inverted-dac"});
+  EXPECT_EQ(amplitude.amplitude.strength, 0.33f);
+  EXPECT_EQ(amplitude.amplitude.idle_amplitude, 0.2f);
+  const DacCalibration inverted = DacCalibration::inverted();
+  ASSERT_EQ(amplitude.amplitude.calibration.count, inverted.count);
+  for (int i = 0; i < inverted.count; ++i) {
+    EXPECT_EQ(amplitude.amplitude.calibration.code[i], inverted.code[i]);
+  }
+}
+
+TEST(SceneSpec, TheWordsWrittenOutBuildTheSameCondition) {
+  // scene_words() goes into every output file's metadata: read back, it must
+  // name the condition the file was made with.
+  const std::string path = scene_file("rendering constant\nconstant 0.25\n");
+  const std::vector<std::vector<std::string>> specs = {
+      {"--scene", "frictionmap", "--target", "bottom", "--strength", "0.66"},
+      {"--scene", "tunnel-converging", "--tunnel-x-start", "50", "--tunnel-length", "300", "--width-start", "40",
+       "--width-end", "30", "--tunnel-scale", "10"},
+      {"--scene", "vortex", "--evaluation", "table", "--table-spacing", "8", "--table-storage", "float",
+       "--table-source", "height", "--idle-amplitude", "0.2", "--inverted-dac"},
+      {"--scene-file", path},
+  };
+  for (const auto& words : specs) {
+    const std::string written = scene_words(parse(words).spec);
+    std::vector<std::string> again;
+    std::istringstream in(written);
+    for (std::string w; in >> w;) again.push_back(w);
+    EXPECT_EQ(condition_hash(built(again)), condition_hash(built(words))) << written;
   }
 }
 
