@@ -73,13 +73,15 @@ TEST(SceneSpec, ASceneFileWithAnotherSceneIsAUsageError) {
   Condition c;
   std::string error;
   EXPECT_FALSE(make_condition(spec, c, error));
+  EXPECT_NE(error.find("drop one"), std::string::npos) << error;
 }
 
 TEST(SceneSpec, OutOfRangeWordsAreRefusedNotClamped) {
   const std::vector<std::vector<std::string>> bad = {
       {"--strength", "1.5"}, {"--strength", "0"}, {"--strength", "-0.3"}, {"--idle-amplitude", "2"},
       {"--scene", "tunnel-converging", "--width-end", "0"}, {"--scene", "tunnel-neutral", "--tunnel-length", "-4"},
-      {"--evaluation", "table", "--table-spacing", "0.1"}, {"--target", "left"}, {"--scene", "hightmap"}};
+      {"--evaluation", "table", "--table-spacing", "0.1"}, {"--target", "left"}, {"--scene", "hightmap"},
+      {"--scene", "tunnel-converging", "--tunnel-x-start", "inf"}, {"--scene", "tunnel-neutral", "--width-start", "nan"}};
   for (const auto& words : bad) {
     const Parsed p = parse(words);
     ASSERT_TRUE(p.ok) << p.error;
