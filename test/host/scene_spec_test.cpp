@@ -76,6 +76,15 @@ TEST(SceneSpec, ASceneFileWithAnotherSceneIsAUsageError) {
   EXPECT_NE(error.find("drop one"), std::string::npos) << error;
 }
 
+TEST(SceneSpec, TheFileSceneNeedsAFile) {
+  const Parsed p = parse({"--scene", "file"});
+  ASSERT_TRUE(p.ok) << p.error;
+  Condition c;
+  std::string error;
+  EXPECT_FALSE(make_condition(p.spec, c, error));
+  EXPECT_NE(error.find("needs --scene-file PATH"), std::string::npos) << error;
+}
+
 TEST(SceneSpec, OutOfRangeWordsAreRefusedNotClamped) {
   const std::vector<std::vector<std::string>> bad = {
       {"--strength", "1.5"}, {"--strength", "0"}, {"--strength", "-0.3"}, {"--idle-amplitude", "2"},
