@@ -9,7 +9,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), partial_(path
 
 OutputFile::~OutputFile() {
   if (!committed_ && file_.is_open()) {
-    file_.close();
+    file_.close();  // before the remove: Windows cannot remove an open file
     std::remove(partial_.c_str());
   }
 }
