@@ -31,6 +31,7 @@ TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
     EXPECT_TRUE(std::filesystem::exists(partial));
     EXPECT_FALSE(std::filesystem::exists(path));
     ASSERT_TRUE(f.commit());
+    EXPECT_EQ(read(path), "a,b\n");  // whole at the commit, not when the object goes
   }
   EXPECT_EQ(read(path), "a,b\n");
   EXPECT_FALSE(std::filesystem::exists(partial));
@@ -44,6 +45,15 @@ TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
   EXPECT_TRUE(write_file_atomically(path.string(), "x\n"));
   EXPECT_EQ(read(path), "x\n");
   EXPECT_FALSE(write_file_atomically((dir / "no-such-dir" / "f").string(), "x\n"));
+  {
+    OutputFile f(path.string());  // a write failed: the old file stays, no partial remains
+    ASSERT_TRUE(f.open());
+    f.stream() << "y\n";
+    f.stream().setstate(std::ios::badbit);
+    EXPECT_FALSE(f.commit());
+  }
+  EXPECT_EQ(read(path), "x\n");
+  EXPECT_FALSE(std::filesystem::exists(partial));
   std::filesystem::remove_all(dir);
 }
 

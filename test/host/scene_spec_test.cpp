@@ -91,7 +91,8 @@ TEST(SceneSpec, OutOfRangeWordsAreRefusedNotClamped) {
       {"--scene", "tunnel-converging", "--width-end", "0"}, {"--scene", "tunnel-neutral", "--tunnel-length", "-4"},
       {"--evaluation", "table", "--table-spacing", "0.1"}, {"--target", "left"}, {"--scene", "hightmap"},
       {"--scene", "tunnel-converging", "--tunnel-x-start", "inf"}, {"--scene", "tunnel-neutral", "--width-start", "nan"},
-      {"--evaluation", "table", "--table-storage", "int8"}, {"--evaluation", "table", "--table-source", "slope"}};
+      {"--evaluation", "table", "--table-storage", "int8"}, {"--evaluation", "table", "--table-source", "slope"},
+      {"--evaluation", "tabel"}};
   for (const auto& words : bad) {
     const Parsed p = parse(words);
     ASSERT_TRUE(p.ok) << p.error;
