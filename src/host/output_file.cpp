@@ -8,7 +8,7 @@ namespace ff::host {
 OutputFile::OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {}
 
 OutputFile::~OutputFile() {
-  if (!committed_ && file_.is_open()) {
+  if (file_.is_open()) {  // not committed: commit() closes it
     file_.close();  // before the remove: Windows cannot remove an open file
     std::remove(partial_.c_str());
   }
@@ -25,7 +25,6 @@ bool OutputFile::commit() {
     std::remove(partial_.c_str());
     return false;
   }
-  committed_ = true;
   return true;
 }
 

@@ -26,6 +26,16 @@ TEST(TraceCsv, ReadsAnyColumnOrderAndIgnoresExtraColumns) {
   EXPECT_FALSE(rows[1].touch);  // no finger: empty x, y allowed
 }
 
+TEST(TraceCsv, AnEmptyLastFieldIsAField) {
+  // "5,0,," ends in an empty y: four fields, not three.
+  std::vector<TraceRow> rows;
+  TraceError err;
+  ASSERT_TRUE(parse("t_us,touch,x,y\n5,0,,\n10,1,3,4\n", rows, err)) << err.message;
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_FALSE(rows[0].touch);
+  EXPECT_EQ(rows[1].y, 4.0f);
+}
+
 TEST(TraceCsv, TakesStampsUpTo2To53) {
   std::vector<TraceRow> rows;
   TraceError err;

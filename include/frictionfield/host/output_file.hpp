@@ -23,7 +23,6 @@ class OutputFile {
  private:
   std::string path_, partial_;
   std::ofstream file_;
-  bool committed_ = false;
 };
 
 // `content` to `path` through an OutputFile: false (and no file) on failure.
