@@ -36,6 +36,17 @@ TEST(TraceCsv, AnEmptyLastFieldIsAField) {
   EXPECT_EQ(rows[1].y, 4.0f);
 }
 
+TEST(TraceCsv, TakesSpacesAroundFieldsAndWindowsLineEnds) {
+  std::vector<TraceRow> rows;
+  TraceError err;
+  ASSERT_TRUE(parse(" t_us , x,y ,touch\r\n 5 , 1.5,2 , 1\r\n", rows, err)) << err.message;
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].t_us, 5u);
+  EXPECT_EQ(rows[0].x, 1.5f);
+  EXPECT_EQ(rows[0].y, 2.0f);
+  EXPECT_TRUE(rows[0].touch);
+}
+
 TEST(TraceCsv, TakesStampsUpTo2To53) {
   std::vector<TraceRow> rows;
   TraceError err;
@@ -58,7 +69,9 @@ TEST(TraceCsv, ErrorsNameLineAndColumn) {
       {"", 1, 0, "empty file"},
       {"t,x,y\n", 1, 0, "header"},
       {"t_us,x,y,touch\n0,1,2,1\n5,1\n", 3, 3, "fields"},
-      {"t_us,x,y,touch\n-5,1,2,1\n", 2, 1, "t_us"},
+      {"t_us,x,y,touch\n-5,1,2,1\n", 2, 1, "t_us must be a non-negative integer"},
+      {"t_us,x,y,touch\n0,1,2,+1\n", 2, 4, "touch must be 0 or 1"},
+      {"t_us,x,y,touch\n0,1,2,-0\n", 2, 4, "touch must be 0 or 1"},
       {"t_us,x,y,touch\n1.5,1,2,1\n", 2, 1, "t_us"},
       {"t_us,x,y,touch\n0,1,2,2\n", 2, 4, "touch"},
       {"t_us,x,y,touch\n0,abc,2,1\n", 2, 2, "x is not a number"},
