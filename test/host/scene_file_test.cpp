@@ -31,8 +31,8 @@ TEST(SceneFile, TheHeightmapWrittenAsAGeneralSceneIsTheHeightmap) {
       EXPECT_EQ(amp(s, {x, y}, {0.6f, 0.8f}), amp(builtin, {x, y}, {0.6f, 0.8f}));
 }
 
-TEST(SceneFile, RoundTripsEveryElementKind) {
-  const char* text =
+// Every element kind and key once.
+const std::string kEveryKind =
       "rendering directional\n"
       "evaluation table 8 float height\n"
       "element point_sink weight -0.5 centre 600 400 radius 12 feather 15\n"
@@ -41,6 +41,9 @@ TEST(SceneFile, RoundTripsEveryElementKind) {
       "element tunnel weight 1 x_start 100 length 400 width 60 20 scale 10 y_centre 240\n"
       "element saddle weight 0.001 centre 400 240\n"
       "element texture weight 0.3 wavelength 100 80 height 5\n";
+
+TEST(SceneFile, RoundTripsEveryElementKind) {
+  const std::string& text = kEveryKind;
   SceneDefinition a, b;
   std::string err;
   ASSERT_TRUE(parse_scene_text(text, a, err)) << err;
@@ -89,16 +92,7 @@ TEST(SceneFile, WritesTheConstantAndTheBias) {
 TEST(SceneFile, EveryValueLandsInItsField) {
   // The round trip above cannot see a value that is never stored (both sides
   // keep the default): here each one is read back against the text.
-  const char* text =
-      "rendering directional\n"
-      "evaluation table 8 float height\n"
-      "element point_sink weight -0.5 centre 600 400 radius 12 feather 15\n"
-      "element path_sink weight 0.7 a 0.5 band 10 20 curve polyline 0,300 300,200 799,250\n"
-      "element path_sink weight 0.2 curve sine 240 120 400 10\n"
-      "element tunnel weight 1 x_start 100 length 400 width 60 20 scale 10 y_centre 240\n"
-      "element saddle weight 0.001 centre 400 240\n"
-      "element texture weight 0.3 wavelength 100 80 height 5\n"
-      "element path_sink curve cubic -150 50 260 500\n";
+  const std::string text = kEveryKind + "element path_sink curve cubic -150 50 260 500\n";
   SceneDefinition s;
   std::string err;
   ASSERT_TRUE(parse_scene_text(text, s, err)) << err;

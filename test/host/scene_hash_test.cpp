@@ -31,6 +31,13 @@ void put_f32(std::vector<uint8_t>& out, float v) {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(bits >> (8 * i)));
 }
 
+// AmplitudeSettings{}: strength 1, no S-curve, idle 0, the linear two-point calibration.
+void put_default_amplitude(std::vector<uint8_t>& out) {
+  for (float v : {1.0f, 0.0f, 0.0f}) put_f32(out, v);
+  out.push_back(2);
+  for (float v : {0.0f, 0.0f, 1.0f, 4095.0f}) put_f32(out, v);
+}
+
 TEST(ConditionHash, TheTestsOwnFnvMatchesThePublishedVector) {
   EXPECT_EQ(fnv1a64({}), 0xcbf29ce484222325ull);
   EXPECT_EQ(fnv1a64({'a'}), 0xaf63dc4c8601ec8cull);
@@ -46,9 +53,7 @@ TEST(ConditionHash, TheDefaultConditionHashesItsCanonicalBytes) {
   bytes.push_back(0);  // Evaluation::ClosedForm
   bytes.push_back(0);  // no elements
   bytes.push_back(0);  // no sampled map
-  for (float v : {1.0f, 0.0f, 0.0f}) put_f32(bytes, v);
-  bytes.push_back(2);
-  for (float v : {0.0f, 0.0f, 1.0f, 4095.0f}) put_f32(bytes, v);
+  put_default_amplitude(bytes);
   EXPECT_EQ(condition_hash(Condition{}), fnv1a64(bytes));
   EXPECT_EQ(hash_hex(condition_hash(Condition{})).size(), 16u);
 }
@@ -66,9 +71,7 @@ TEST(ConditionHash, ASampledMapHashesItsSizeThenItsSamples) {
   for (uint8_t b : {3, 0, 0, 0, 2, 0, 0, 0}) bytes.push_back(b);
   put_f32(bytes, 4.0f);
   for (float v : heights) put_f32(bytes, v);
-  for (float v : {1.0f, 0.0f, 0.0f}) put_f32(bytes, v);
-  bytes.push_back(2);
-  for (float v : {0.0f, 0.0f, 1.0f, 4095.0f}) put_f32(bytes, v);
+  put_default_amplitude(bytes);
   EXPECT_EQ(condition_hash(c), fnv1a64(bytes));
 }
 
@@ -86,9 +89,7 @@ TEST(ConditionHash, OnePointSinkHashesItsCanonicalBytes) {
   bytes.push_back(0);  // ElementKind::PointSink
   for (float v : {-2.0f, 3.0f, 4.0f, 5.0f, 6.0f}) put_f32(bytes, v);
   bytes.push_back(0);
-  for (float v : {1.0f, 0.0f, 0.0f}) put_f32(bytes, v);
-  bytes.push_back(2);
-  for (float v : {0.0f, 0.0f, 1.0f, 4095.0f}) put_f32(bytes, v);
+  put_default_amplitude(bytes);
   EXPECT_EQ(condition_hash(c), fnv1a64(bytes));
 }
 
@@ -110,9 +111,7 @@ TEST(ConditionHash, APolylinePathSinkHashesItsCanonicalBytes) {
   for (float v : {0.0f, 10.0f, 50.0f, 20.0f}) put_f32(bytes, v);
   for (float v : {0.5f, 7.0f, 9.0f}) put_f32(bytes, v);
   bytes.push_back(0);
-  for (float v : {1.0f, 0.0f, 0.0f}) put_f32(bytes, v);
-  bytes.push_back(2);
-  for (float v : {0.0f, 0.0f, 1.0f, 4095.0f}) put_f32(bytes, v);
+  put_default_amplitude(bytes);
   EXPECT_EQ(condition_hash(c), fnv1a64(bytes));
 }
 
