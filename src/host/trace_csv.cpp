@@ -41,8 +41,7 @@ bool parse_u64(const std::string& text, uint64_t& out) {
   return true;
 }
 
-bool parse_float(const std::string& text, float& out) {
-  if (text.empty()) return false;
+bool parse_float(const std::string& text, float& out) {  // "" parses nothing: end stays at the start
   char* end = nullptr;
   const float v = std::strtof(text.c_str(), &end);  // accepts nan, inf, overflow -> inf
   if (end == text.c_str() || end != text.c_str() + text.size()) return false;
