@@ -47,6 +47,14 @@ TEST(TraceCsv, TakesSpacesAroundFieldsAndWindowsLineEnds) {
   EXPECT_TRUE(rows[0].touch);
 }
 
+TEST(TraceCsv, AMissingFileSaysWhy) {
+  std::vector<TraceRow> rows;
+  TraceError err;
+  EXPECT_FALSE(read_sensor_trace_file(::testing::TempDir() + "/ff_no_such_trace.csv", rows, err));
+  EXPECT_EQ(err.message, "cannot open: No such file or directory");
+  EXPECT_EQ(err.line, 0u);  // the file, not a line of it
+}
+
 TEST(TraceCsv, TakesStampsUpTo2To53) {
   std::vector<TraceRow> rows;
   TraceError err;
