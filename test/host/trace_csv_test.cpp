@@ -154,5 +154,26 @@ TEST(TraceCsv, TheReaderStreamsRowByRow) {
   EXPECT_EQ(err.line, 4u);  // an error, not the end
 }
 
+TEST(TraceCsv, EachRowAndEachCallStartsClean) {
+  // One row and one error object reused, as a streaming caller does: a row
+  // without a finger or coordinates does not keep the last row's, and the
+  // end of the file is the end (no error), whatever the last call said.
+  std::istringstream in("t_us,x,y,touch\n1,7,8,1\n2,,,0\n");
+  SensorTraceReader reader(in);
+  TraceError err{9, 9, "from an earlier file"};
+  ASSERT_TRUE(reader.read_header(err));
+  TraceRow row;
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_TRUE(err.message.empty()) << err.message;
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_FALSE(row.touch);
+  EXPECT_EQ(row.x, 0.0f);
+  EXPECT_EQ(row.y, 0.0f);
+  err = {9, 9, "from an earlier call"};
+  EXPECT_FALSE(reader.next(row, err));
+  EXPECT_TRUE(err.message.empty()) << err.message;
+  EXPECT_EQ(err.line, 0u);
+}
+
 }  // namespace
 }  // namespace ff::host
