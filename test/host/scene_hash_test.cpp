@@ -122,23 +122,17 @@ struct Case {
   Change change;
 };
 
-void expect_changes(const Condition& base, std::initializer_list<Case> cases) {
+// Each change applied to its own copy of `base`: does the hash follow it?
+void expect_hash_moves(const Condition& base, std::initializer_list<Case> cases, bool moves) {
   const uint64_t h = condition_hash(base);
   for (const Case& k : cases) {
     Condition c = base;
     k.change(c);
-    EXPECT_NE(condition_hash(c), h) << k.what;
+    EXPECT_EQ(condition_hash(c) != h, moves) << k.what;
   }
 }
-
-void expect_unchanged(const Condition& base, std::initializer_list<Case> cases) {
-  const uint64_t h = condition_hash(base);
-  for (const Case& k : cases) {
-    Condition c = base;
-    k.change(c);
-    EXPECT_EQ(condition_hash(c), h) << k.what;
-  }
-}
+void expect_changes(const Condition& base, std::initializer_list<Case> cases) { expect_hash_moves(base, cases, true); }
+void expect_unchanged(const Condition& base, std::initializer_list<Case> cases) { expect_hash_moves(base, cases, false); }
 
 Condition with_element(const FieldElement& e) {
   Condition c;
