@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <vector>
 
 #include "frictionfield/core/scenes.hpp"
 
@@ -94,6 +96,88 @@ TEST(Replay, StreamingGivesTheSameTicksAsTheWholeTraceAcrossItsWindows) {
   options.extra_ticks = 10;
   replay(source, *b, [&](uint64_t, const TickOutput& o) { streamed.push_back(o.dac); }, options);
   EXPECT_EQ(whole, streamed);
+}
+
+// The summary worked out again from the ticks the sink saw.
+ReplaySummary expect_summary_of_its_ticks(const std::vector<TraceRow>& rows, HapticPipeline& pipeline,
+                                          uint64_t extra_ticks) {
+  uint64_t ticks = 0, with_finger = 0;
+  float lo = 1.0f, hi = 0.0f;
+  double sum = 0.0;
+  const ReplaySummary s = replay(
+      rows, pipeline,
+      [&](uint64_t, const TickOutput& o) {
+        ++ticks;
+        with_finger += o.present ? 1 : 0;
+        lo = std::min(lo, o.amplitude);
+        hi = std::max(hi, o.amplitude);
+        sum += static_cast<double>(o.amplitude);
+      },
+      extra_ticks);
+  EXPECT_GT(ticks, 0u);
+  EXPECT_EQ(s.ticks, ticks);
+  EXPECT_EQ(s.ticks_with_finger, with_finger);
+  EXPECT_EQ(s.amplitude_min, lo);
+  EXPECT_EQ(s.amplitude_max, hi);
+  EXPECT_FLOAT_EQ(s.amplitude_mean, static_cast<float>(sum / static_cast<double>(ticks)));
+  for (int f = 0; f < static_cast<int>(Fault::kCount); ++f)
+    EXPECT_EQ(s.faults[Fault(f)], pipeline.faults()[Fault(f)]) << to_string(Fault(f));
+  return s;
+}
+
+TEST(Replay, TheSummaryIsWhatItsTicksShow) {
+  {
+    // The finger down throughout on a flat field (0.5 at every tick: the
+    // smallest amplitude is not the lowest possible one), and one report off
+    // the screen, which the tracker drops and counts.
+    auto p = std::make_unique<HapticPipeline>();
+    Condition c;
+    c.scene = scenes::neutral();
+    ASSERT_EQ(p->set_condition(c), PrepareStatus::Ok);
+    std::vector<TraceRow> rows;
+    for (uint64_t t = 0; t <= 200000; t += 5000)
+      rows.push_back({t, 100.0f + static_cast<float>(t) * 1e-3f, 240.0f, true});
+    rows[10].x = 5000.0f;
+    expect_summary_of_its_ticks(rows, *p, 0);
+    EXPECT_EQ(p->faults()[Fault::OffScreen], 1u);
+  }
+  {
+    // A stroke over the heightmap, then the finger lifts and ticks play out:
+    // amplitudes that vary, and ticks without a finger.
+    auto p = std::make_unique<HapticPipeline>();
+    Condition c;
+    c.scene = scenes::heightmap(Target::Top);
+    ASSERT_EQ(p->set_condition(c), PrepareStatus::Ok);
+    std::vector<TraceRow> rows;
+    for (uint64_t t = 0; t <= 400000; t += 5000)
+      rows.push_back({t, 100.0f + static_cast<float>(t) * 1.5e-3f, 200.0f, true});
+    rows.push_back({405000, 0.0f, 0.0f, false});
+    const ReplaySummary s = expect_summary_of_its_ticks(rows, *p, 400);
+    EXPECT_LT(s.amplitude_min, s.amplitude_max);
+    EXPECT_GT(s.ticks_with_finger, 0u);
+    EXPECT_LT(s.ticks_with_finger, s.ticks);
+  }
+}
+
+TEST(Replay, AJumpKeepsItsStampAndCountsEveryRowAfterIt) {
+  // More rows after the jump than the arrival window holds: they are counted
+  // from the rest of the source, not only from the window.
+  std::vector<TraceRow> rows;
+  for (uint64_t t = 0; t <= 100000; t += 5000) rows.push_back({t, 400, 240, true});
+  const uint64_t jump_to = 100000 + 3'600'000'000ull;
+  for (uint64_t i = 0; i < 10000; ++i) rows.push_back({jump_to + i * 5000, 400, 240, true});
+  size_t next = 0;
+  const RowSource source = [&](TraceRow& r) { return next < rows.size() ? (r = rows[next++], true) : false; };
+  auto p = std::make_unique<HapticPipeline>();
+  ReplayOptions options;
+  options.max_gap_us = 600'000'000;
+  const ReplaySummary s = replay(source, *p, nullptr, options);
+  EXPECT_TRUE(s.time_jump);
+  EXPECT_EQ(s.time_jump_from_us, 100000u);
+  EXPECT_EQ(s.time_jump_to_us, jump_to);
+  EXPECT_EQ(s.rows_after_time_jump, 10000u);
+  EXPECT_EQ(s.samples, 21u);
+  EXPECT_EQ(next, rows.size());  // the whole source read
 }
 
 }  // namespace
