@@ -53,18 +53,25 @@ TEST(Replay, ExtraTicksLetLiftOffPlayOut) {
   EXPECT_EQ(last.dac, 0);
 }
 
+// The rows replayed as a stream, a gap over 600 s ending the replay; `read`
+// counts the rows taken from the source.
+ReplaySummary replay_with_gap_limit(const std::vector<TraceRow>& rows, size_t& read) {
+  read = 0;
+  const RowSource source = [&](TraceRow& r) { return read < rows.size() ? (r = rows[read++], true) : false; };
+  auto p = std::make_unique<HapticPipeline>();
+  ReplayOptions options;
+  options.max_gap_us = 600'000'000;
+  return replay(source, *p, nullptr, options);
+}
+
 TEST(Replay, AnImplausibleJumpEndsTheReplayAtTheLastPlausibleReport) {
   // 2 s of reports, then one stamp 2^31 us ahead: ticking through the gap
   // would write 4.3 million idle ticks.
   std::vector<TraceRow> rows;
   for (uint64_t t = 0; t <= 2000000; t += 5000) rows.push_back({t, 400, 240, true});
   rows.push_back({2000000 + (1ull << 31), 400, 240, true});
-  size_t next = 0;
-  const RowSource source = [&](TraceRow& r) { return next < rows.size() ? (r = rows[next++], true) : false; };
-  auto p = std::make_unique<HapticPipeline>();
-  ReplayOptions options;
-  options.max_gap_us = 600'000'000;
-  const ReplaySummary s = replay(source, *p, nullptr, options);
+  size_t read = 0;
+  const ReplaySummary s = replay_with_gap_limit(rows, read);
   EXPECT_EQ(s.ticks, 2000000u / kTickPeriodUs + 1);  // ticks 0 .. 2 s
   EXPECT_TRUE(s.time_jump);
   EXPECT_EQ(s.time_jump_from_us, 2000000u);
@@ -166,18 +173,14 @@ TEST(Replay, AJumpKeepsItsStampAndCountsEveryRowAfterIt) {
   for (uint64_t t = 0; t <= 100000; t += 5000) rows.push_back({t, 400, 240, true});
   const uint64_t jump_to = 100000 + 3'600'000'000ull;
   for (uint64_t i = 0; i < 10000; ++i) rows.push_back({jump_to + i * 5000, 400, 240, true});
-  size_t next = 0;
-  const RowSource source = [&](TraceRow& r) { return next < rows.size() ? (r = rows[next++], true) : false; };
-  auto p = std::make_unique<HapticPipeline>();
-  ReplayOptions options;
-  options.max_gap_us = 600'000'000;
-  const ReplaySummary s = replay(source, *p, nullptr, options);
+  size_t read = 0;
+  const ReplaySummary s = replay_with_gap_limit(rows, read);
   EXPECT_TRUE(s.time_jump);
   EXPECT_EQ(s.time_jump_from_us, 100000u);
   EXPECT_EQ(s.time_jump_to_us, jump_to);
   EXPECT_EQ(s.rows_after_time_jump, 10000u);
   EXPECT_EQ(s.samples, 21u);
-  EXPECT_EQ(next, rows.size());  // the whole source read
+  EXPECT_EQ(read, rows.size());  // the whole source read
 }
 
 }  // namespace
