@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "support/random.hpp"
 
@@ -155,7 +156,7 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
   const ReportNoise noise = ReportNoise::with_tremor(sensor);
   const float q = 45.0f * 45.0f;
 
-  Reference ref;
+  Reference ref;  // the x axis; ref_y (below) the y axis
   ref.white = 0.8 * 0.8;
   ref.wander = static_cast<double>(c.correlated_px) * static_cast<double>(c.correlated_px);
   ref.accel_q = static_cast<double>(q);
@@ -165,6 +166,7 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
   const double w = 2.0 * M_PI * (c.tremor_hz > 0.0f ? static_cast<double>(c.tremor_hz) : 10.0);
   const double d = 1.0 / 0.15, s = 0.5 * static_cast<double>(c.tremor_px * c.tremor_px);
   ref.tremor = {w * w, d, 4.0 * d * w * w * s};  // stationary variance qc / (4 d w^2) = s
+  Reference ref_y = ref;
 
   // A stroke at 200 Hz with jitter, a lost report, a trembling finger, noise.
   support::Random rng(11, support::Stream::Noise);
@@ -175,26 +177,41 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
     return 100.0 + stroke + static_cast<double>(c.tremor_px) * std::sin(2.0 * M_PI * 9.3 * at + 0.4) +
            0.8 * rng.gaussian();
   };
-  const double z0 = finger(t);
-  k.start({static_cast<float>(z0), 0.0f}, noise, 1000.0f);
+  // y: the same finger's other axis, a slower stroke the other way.
+  auto finger_y = [&](double at) {
+    const double stroke = at < 0.5 ? 0.0 : -120.0 * std::min(1.0, (at - 0.5) / 0.7);
+    return 200.0 + stroke + static_cast<double>(c.tremor_px) * std::cos(2.0 * M_PI * 9.3 * at) +
+           0.8 * rng.gaussian();
+  };
+  const double z0 = finger(t), z0_y = finger_y(t);
+  k.start({static_cast<float>(z0), static_cast<float>(z0_y)}, noise, 1000.0f);
   ref.start(z0, 1000.0, ref.has_tremor ? s : 0.0);
+  ref_y.start(z0_y, 1000.0, ref.has_tremor ? s : 0.0);
   for (int i = 1; i < 300; ++i) {
     const double dt = (i == 150 ? 0.010 : 0.005) + 150e-6 * rng.gaussian();
     t += dt;
-    const double z = finger(t);
+    const double z = finger(t), z_y = finger_y(t);
+    const double phi = static_cast<double>(noise.correlation(static_cast<float>(dt)));
     k.predict(static_cast<float>(dt), q, noise);
-    ref.predict(dt, static_cast<double>(noise.correlation(static_cast<float>(dt))));
+    ref.predict(dt, phi);
+    ref_y.predict(dt, phi);
     if (i % 37 == 0) {  // a change of motion now and then
       k.widen(8.0f);
       ref.widen(8.0);
+      ref_y.widen(8.0);
     }
-    k.update({static_cast<float>(z), 0.0f}, k.inverse_innovation(noise));
+    k.update({static_cast<float>(z), static_cast<float>(z_y)}, k.inverse_innovation(noise));
     ref.update(z);
+    ref_y.update(z_y);
     ASSERT_EQ(k.tremor, ref.has_tremor);
     const double got[kN] = {k.p.x, k.v.x, k.e.x, k.c.x, k.u.x};
+    const double got_y[kN] = {k.p.y, k.v.y, k.e.y, k.c.y, k.u.y};
     const double scale[kN] = {1.0, 30.0, 0.1, 0.1, 5.0};  // px, px/s: what a tenth of a percent is measured against
-    for (int j = 0; j < kN; ++j)
+    for (int j = 0; j < kN; ++j) {
       ASSERT_NEAR(got[j], ref.x[j], 1e-3 * (scale[j] + std::fabs(ref.x[j]))) << c.name << " report " << i << " state " << j;
+      ASSERT_NEAR(got_y[j], ref_y.x[j], 1e-3 * (scale[j] + std::fabs(ref_y.x[j])))
+          << c.name << " report " << i << " y state " << j;
+    }
     const double cov[kN][kN] = {{k.P00, k.P01, k.P02, k.P03, k.P04},
                                 {k.P01, k.P11, k.P12, k.P13, k.P14},
                                 {k.P02, k.P12, k.P22, k.P23, k.P24},
@@ -217,6 +234,44 @@ INSTANTIATE_TEST_SUITE_P(Noise, FingerKalmanAgainstReference,
                                            Case{"tremor", 0.0f, 1.2f}, Case{"wander_and_tremor", 1.5f, 1.2f},
                                            Case{"measured_tremor", 1.5f, 1.2f, 9.3f}),
                          [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+// Every field of the filter, for comparing two of them exactly.
+std::vector<float> fields_of(const FingerKalman& k) {
+  return {k.p.x,  k.p.y,  k.v.x,  k.v.y,  k.e.x,  k.e.y,  k.c.x,  k.c.y,  k.u.x,  k.u.y,
+          k.P00,  k.P01,  k.P02,  k.P11,  k.P12,  k.P22,  k.P03,  k.P04,  k.P13,  k.P14,
+          k.P23,  k.P24,  k.P33,  k.P34,  k.P44,  k.wander ? 1.0f : 0.0f, k.tremor ? 1.0f : 0.0f};
+}
+
+// The tracker starts its filters again at every new touch: whatever the last
+// touch left (its wander, its tremor's phase, their covariances) must go.
+TEST(FingerKalman, StartedAgainItIsAFreshFilter) {
+  SensorProfile trembling;
+  trembling.white_noise_px = 0.8f;
+  trembling.correlated_noise_px = 1.5f;
+  trembling.correlation_time_ms = 30.0f;
+  trembling.tremor_px = 1.2f;
+  SensorProfile white;
+  white.white_noise_px = 0.8f;
+  for (const SensorProfile& next : {trembling, white}) {
+    const ReportNoise used = ReportNoise::with_tremor(trembling), fresh_noise = ReportNoise::with_tremor(next);
+    FingerKalman k;
+    k.start({10.0f, 20.0f}, used, 1000.0f);
+    support::Random rng(5, support::Stream::Noise);
+    for (int i = 1; i < 40; ++i) {  // a stroke that leaves every state and covariance non-zero
+      k.predict(0.005f, 2025.0f, used);
+      if (i % 9 == 0) k.widen(8.0f);
+      const Vec2 z{10.0f + 2.0f * i + 0.8f * static_cast<float>(rng.gaussian()),
+                   20.0f - 1.0f * i + 0.8f * static_cast<float>(rng.gaussian())};
+      k.update(z, k.inverse_innovation(used));
+    }
+    for (float f : {k.e.x, k.c.x, k.u.x, k.P04, k.P13, k.P14, k.P23, k.P24, k.P34, k.P12}) ASSERT_NE(f, 0.0f);
+
+    k.start({50.0f, 60.0f}, fresh_noise, 700.0f);
+    FingerKalman fresh;
+    fresh.start({50.0f, 60.0f}, fresh_noise, 700.0f);
+    EXPECT_EQ(fields_of(k), fields_of(fresh)) << "restarted with wander " << next.correlated_noise_px;
+  }
+}
 
 TEST(TremorBand, MeasuredOrPhysiological) {
   SensorProfile sensor;
