@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <memory>
 #include <vector>
 
@@ -181,6 +182,28 @@ TEST(Replay, AJumpKeepsItsStampAndCountsEveryRowAfterIt) {
   EXPECT_EQ(s.rows_after_time_jump, 10000u);
   EXPECT_EQ(s.samples, 21u);
   EXPECT_EQ(read, rows.size());  // the whole source read
+}
+
+// ff-replay's "rejected" line: the faults that drop a sample, one each, and
+// no more than the samples read (the list here is fault_counters.hpp's
+// comments read by hand: the kinds that say "dropped" or lose the sample).
+TEST(ReplaySummary, RejectedSamplesAreTheFaultsThatDropOne) {
+  const Fault dropping[] = {Fault::NonFiniteCoordinate, Fault::OffScreen,       Fault::NonIncreasingTime,
+                            Fault::JumpRejected,        Fault::MailboxOverflow, Fault::SampleTimeImplausible};
+  for (int k = 0; k < static_cast<int>(Fault::kCount); ++k) {
+    const Fault f = static_cast<Fault>(k);
+    ReplaySummary summary;
+    summary.samples = 100;
+    for (int i = 0; i < 3; ++i) summary.faults.add(f);
+    const bool drops = std::find(std::begin(dropping), std::end(dropping), f) != std::end(dropping);
+    EXPECT_EQ(summary.rejected_samples(), drops ? 3u : 0u) << to_string(f);
+  }
+  ReplaySummary summary;
+  summary.samples = 4;
+  for (const Fault f : dropping) summary.faults.add(f);
+  EXPECT_EQ(summary.rejected_samples(), 4u);  // six faults, four samples
+  summary.samples = 7;
+  EXPECT_EQ(summary.rejected_samples(), 6u);
 }
 
 }  // namespace
