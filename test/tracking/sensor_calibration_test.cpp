@@ -4,13 +4,17 @@
 // white variance), never against the estimator's earlier output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <numeric>
 #include <string>
 #include <vector>
 
 #include "sensor_calibration.hpp"
 #include "support/models/sensor_model.hpp"
 #include "support/models/trace_classes.hpp"
+#include "support/random.hpp"
 
 namespace ff::bench {
 namespace {
@@ -203,6 +207,122 @@ TEST(SensorCalibration, RefusesTooShortAMovingFingerAndNothing) {
   noisy.sensor.noise_px = 60.0;  // beyond SensorProfileLimits::kMaxNoisePx; at 1 kHz its 1 s mean still rests
   noisy.sensor.rate_hz = 1000.0;
   EXPECT_NE(refusal(rows_of(noisy)).find("outside the profile's limits"), std::string::npos);
+}
+
+// A resting finger written out by hand, not by the generator: a report at
+// each stamp, white noise of sigma px on both axes, and `x_extra(t)` on x.
+std::vector<host::TraceRow> by_hand(const std::vector<uint64_t>& stamps_us, double sigma_px,
+                                    const std::function<double(double)>& x_extra = nullptr, uint64_t seed = 3) {
+  support::Random rng(seed, support::Stream::Noise);
+  std::vector<host::TraceRow> rows;
+  for (const uint64_t t : stamps_us) {
+    const double t_s = static_cast<double>(t - stamps_us.front()) * 1e-6;
+    const double x = 400.0 + sigma_px * rng.gaussian() + (x_extra ? x_extra(t_s) : 0.0);
+    rows.push_back({t, static_cast<float>(x), static_cast<float>(240.0 + sigma_px * rng.gaussian()), true});
+  }
+  return rows;
+}
+
+std::vector<uint64_t> every_us(uint64_t period_us, size_t reports) {
+  std::vector<uint64_t> stamps(reports);
+  for (size_t i = 0; i < reports; ++i) stamps[i] = 1'000'000 + i * period_us;
+  return stamps;
+}
+
+Calibration calibrate_rows(const std::vector<host::TraceRow>& rows, const CalibrationOptions& options = {}) {
+  Calibration c;
+  std::string error;
+  EXPECT_TRUE(calibrate_from_rest(rows, options, 0, c, error)) << error;
+  return c;
+}
+
+TEST(SensorCalibration, TheMedianIntervalIsTheMiddleOneOrTheMeanOfTheMiddleTwo) {
+  // Intervals of 4000 + k us, every k in 0..n-1 once, in a shuffled order:
+  // their median is 4000 + (n - 1) / 2 exactly, whatever the order.
+  for (const uint64_t n : {2001u, 2000u}) {
+    std::vector<uint64_t> intervals(n);
+    std::iota(intervals.begin(), intervals.end(), uint64_t{4000});
+    support::Random rng(n, support::Stream::Single);
+    for (size_t i = n - 1; i > 0; --i) std::swap(intervals[i], intervals[rng.next() % (i + 1)]);
+    std::vector<uint64_t> stamps = {1'000'000};
+    for (const uint64_t dt : intervals) stamps.push_back(stamps.back() + dt);
+    const Calibration c = calibrate_rows(by_hand(stamps, 1.0));
+    EXPECT_NEAR(c.median_interval_us, 4000.0 + (static_cast<double>(n) - 1.0) / 2.0, 1e-3) << n << " intervals";
+    EXPECT_EQ(c.dropped_intervals, 0u);  // 4000-6000 us: within 0.5-1.5 x the median
+  }
+}
+
+TEST(SensorCalibration, ASlowDriftIsNotNoise) {
+  // 1 px white at 200 Hz with the resting point drifting 1.5 px/s (15 px over
+  // the 10 s, inside the 20 px a rest may wander): the 1 s centred mean takes
+  // a straight drift out wholly.
+  const Calibration c = calibrate_rows(by_hand(every_us(5000, 2001), 1.0, [](double t) { return 1.5 * t; }));
+  expect_white_only(c, 1.0);
+  // The mean's range: at either end its window is half a second, centred
+  // 0.25 s in, so 1.5 px/s x (9.75 - 0.25) s, and the noise of 100 reports' means.
+  EXPECT_NEAR(c.range_px, 1.5 * 9.5, 0.5);
+}
+
+TEST(SensorCalibration, ATremorIsFoundOnEitherAxisInEitherPhase) {
+  // 1 px at 9 Hz on one axis only, as a sine or a cosine of the report time:
+  // the spectrum needs each of its four sums (x and y, cosine and sine).
+  for (const bool on_x : {true, false}) {
+    for (const double phase : {0.0, 0.5 * M_PI}) {
+      std::vector<host::TraceRow> rows = by_hand(every_us(5000, 2001), 0.3);
+      for (host::TraceRow& r : rows) {
+        const double t_s = static_cast<double>(r.t_us) * 1e-6;  // the calibration's own clock starts at the first report
+        (on_x ? r.x : r.y) += static_cast<float>(std::sin(2.0 * M_PI * 9.0 * (t_s - 1.0) + phase));
+      }
+      const Calibration c = calibrate_rows(rows);
+      // 9 Hz is on the search's 0.02 Hz grid (6 - 1.5 Hz + 225 steps): a tone there peaks
+      // there; with one of the four sums missing, the peak moves off it.
+      EXPECT_NEAR(c.tremor_hz, 9.0, 0.005) << (on_x ? "x" : "y") << " phase " << phase;
+      // The profile's tremor is per axis, averaged over the two: a peak of 1
+      // px on one axis is a variance of 1/2 there and 1/4 on average, a peak of 1/sqrt(2).
+      EXPECT_NEAR(c.profile.tremor_px, 1.0 / std::sqrt(2.0), 0.07) << (on_x ? "x" : "y") << " phase " << phase;
+      EXPECT_GT(c.tremor_peak_ratio, CalibrationOptions{}.tremor_peak_ratio);
+    }
+  }
+}
+
+TEST(SensorCalibration, TheFitsDiagnosticsOnWhiteNoise) {
+  // 1 px white at 200 Hz, 10 s.
+  const Calibration c = calibrate_rows(by_hand(every_us(5000, 2001), 1.0));
+  EXPECT_EQ(c.lag_bins, 40u);  // 200 ms of lags, one 5 ms interval each
+  // C(0) of the residual: 1 px^2 less the 1 s mean's share (1 / 200 of it).
+  EXPECT_NEAR(c.total_noise_px, 1.0, 0.05);
+  // The parts add up to C(0) (the header's decomposition): white^2 + slow here.
+  EXPECT_NEAR(std::pow(double{c.profile.white_noise_px}, 2) + c.slow_px2, std::pow(c.total_noise_px, 2), 1e-5);
+  // Each lag bin's estimate of a covariance that is 0 scatters by C(0) / sqrt(pairs):
+  // x and y over ~2000 reports, 4000 pairs a bin.
+  EXPECT_GT(c.fit_rms_px2, 0.5 / std::sqrt(4000.0));
+  EXPECT_LT(c.fit_rms_px2, 2.0 / std::sqrt(4000.0));
+  // Without a tremor the strongest peak still has a ratio (2.4-9.7 on generated white noise).
+  EXPECT_GT(c.tremor_peak_ratio, 1.0);
+  EXPECT_LT(c.tremor_peak_ratio, CalibrationOptions{}.tremor_peak_ratio);
+}
+
+TEST(SensorCalibration, NoFitHasANegativeVariance) {
+  // Told to take the exponential whenever it fits at all better, white noise
+  // still gets no correlated part below 0: the fit's lags scatter both ways.
+  CalibrationOptions eager;
+  eager.correlated_improvement = -1.0;
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    const Calibration c = calibrate_rows(by_hand(every_us(5000, 2001), 1.0, nullptr, seed), eager);
+    EXPECT_GE(c.profile.correlated_noise_px, 0.0f) << seed;
+    EXPECT_TRUE(is_valid(c.profile)) << seed;
+  }
+}
+
+TEST(SensorCalibration, TooFewLagsForTheExponentialClaimNoCorrelation) {
+  // Two lag bins (10 ms of lags at 200 Hz) fit the exponential and its
+  // constant exactly; its three parameters are more than two bins can show.
+  CalibrationOptions short_lags;
+  short_lags.max_lag_s = 0.010;
+  const Calibration c = calibrate_rows(rows_of(resting_class("correlated-noise", 10.0)), short_lags);
+  EXPECT_EQ(c.lag_bins, 2u);
+  EXPECT_EQ(c.profile.correlated_noise_px, 0.0f);
+  EXPECT_TRUE(is_valid(c.profile));
 }
 
 }  // namespace
