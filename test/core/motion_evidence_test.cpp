@@ -33,6 +33,16 @@ TEST(MotionEvidence, CountsWhatTheFilterHasNotLearnedAsNoise) {
   EXPECT_FLOAT_EQ(e.of(16.0f * 5.0f), 1.0f);
 }
 
+// Configured again (a new condition or sensor profile), it forgets the noise
+// it learned under the old one: until the next report, any speed reads as rest.
+TEST(MotionEvidence, ConfiguredAgainItReadsRestUntilItLearns) {
+  MotionEvidence e = settled_evidence();
+  e.configure(true, 2.0f, 4.0f, SpeedNoise{1000.0f, 500.0f});
+  EXPECT_FLOAT_EQ(e.of(1e6f), -4.0f / 12.0f);  // as at speed 0
+  e.learn(1000.0f);
+  EXPECT_FLOAT_EQ(e.of(16.0f * 500.0f), 1.0f);
+}
+
 TEST(MotionEvidence, IsUnusedWhenSwitchedOffOrWithoutASpan) {
   MotionEvidence off;
   off.configure(false, 2.0f, 4.0f, SpeedNoise{10.0f, 5.0f});
