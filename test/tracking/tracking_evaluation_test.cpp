@@ -25,6 +25,35 @@ const reference::ReferenceScene& reference_heightmap_top() {
   return scene;
 }
 
+// The benchmark's fixed set as docs/tracking.md describes it: along the paths
+// and across them, targets top, middle and bottom, zForce quantisation, 200 Hz
+// with 150 us jitter, rests and a lift, the noise and length asked for.
+TEST(StandardCases, AreTheSixDocumentedTraces) {
+  const std::vector<TrackCase> cases = standard_cases(2.5, 30.0);
+  ASSERT_EQ(cases.size(), 6u);
+  const char* names[] = {"along-top", "along-middle", "along-bottom", "across-top", "across-middle", "across-bottom"};
+  const Target targets[] = {Target::Top, Target::Middle, Target::Bottom};
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const TrackCase& c = cases[i];
+    const tracegen::TraceOptions& o = c.options;
+    EXPECT_EQ(c.name, names[i]);
+    EXPECT_EQ(c.target, targets[i % 3]) << names[i];
+    EXPECT_EQ(o.motion.strategy, i < 3 ? tracegen::Strategy::Along : tracegen::Strategy::Across) << names[i];
+    EXPECT_EQ(o.motion.paths, tracegen::PathChoice::All) << names[i];
+    EXPECT_EQ(o.motion.duration_s, 30.0) << names[i];
+    EXPECT_GE(o.motion.rests, 1) << names[i];
+    EXPECT_EQ(o.motion.lifts, 1) << names[i];
+    EXPECT_EQ(o.sensor.noise_px, 2.5) << names[i];
+    EXPECT_EQ(o.sensor.quantum_px, 0.5) << names[i];  // the zForce's
+    EXPECT_EQ(o.sensor.rate_hz, 200.0) << names[i];
+    EXPECT_EQ(o.sensor.jitter_us, 150.0) << names[i];
+    for (size_t j = 0; j < i; ++j) EXPECT_NE(o.seed, cases[j].options.seed) << names[i] << " and " << names[j];
+  }
+  // The motion does not depend on the noise: the same seeds at another level.
+  const std::vector<TrackCase> low = standard_cases(1.0, 30.0);
+  for (size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(low[i].options.seed, cases[i].options.seed);
+}
+
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
   TrackCase spec = standard_cases(1.0, 6.0)[0];  // along, target top
   ASSERT_EQ(spec.target, Target::Top);
