@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "bench_report.hpp"
@@ -13,6 +15,7 @@
 #include "support/models/trace_classes.hpp"
 #include "support/reference/reference_scene.hpp"
 #include "support/reference/spec_scenes.hpp"
+#include "support/scratch_path.hpp"
 #include "proposed_config.hpp"
 #include "tracking_evaluation.hpp"
 
@@ -52,6 +55,36 @@ TEST(StandardCases, AreTheSixDocumentedTraces) {
   // The motion does not depend on the noise: the same seeds at another level.
   const std::vector<TrackCase> low = standard_cases(1.0, 30.0);
   for (size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(low[i].options.seed, cases[i].options.seed);
+}
+
+// ff-track-bench --trace FILE: a recording becomes a case named by its path,
+// judged on the target asked for; a file it cannot use says why, naming it.
+TEST(LoadTraceCase, NamesTheCaseByItsPathAndJudgesItOnTheTargetAsked) {
+  const std::string path = support::scratch_path("load_trace_case.csv");
+  auto write = [&](const std::string& text) { std::ofstream(path) << text; };
+  TraceFileOptions options;
+  options.target = Target::Bottom;
+  PreparedCase c;
+  std::string error;
+
+  write("t_us,x,y,touch,x_true,y_true\n10000000,100,200,1,100,200\n10005000,101,200,1,101,200\n"
+        "10010000,102,200,1,102,200\n");
+  ASSERT_TRUE(load_trace_case(path, options, c, error)) << error;
+  EXPECT_EQ(c.spec.name, path);
+  EXPECT_EQ(c.spec.target, Target::Bottom);
+  EXPECT_EQ(c.trace.samples.size(), 3u);
+
+  write("t_us,x,y,touch\n");
+  EXPECT_FALSE(load_trace_case(path, options, c, error));
+  EXPECT_EQ(error, path + ": no reports");
+
+  write("time,x,y\n1,2,3\n");
+  EXPECT_FALSE(load_trace_case(path, options, c, error));
+  EXPECT_EQ(error.rfind(path + ":1:", 0), 0u) << error;  // the reader's file:line:column
+
+  std::remove(path.c_str());
+  EXPECT_FALSE(load_trace_case(path, options, c, error));
+  EXPECT_EQ(error, path + ": cannot open");
 }
 
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
