@@ -72,7 +72,10 @@ TEST(LoadTraceCase, NamesTheCaseByItsPathAndJudgesItOnTheTargetAsked) {
   ASSERT_TRUE(load_trace_case(path, options, c, error)) << error;
   EXPECT_EQ(c.spec.name, path);
   EXPECT_EQ(c.spec.target, Target::Bottom);
-  EXPECT_EQ(c.trace.samples.size(), 3u);
+  ASSERT_EQ(c.trace.samples.size(), 3u);
+  EXPECT_EQ(c.trace.samples[1].x, 101.0);  // each report as the file has it, its truth beside it
+  EXPECT_EQ(c.trace.samples[1].x_true, 101.0);
+  EXPECT_EQ(c.trace.samples[1].y_true, 200.0);
 
   write("t_us,x,y,touch\n");
   EXPECT_FALSE(load_trace_case(path, options, c, error));
@@ -85,6 +88,26 @@ TEST(LoadTraceCase, NamesTheCaseByItsPathAndJudgesItOnTheTargetAsked) {
   std::remove(path.c_str());
   EXPECT_FALSE(load_trace_case(path, options, c, error));
   EXPECT_EQ(error, path + ": cannot open");
+}
+
+// evaluate(A, ..., &B) judges A's position with B's direction: its position
+// figures are A's own, its direction figures B's own (both trackers see the
+// same reports, so they track the same ticks).
+TEST(Evaluate, DirectionFromASecondTracker) {
+  const std::vector<PreparedCase> cases = prepare_cases({standard_cases(1.0, 4.0)[0], standard_cases(1.0, 4.0)[3]});
+  EvalOptions options;
+  options.cost = false;
+  options.lag = false;
+  const TrackerConfig a = TrackerConfig::thesis(), b = TrackerConfig::recommended();
+  const Metrics mixed = evaluate(a, cases, options, &b);
+  const Metrics of_a = evaluate(a, cases, options), of_b = evaluate(b, cases, options);
+  ASSERT_GT(mixed.moving_ticks, 1000u);
+  EXPECT_EQ(mixed.moving_ticks, of_a.moving_ticks);
+  EXPECT_EQ(mixed.position_rmse_px, of_a.position_rmse_px);
+  EXPECT_EQ(mixed.direction_mean_deg, of_b.direction_mean_deg);
+  EXPECT_EQ(mixed.direction_p95_deg, of_b.direction_p95_deg);
+  EXPECT_NE(of_a.direction_mean_deg, of_b.direction_mean_deg);  // so that the test can tell them apart
+  EXPECT_NE(of_a.position_rmse_px, of_b.position_rmse_px);
 }
 
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
