@@ -106,8 +106,68 @@ TEST(Evaluate, DirectionFromASecondTracker) {
   EXPECT_EQ(mixed.position_rmse_px, of_a.position_rmse_px);
   EXPECT_EQ(mixed.direction_mean_deg, of_b.direction_mean_deg);
   EXPECT_EQ(mixed.direction_p95_deg, of_b.direction_p95_deg);
+  // The heightmap reads both; the direction is what parts the two trackers' errors.
+  EXPECT_LT(std::fabs(mixed.heightmap_rms - of_b.heightmap_rms), 0.5 * std::fabs(of_a.heightmap_rms - of_b.heightmap_rms));
   EXPECT_NE(of_a.direction_mean_deg, of_b.direction_mean_deg);  // so that the test can tell them apart
   EXPECT_NE(of_a.position_rmse_px, of_b.position_rmse_px);
+}
+
+// Every rest of the truth is a stop of its own: a rest ends where the finger
+// moves, lifts, or its trace ends (counted here from the truth alone), and the
+// ticks a finger is down untracked (after each touch-down, until its first
+// report: at most 5 ms at 200 Hz with jitter) are counted.
+TEST(Evaluate, EveryRestOfTheTruthIsAStop) {
+  std::vector<TrackCase> specs = standard_cases(1.0, 30.0);
+  specs.resize(2);
+  specs.push_back(specs[0]);  // twice in a row: the first's last rest does not run into the second's
+  const std::vector<PreparedCase> cases = prepare_cases(specs);
+  size_t rests = 0, touch_downs = 0;
+  for (const PreparedCase& c : cases) {
+    bool in_rest = false, touching = false;
+    for (const TickTruth& tick : c.ticks) {
+      const bool resting = tick.state.touching && tick.state.resting;
+      rests += resting && !in_rest ? 1 : 0;
+      touch_downs += tick.state.touching && !touching ? 1 : 0;
+      in_rest = resting;
+      touching = tick.state.touching;
+    }
+  }
+  EvalOptions options;
+  options.cost = false;
+  options.lag = false;
+  const Metrics m = evaluate(TrackerConfig::recommended(), cases, options);
+  ASSERT_GE(rests, 6u);
+  EXPECT_EQ(m.stops, rests);
+  EXPECT_GE(touch_downs, 6u);
+  EXPECT_GE(m.untracked_ticks, touch_downs);
+  EXPECT_LE(m.untracked_ticks, touch_downs * 13);  // 6.5 ms of ticks each: 5 ms plus 30 % jitter
+}
+
+// A rest, a lift, a rest: two stops, and the same recording again two more
+// (a lift ends a rest, and so does the end of its trace).
+TEST(Evaluate, ALiftAndATracesEndEndARest) {
+  const std::string path = support::scratch_path("rest_lift_rest.csv");
+  {
+    std::ofstream out(path);
+    out << "t_us,x,y,touch,x_true,y_true\n";
+    for (uint64_t t = 1'000'000; t < 2'100'000; t += 5000) {
+      const bool lifted = t >= 1'500'000 && t < 1'600'000;
+      out << t << ",400,240," << (lifted ? 0 : 1) << ",400,240\n";
+    }
+  }
+  PreparedCase once;
+  std::string error;
+  ASSERT_TRUE(load_trace_case(path, TraceFileOptions{}, once, error)) << error;
+  std::vector<PreparedCase> twice;
+  for (int i = 0; i < 2; ++i) ASSERT_TRUE(load_trace_case(path, TraceFileOptions{}, twice.emplace_back(), error));
+  std::remove(path.c_str());
+  EvalOptions options;
+  options.cost = false;
+  options.lag = false;
+  std::vector<PreparedCase> one;
+  one.push_back(std::move(once));
+  EXPECT_EQ(evaluate(TrackerConfig::recommended(), one, options).stops, 2u);
+  EXPECT_EQ(evaluate(TrackerConfig::recommended(), twice, options).stops, 4u);
 }
 
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
