@@ -170,6 +170,64 @@ TEST(Evaluate, ALiftAndATracesEndEndARest) {
   EXPECT_EQ(evaluate(TrackerConfig::recommended(), twice, options).stops, 4u);
 }
 
+// The figures are the per-tick errors of --dump-ticks aggregated: its CSV
+// read back and summed up here (RMS, and p95 by linear interpolation between
+// order statistics, written out again), over the ticks where the finger moves.
+TEST(Evaluate, FiguresAreTheDumpedTicksAggregated) {
+  std::vector<PreparedCase> cases;
+  cases.push_back(prepare_case(standard_cases(2.5, 8.0)[4]));
+  const TrackerConfig config = TrackerConfig::recommended();
+  std::stringstream dump;
+  dump_ticks(dump, config, cases[0]);
+  std::string line;
+  std::getline(dump, line);  // the header
+  std::vector<double> position, direction, heightmap, frictionmap;
+  while (std::getline(dump, line)) {
+    double v[20];
+    std::stringstream fields(line);
+    for (double& f : v) {
+      std::string field;
+      std::getline(fields, field, ',');
+      f = std::stod(field);
+    }
+    // t_us x_true y_true vx_true vy_true touching resting present x y vx vy dx dy hm hm_ideal fm fm_ideal ...
+    if (v[5] == 0.0 || v[6] != 0.0 || v[7] == 0.0 || std::hypot(v[3], v[4]) < 50.0) continue;
+    position.push_back(std::hypot(v[8] - v[1], v[9] - v[2]));
+    const double speed = std::hypot(v[10], v[11]);  // no velocity: 90 degrees (the doc's)
+    const double cosine = speed > 0.0 ? (v[10] * v[3] + v[11] * v[4]) / (speed * std::hypot(v[3], v[4])) : 0.0;
+    direction.push_back(std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI);
+    heightmap.push_back(std::fabs(v[14] - v[15]));
+    frictionmap.push_back(std::fabs(v[16] - v[17]));
+  }
+  auto rms_of = [](const std::vector<double>& e) {
+    double sum = 0.0;
+    for (double x : e) sum += x * x;
+    return std::sqrt(sum / static_cast<double>(e.size()));
+  };
+  auto p95_of = [](std::vector<double> e) {
+    std::sort(e.begin(), e.end());
+    const double at = 0.95 * static_cast<double>(e.size() - 1);
+    const size_t i = static_cast<size_t>(at);
+    return e[i] + (at - static_cast<double>(i)) * (e[i + 1] - e[i]);
+  };
+  double direction_mean = 0.0;
+  for (double d : direction) direction_mean += d / static_cast<double>(direction.size());
+  EvalOptions options;
+  options.cost = false;
+  options.lag = false;
+  const Metrics m = evaluate(config, cases, options);
+  ASSERT_GT(heightmap.size(), 2000u);
+  EXPECT_NEAR(static_cast<double>(m.moving_ticks), static_cast<double>(heightmap.size()), 2.0);  // vx, vy printed to 0.01
+  EXPECT_NEAR(m.position_rmse_px, rms_of(position), 2e-3);  // positions printed to 0.001 px
+  EXPECT_NEAR(m.position_p95_px, p95_of(position), 2e-3);
+  EXPECT_NEAR(m.direction_mean_deg, direction_mean, 0.05);  // velocities printed to 0.01 px/s
+  EXPECT_NEAR(m.direction_p95_deg, p95_of(direction), 0.05);
+  EXPECT_NEAR(m.heightmap_rms, rms_of(heightmap), 2e-4);  // amplitudes printed to 1e-4
+  EXPECT_NEAR(m.heightmap_p95, p95_of(heightmap), 2e-4);
+  EXPECT_NEAR(m.frictionmap_rms, rms_of(frictionmap), 2e-4);
+  EXPECT_NEAR(m.frictionmap_p95, p95_of(frictionmap), 2e-4);
+}
+
 TEST(PrepareCase, TicksEvery500usFromTheFirstReportAndAnIdealRendererThatFollowsSpec) {
   TrackCase spec = standard_cases(1.0, 6.0)[0];  // along, target top
   ASSERT_EQ(spec.target, Target::Top);
