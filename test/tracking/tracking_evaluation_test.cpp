@@ -180,7 +180,15 @@ TEST(Evaluate, FiguresAreTheDumpedTicksAggregated) {
   std::stringstream dump;
   dump_ticks(dump, config, cases[0]);
   std::string line;
-  std::getline(dump, line);  // the header
+  std::getline(dump, line);  // the header: the columns read below are where it says
+  std::vector<std::string> names;
+  for (std::stringstream header(line); std::getline(header, names.emplace_back(), ',');) {
+  }
+  names.pop_back();
+  ASSERT_EQ(names.size(), 20u) << line;
+  const char* used[] = {"t_us", "x_true", "y_true", "vx_true", "vy_true", "touching", "resting", "present", "x",
+                        "y",    "vx",     "vy",     "dx",      "dy",      "hm",       "hm_ideal", "fm", "fm_ideal"};
+  for (size_t i = 0; i < std::size(used); ++i) EXPECT_EQ(names[i], used[i]);
   std::vector<double> position, direction, heightmap, frictionmap;
   while (std::getline(dump, line)) {
     double v[20];
