@@ -92,6 +92,12 @@ TEST(ClassReport, TablesAreWellFormed) {
   expect_markdown_table(classes.str(), rows.size());
   write_rest_report(rests, rows);
   expect_markdown_table(rests.str(), rows.size());
+  std::vector<StartFloorRow> floors(2);
+  floors[0].trace_class = "white-200hz";
+  floors[1].trace_class = "tremor";
+  std::ostringstream floor_table;
+  write_start_floor(floor_table, floors);
+  expect_markdown_table(floor_table.str(), floors.size());
 }
 
 TEST(ClassReport, EveryCsvRowHasItsHeadersFields) {
