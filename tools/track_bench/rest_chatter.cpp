@@ -58,7 +58,6 @@ double RestChatter::transient_share() const {
 }
 
 double RestChatter::settle_median_ms() const {
-  if (settle_us_.empty()) return 0.0;
   return support::percentile(std::vector<double>(settle_us_.begin(), settle_us_.end()), 50.0) * 1e-3;
 }
 
