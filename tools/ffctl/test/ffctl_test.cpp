@@ -438,6 +438,27 @@ TEST(Ffctl, RepliesAreMatchedBySequenceWhateverArrivesFirst) {
   EXPECT_EQ(client.malformed_replies(), 1u);
 }
 
+TEST(Ffctl, EachCommandHasItsOwnSequenceSoALateReplyIsNotTakenForTheNext) {
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back([](const Message&) { return std::vector<std::vector<uint8_t>>{}; });  // too slow
+  device.replies.push_back([&device](const Message& c) {
+    Message refused;  // the first command's answer, arriving now
+    refused.type = MessageType::Error;
+    refused.error = {protocol::ErrorCode::Busy, static_cast<uint8_t>(MessageType::StopStream)};
+    return std::vector<std::vector<uint8_t>>{encoded(refused, device.sent.front().sequence),
+                                             encoded(ack_for(c.type), c.sequence)};
+  });
+  Message cmd, reply;
+  cmd.type = MessageType::StopStream;
+  std::string error;
+  EXPECT_FALSE(client.request(cmd, reply, error, 20));
+  ASSERT_TRUE(client.request(cmd, reply, error, 200)) << error;
+  EXPECT_EQ(reply.type, MessageType::Ack);
+  ASSERT_EQ(device.sent.size(), 2u);
+  EXPECT_NE(device.sent[0].sequence, device.sent[1].sequence);
+}
+
 TEST(Ffctl, ErrorRepliesAndOtherVersionsReadPlainly) {
   ScriptedDevice device;
   DeviceClient client(device);
