@@ -323,6 +323,16 @@ TEST(Ffctl, MalformedRepliesAreCountedAndDisconnectIsReported) {
   EXPECT_GT(r.ticks.size(), 0u);  // what arrived is kept
 }
 
+TEST(Ffctl, ADeviceThatLeavesBeforeItAnswersIsReportedAsGoneNotSilent) {
+  SimulatedDevice device;
+  DeviceClient client(device);
+  device.disconnect_after_frames = 0;  // takes the command, then leaves
+  Message reply;
+  std::string error;
+  EXPECT_FALSE(client.request(heightmap_top(), reply, error));
+  EXPECT_EQ(error, "the device disconnected");
+}
+
 TEST(Ffctl, TheRebootRequestGoesBelowTheProtocolAndTheMessageStillWorks) {
   SimulatedDevice device;
   EXPECT_TRUE(static_cast<Transport&>(device).request_bootloader());
