@@ -136,8 +136,7 @@ constexpr int kCatchUpTimeoutMs = 500;  // wall time: a device that stops stream
 bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string& error,
             const std::function<bool(const RecordProgress&)>& progress) {
   Message start, reply;
-  start.type = MessageType::StartStream;
-  start.stream.tick_decimation = 1;
+  start.type = MessageType::StartStream;  // every tick: the default decimation
   if (!client.request(start, reply, error)) return false;
   Unwrapper unwrap;
   uint64_t first = 0;

@@ -175,12 +175,23 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   std::string error;
   ASSERT_TRUE(client.request(heightmap_top(), reply, error)) << error;
   Recording r;
-  int progress_calls = 0;
-  ASSERT_TRUE(record(client, 2.5, r, error, [&](const RecordProgress&) {
+  int progress_calls = 0, touching_calls = 0;
+  ASSERT_TRUE(record(client, 2.5, r, error, [&](const RecordProgress& p) {
     ++progress_calls;
+    // What the live view shows is what was recorded so far.
+    EXPECT_EQ(p.ticks, r.ticks.size());
+    EXPECT_EQ(p.samples, r.samples.size());
+    if (!r.samples.empty()) {
+      const host::TraceRow& last = r.samples.back().row;
+      EXPECT_EQ(p.finger, last.touch);
+      EXPECT_EQ(p.x, last.x);
+      EXPECT_EQ(p.y, last.y);
+      touching_calls += last.touch;
+    }
     return true;
   })) << error;
   EXPECT_GT(progress_calls, 10);
+  EXPECT_GT(touching_calls, 5);
   EXPECT_NEAR(static_cast<double>(r.ticks.size()), 5000.0, 120.0);  // 2.5 s of 2 kHz
   for (size_t i = 1; i < r.ticks.size(); ++i) ASSERT_EQ(r.ticks[i].t_us - r.ticks[i - 1].t_us, 500u) << i;
   // The finger arrives 1 s after the stream starts: ~1.5 s of 200 Hz reports.
@@ -398,7 +409,7 @@ class ScriptedDevice final : public Transport {
     return true;
   }
   ReceiveResult receive(std::vector<uint8_t>& frame, int) override {
-    if (pending_.empty()) return ReceiveResult::Timeout;
+    if (pending_.empty()) return gone_when_quiet ? ReceiveResult::Disconnected : ReceiveResult::Timeout;
     frame = pending_.front();
     pending_.pop_front();
     return ReceiveResult::Frame;
@@ -407,6 +418,7 @@ class ScriptedDevice final : public Transport {
   using Script = std::function<std::vector<std::vector<uint8_t>>(const Message& command)>;
   std::deque<Script> replies;
   std::vector<Message> sent;
+  bool gone_when_quiet = false;  // unplugged once every queued frame is read
 
  private:
   std::deque<std::vector<uint8_t>> pending_;
@@ -467,6 +479,60 @@ TEST(Ffctl, EachCommandHasItsOwnSequenceSoALateReplyIsNotTakenForTheNext) {
   EXPECT_EQ(reply.type, MessageType::Ack);
   ASSERT_EQ(device.sent.size(), 2u);
   EXPECT_NE(device.sent[0].sequence, device.sent[1].sequence);
+}
+
+// A stream of one tick per message, `step_us` of device time apart, then silence.
+ScriptedDevice::Script streams_ticks(uint64_t first_us, uint64_t step_us, int count) {
+  return [=](const Message& c) {
+    std::vector<std::vector<uint8_t>> frames{encoded(ack_for(c.type), c.sequence)};
+    for (int k = 0; k < count; ++k) {
+      Message m;
+      m.type = MessageType::Ticks;
+      m.ticks.count = 1;
+      m.ticks.ticks[0].t_us = static_cast<uint32_t>(first_us + static_cast<uint64_t>(k) * step_us);  // wraps
+      frames.push_back(encoded(m, 0));
+    }
+    return frames;
+  };
+}
+
+TEST(Ffctl, ARecordingLongerThanHalfTheClocksRangeKeepsItsTimes) {
+  // Ticks 1000 s apart cross the 32-bit microsecond clock's wrap (4295 s)
+  // and its half range (2147 s) from the first tick more than once.
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back(streams_ticks(1000, 1000000000, 6));
+  Recording r;
+  std::string error;
+  EXPECT_FALSE(record(client, 0.0, r, error));
+  EXPECT_EQ(error, "the device stopped streaming");
+  ASSERT_EQ(r.ticks.size(), 6u);
+  for (uint64_t k = 0; k < 6; ++k) EXPECT_EQ(r.ticks[k].t_us, 1000 + k * 1000000000) << k;
+}
+
+TEST(Ffctl, ReportsThatArrivedBeforeAnUnplugAreMadeDurable) {
+  struct DurableCount final : RecordSink {
+    void sample(const DeviceSample&) override { ++samples; }
+    void tick(const DeviceTick&) override {}
+    void force(const DeviceForce&) override {}
+    bool flush() override { return durable = samples, true; }
+    size_t samples = 0, durable = 0;
+  } sink;
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back([](const Message& c) {
+    Message reports;  // reports, then the cable is pulled before their ticks are sent
+    reports.type = MessageType::Samples;
+    reports.samples.count = 3;
+    for (uint32_t i = 0; i < 3; ++i) reports.samples.samples[i] = {5000 * i, 10.0f, 20.0f, true};
+    return std::vector<std::vector<uint8_t>>{encoded(ack_for(c.type), c.sequence), encoded(reports, 0)};
+  });
+  device.gone_when_quiet = true;
+  std::string error;
+  EXPECT_FALSE(record(client, 0.0, sink, error));
+  EXPECT_EQ(error, "the device disconnected while recording");
+  EXPECT_EQ(sink.samples, 3u);
+  EXPECT_EQ(sink.durable, 3u);
 }
 
 TEST(Ffctl, ErrorRepliesAndOtherVersionsReadPlainly) {
