@@ -188,10 +188,17 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
       EXPECT_EQ(p.y, last.y);
       touching_calls += last.touch;
     }
+    EXPECT_EQ(p.forces, r.forces.size());
+    EXPECT_EQ(p.have_force, !r.forces.empty());
+    if (!r.forces.empty()) {
+      EXPECT_EQ(p.last_force.t_us, r.forces.back().t_us);
+      EXPECT_EQ(p.last_force.force_mN, r.forces.back().force_mN);
+    }
     return true;
   })) << error;
   EXPECT_GT(progress_calls, 10);
   EXPECT_GT(touching_calls, 5);
+  EXPECT_GT(r.forces.size(), 0u);
   EXPECT_NEAR(static_cast<double>(r.ticks.size()), 5000.0, 120.0);  // 2.5 s of 2 kHz
   for (size_t i = 1; i < r.ticks.size(); ++i) ASSERT_EQ(r.ticks[i].t_us - r.ticks[i - 1].t_us, 500u) << i;
   // The finger arrives 1 s after the stream starts: ~1.5 s of 200 Hz reports.
