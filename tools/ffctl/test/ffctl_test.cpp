@@ -488,27 +488,48 @@ TEST(Ffctl, EachCommandHasItsOwnSequenceSoALateReplyIsNotTakenForTheNext) {
   EXPECT_NE(device.sent[0].sequence, device.sent[1].sequence);
 }
 
-// A stream of one tick per message, `step_us` of device time apart, then silence.
-ScriptedDevice::Script streams_ticks(uint64_t first_us, uint64_t step_us, int count) {
-  return [=](const Message& c) {
+Message ticks_at(uint64_t t_us) {
+  Message m;
+  m.type = MessageType::Ticks;
+  m.ticks.count = 1;
+  m.ticks.ticks[0].t_us = static_cast<uint32_t>(t_us);  // the device's clock wraps
+  return m;
+}
+
+Message reports_at(std::initializer_list<uint32_t> times) {
+  Message m;
+  m.type = MessageType::Samples;
+  for (uint32_t t : times) m.samples.samples[m.samples.count++] = {t, 10.0f, 20.0f, true};
+  return m;
+}
+
+// StartStream acknowledged, then `stream` (each message's sequence 0), then silence.
+ScriptedDevice::Script streams(std::vector<Message> stream) {
+  return [stream](const Message& c) {
     std::vector<std::vector<uint8_t>> frames{encoded(ack_for(c.type), c.sequence)};
-    for (int k = 0; k < count; ++k) {
-      Message m;
-      m.type = MessageType::Ticks;
-      m.ticks.count = 1;
-      m.ticks.ticks[0].t_us = static_cast<uint32_t>(first_us + static_cast<uint64_t>(k) * step_us);  // wraps
-      frames.push_back(encoded(m, 0));
-    }
+    for (const Message& m : stream) frames.push_back(encoded(m, 0));
     return frames;
   };
 }
+
+// Counts what reached it and what of that a flush made durable.
+struct DurableCount final : RecordSink {
+  void sample(const DeviceSample&) override { ++samples; }
+  void tick(const DeviceTick&) override { ++ticks; }
+  void force(const DeviceForce&) override {}
+  bool flush() override { return durable = samples, disk_full ? false : true; }
+  size_t samples = 0, ticks = 0, durable = 0;
+  bool disk_full = false;
+};
 
 TEST(Ffctl, ARecordingLongerThanHalfTheClocksRangeKeepsItsTimes) {
   // Ticks 1000 s apart cross the 32-bit microsecond clock's wrap (4295 s)
   // and its half range (2147 s) from the first tick more than once.
   ScriptedDevice device;
   DeviceClient client(device);
-  device.replies.push_back(streams_ticks(1000, 1000000000, 6));
+  std::vector<Message> stream;
+  for (uint64_t k = 0; k < 6; ++k) stream.push_back(ticks_at(1000 + k * 1000000000));
+  device.replies.push_back(streams(stream));
   Recording r;
   std::string error;
   EXPECT_FALSE(record(client, 0.0, r, error));
@@ -518,28 +539,56 @@ TEST(Ffctl, ARecordingLongerThanHalfTheClocksRangeKeepsItsTimes) {
 }
 
 TEST(Ffctl, ReportsThatArrivedBeforeAnUnplugAreMadeDurable) {
-  struct DurableCount final : RecordSink {
-    void sample(const DeviceSample&) override { ++samples; }
-    void tick(const DeviceTick&) override {}
-    void force(const DeviceForce&) override {}
-    bool flush() override { return durable = samples, true; }
-    size_t samples = 0, durable = 0;
-  } sink;
+  DurableCount sink;
   ScriptedDevice device;
   DeviceClient client(device);
-  device.replies.push_back([](const Message& c) {
-    Message reports;  // reports, then the cable is pulled before their ticks are sent
-    reports.type = MessageType::Samples;
-    reports.samples.count = 3;
-    for (uint32_t i = 0; i < 3; ++i) reports.samples.samples[i] = {5000 * i, 10.0f, 20.0f, true};
-    return std::vector<std::vector<uint8_t>>{encoded(ack_for(c.type), c.sequence), encoded(reports, 0)};
-  });
+  device.replies.push_back(streams({reports_at({0, 5000, 10000})}));  // then unplugged before their ticks
   device.gone_when_quiet = true;
   std::string error;
   EXPECT_FALSE(record(client, 0.0, sink, error));
   EXPECT_EQ(error, "the device disconnected while recording");
   EXPECT_EQ(sink.samples, 3u);
   EXPECT_EQ(sink.durable, 3u);
+}
+
+TEST(Ffctl, ReportsReadAfterTheLastTickAreMadeDurableToo) {
+  DurableCount sink;
+  ScriptedDevice device;
+  DeviceClient client(device);
+  // 0.5 ms recorded, then the reports that trail the ticks.
+  device.replies.push_back(streams({ticks_at(1000), ticks_at(1500), reports_at({600, 1100})}));
+  std::string error;
+  EXPECT_TRUE(record(client, 0.0004, sink, error)) << error;
+  EXPECT_EQ(sink.ticks, 2u);
+  EXPECT_EQ(sink.samples, 2u);
+  EXPECT_EQ(sink.durable, 2u);
+}
+
+TEST(Ffctl, AFullDiskEndsTheRecordingWithItsReason) {
+  DurableCount sink;
+  sink.disk_full = true;
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back(streams({ticks_at(1000), ticks_at(1500), ticks_at(2000)}));
+  std::string error;
+  EXPECT_FALSE(record(client, 0.0, sink, error));
+  EXPECT_EQ(error, "writing the recording failed (disk full?)");
+  EXPECT_EQ(sink.ticks, 1u);  // nothing read after the failed write
+}
+
+TEST(Ffctl, TicksMissingFromTheStreamAreCountedAsTheyArrive) {
+  // 500 us apart: 1000, 1500 and 2000 are missing before 2500; 3600 is a
+  // late tick (within 1.5 periods), not a lost one; 4000 is missing before 4500.
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back(
+      streams({ticks_at(0), ticks_at(500), ticks_at(2500), ticks_at(3000), ticks_at(3600), ticks_at(4500)}));
+  Recording r;
+  std::string error;
+  size_t lost = 0;
+  record(client, 0.0, r, error, [&](const RecordProgress& p) { return lost = p.lost_ticks, true; });
+  EXPECT_EQ(r.ticks.size(), 6u);
+  EXPECT_EQ(lost, 4u);
 }
 
 TEST(Ffctl, ErrorRepliesAndOtherVersionsReadPlainly) {
