@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <filesystem>
 #include <functional>
 #include <fstream>
 #include <memory>
@@ -692,10 +693,26 @@ TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
   EXPECT_FLOAT_EQ(replay_rows[1].x, 300.0f);
   EXPECT_FLOAT_EQ(replay_rows[1].y, 200.0f);
   EXPECT_TRUE(replay_rows[1].touch);
+  // The condition file shows the scene in words, a comment per line.
+  std::stringstream condition_text;
+  condition_text << std::ifstream(condition_path_for(path)).rdbuf();
+  std::istringstream scene_lines(host::format_scene_text(r.condition.scene));
+  for (std::string line; std::getline(scene_lines, line);) {
+    EXPECT_NE(condition_text.str().find("#   " + line + "\n"), std::string::npos) << line;
+  }
+  EXPECT_EQ(condition_text.str().back(), '\n');  // a text file: its frame line ends too
   // Without a condition, a stale NAME.condition goes.
   r.has_condition = false;
   ASSERT_TRUE(write_recording(path, r, error)) << error;
   EXPECT_FALSE(std::ifstream(condition_path_for(path)).good());
+  // A folder where the condition file would go is named, not written around.
+  r.has_condition = true;
+  const std::string blocked = support::scratch_path("ffctl_condition_blocked.csv");
+  std::filesystem::remove_all(condition_path_for(blocked));
+  std::filesystem::create_directory(condition_path_for(blocked));
+  EXPECT_FALSE(write_recording(blocked, r, error));
+  EXPECT_EQ(error, "cannot write " + condition_path_for(blocked));
+  std::filesystem::remove_all(condition_path_for(blocked));
 }
 
 TEST(Ffctl, ARecordingWithBrokenTicksIsRefusedWithItsLine) {
