@@ -77,9 +77,9 @@ bool SensorTraceReader::read_header(TraceError& error) {
     error = {line_no_ + (line_no_ == 0 ? 1 : 0), 0, "empty file: expected a header row 't_us,x,y,touch'"};
     return false;
   }
-  const std::vector<std::string> header = split(line);
-  for (size_t i = 0; i < header.size(); ++i) {
-    const std::string name = trim(header[i]);
+  names_ = split(line);
+  for (size_t i = 0; i < names_.size(); ++i) {
+    const std::string& name = names_[i] = trim(names_[i]);
     const int c = static_cast<int>(i);
     if (name == "t_us") col_t_ = c;
     else if (name == "x") col_x_ = c;
@@ -99,8 +99,10 @@ bool SensorTraceReader::read_header(TraceError& error) {
 bool SensorTraceReader::next(TraceRow& row, TraceError& error, TruthPoint* truth) {
   error = {};
   std::string line;
+  fields_.clear();
   if (!next_data_line(line)) return false;
-  const std::vector<std::string> f = split(line);
+  fields_ = split(line);
+  const std::vector<std::string>& f = fields_;
   if (f.size() < needed_) {
     error = {line_no_, f.size() + 1,
              "expected at least " + std::to_string(needed_) + " fields, got " + std::to_string(f.size())};
@@ -143,6 +145,15 @@ bool SensorTraceReader::next(TraceRow& row, TraceError& error, TruthPoint* truth
     }
   }
   return true;
+}
+
+int SensorTraceReader::column(const std::string& name) const {
+  const auto it = std::find(names_.begin(), names_.end(), name);
+  return it == names_.end() ? -1 : static_cast<int>(it - names_.begin());
+}
+
+std::string SensorTraceReader::field(int column) const {
+  return column >= 0 && static_cast<size_t>(column) < fields_.size() ? trim(fields_[column]) : std::string();
 }
 
 bool read_sensor_trace(std::istream& in, std::vector<TraceRow>& rows, TraceError& error) {

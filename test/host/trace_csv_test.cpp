@@ -175,5 +175,28 @@ TEST(TraceCsv, EachRowAndEachCallStartsClean) {
   EXPECT_EQ(err.line, 0u);
 }
 
+TEST(TraceCsv, AToolsOwnColumnIsReadInStepWithTheRows) {
+  std::istringstream in("t_us, x ,y,touch , note\r\n1,1,1,1, first \r\n# a comment\n\n2,2,2,1\n3,3,3,1,third\n");
+  SensorTraceReader reader(in);
+  TraceError err;
+  ASSERT_TRUE(reader.read_header(err));
+  EXPECT_EQ(reader.column("note"), 4);
+  EXPECT_EQ(reader.column("touch"), 3);  // names trimmed
+  EXPECT_EQ(reader.column("taken_us"), -1);
+  EXPECT_EQ(reader.field(4), "");  // no row read yet
+  TraceRow row;
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_EQ(reader.field(4), "first");
+  EXPECT_EQ(reader.field(0), "1");
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_EQ(row.t_us, 2u);
+  EXPECT_EQ(reader.field(4), "");  // this row is short
+  EXPECT_EQ(reader.field(-1), "");
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_EQ(reader.field(4), "third");
+  EXPECT_FALSE(reader.next(row, err));
+  EXPECT_EQ(reader.field(4), "");  // past the end
+}
+
 }  // namespace
 }  // namespace ff::host

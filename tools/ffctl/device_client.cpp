@@ -340,37 +340,6 @@ bool read_sensor_profile(const std::string& path, SensorProfile& p, std::string&
   return true;
 }
 
-// The device column of a trace ffctl wrote: taken_us per data row (-1: unknown).
-bool read_taken_column(std::istream& in, const std::string& path, int skipped, std::vector<DeviceSample>& samples,
-                       std::string& error) {
-  std::string line;
-  std::getline(in, line);
-  int column = -1, index = 0;
-  std::istringstream header(line);
-  for (std::string name; std::getline(header, name, ',');) {
-    while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
-    if (name == "taken_us") column = index;
-    ++index;
-  }
-  if (column < 0) return true;  // a plain sensor trace: by timestamps
-  size_t row = 0;
-  for (int line_no = 2 + skipped; std::getline(in, line); ++line_no) {
-    if (line.empty() || line == "\r") continue;
-    std::istringstream fields(line);
-    std::string field;
-    for (int i = 0; i <= column; ++i) std::getline(fields, field, ',');
-    char* end = nullptr;
-    const long long v = std::strtoll(field.c_str(), &end, 10);
-    if (end == field.c_str() || v < -1 || row >= samples.size()) {
-      return error = path + ":" + std::to_string(line_no) + ": taken_us must be a time in us or -1", false;
-    }
-    samples[row].taken_known = v >= 0;
-    samples[row].taken_us = v >= 0 ? static_cast<uint64_t>(v) : 0;
-    ++row;
-  }
-  return true;
-}
-
 }  // namespace
 
 std::string ticks_path_for(const std::string& trace_path) { return stem_of(trace_path) + ".ticks.csv"; }
@@ -491,23 +460,41 @@ std::string without_metadata(const std::string& path, size_t& skipped, bool& ope
 
 }  // namespace
 
-bool read_recording(const std::string& path, Recording& r, std::string& error) {
-  size_t skipped = 0;
-  bool opened = false;
-  const std::string trace_text = without_metadata(path, skipped, opened);
-  if (!opened) return error = path + ": cannot open: " + std::strerror(errno), false;
-  std::vector<host::TraceRow> rows;
+namespace {
+
+// The sensor trace of a recording, with the device's taken_us where ffctl
+// wrote it (-1: unknown; a plain sensor trace has no such column).
+bool read_samples(const std::string& path, std::vector<DeviceSample>& samples, std::string& error) {
+  std::ifstream in(path);
+  if (!in) return error = path + ": cannot open: " + std::strerror(errno), false;
+  host::SensorTraceReader reader(in);
   host::TraceError terr;
-  std::istringstream trace_in(trace_text);
-  if (!host::read_sensor_trace(trace_in, rows, terr)) {
-    if (terr.line > 0) terr.line += skipped;
-    return error = terr.to_string(path), false;
+  if (!reader.read_header(terr)) return error = terr.to_string(path), false;
+  const int taken_column = reader.column("taken_us");
+  for (host::TraceRow row; reader.next(row, terr);) {
+    DeviceSample s{row, false, 0};
+    if (taken_column >= 0) {
+      const std::string field = reader.field(taken_column);
+      char* end = nullptr;
+      const long long v = std::strtoll(field.c_str(), &end, 10);
+      if (field.empty() || *end != '\0' || v < -1) {
+        return error = path + ":" + std::to_string(reader.line()) + ": taken_us must be a time in us or -1", false;
+      }
+      s.taken_known = v >= 0;
+      s.taken_us = s.taken_known ? static_cast<uint64_t>(v) : 0;
+    }
+    samples.push_back(s);
   }
-  for (const host::TraceRow& row : rows) r.samples.push_back({row, false, 0});
-  std::istringstream taken_in(trace_text);
-  if (!read_taken_column(taken_in, path, static_cast<int>(skipped), r.samples, error)) return false;
+  return terr.message.empty() || (error = terr.to_string(path), false);
+}
+
+}  // namespace
+
+bool read_recording(const std::string& path, Recording& r, std::string& error) {
+  if (!read_samples(path, r.samples, error)) return false;
   const std::string tpath = ticks_path_for(path);
   size_t tskipped = 0;
+  bool opened = false;
   const std::string ticks_text = without_metadata(tpath, tskipped, opened);
   if (!opened) return error = tpath + ": cannot open (ffctl record writes it next to the trace)", false;
   std::istringstream in(ticks_text);

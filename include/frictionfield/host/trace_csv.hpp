@@ -55,10 +55,16 @@ class SensorTraceReader {
   bool next(TraceRow& row, TraceError& error, TruthPoint* truth = nullptr);
   bool has_truth() const { return col_x_true_ >= 0 && col_y_true_ >= 0; }
   size_t line() const { return line_no_; }
+  // A column a tool adds (ffctl's taken_us), read in step with the rows: its
+  // index in the header (-1: absent), and its trimmed field in the row next()
+  // last read ("" where that row is short).
+  int column(const std::string& name) const;
+  std::string field(int column) const;
 
  private:
   bool next_data_line(std::string& line);
   std::istream& in_;
+  std::vector<std::string> names_, fields_;  // the header's (trimmed), the last row's
   size_t line_no_ = 0;
   int col_t_ = -1, col_x_ = -1, col_y_ = -1, col_touch_ = -1, col_x_true_ = -1, col_y_true_ = -1;
   size_t needed_ = 0;

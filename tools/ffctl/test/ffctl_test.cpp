@@ -737,6 +737,37 @@ TEST(Ffctl, ARecordingWithBrokenTicksIsRefusedWithItsLine) {
   EXPECT_FALSE(plain.has_condition);
 }
 
+TEST(Ffctl, ARecordingsTakenTimesStayWithTheirRowsWhateverLinesAreBetween) {
+  // Edited by hand: a note and a blank line between the rows, Windows line ends.
+  const std::string path = support::scratch_path("ffctl_annotated.csv");
+  std::ofstream(path) << "# ffctl record\r\nt_us,x,y,touch,taken_us\r\n1000,10,10,1,1500\r\n"
+                         "# the finger slipped here\r\n   \r\n2000,20,10,1,-1\r\n3000,30,10,1,3000\r\n";
+  std::ofstream(ticks_path_for(path)) << "t_us,amplitude,dac,present\n500,0.5,2048,1\n";
+  Recording r;
+  std::string error;
+  ASSERT_TRUE(read_recording(path, r, error)) << error;
+  ASSERT_EQ(r.samples.size(), 3u);
+  EXPECT_TRUE(r.samples[0].taken_known);
+  EXPECT_EQ(r.samples[0].taken_us, 1500u);
+  EXPECT_FALSE(r.samples[1].taken_known);
+  EXPECT_EQ(r.samples[1].row.x, 20.0f);
+  EXPECT_TRUE(r.samples[2].taken_known);
+  EXPECT_EQ(r.samples[2].taken_us, 3000u);
+  // Errors name the file's own line, metadata counted.
+  std::ofstream(path) << "# ffctl record\nt_us,x,y,touch,taken_us\n1000,10,10,1,1500\n\n2000,20,10,1,soon\n";
+  Recording bad_taken;
+  EXPECT_FALSE(read_recording(path, bad_taken, error));
+  EXPECT_EQ(error, path + ":5: taken_us must be a time in us or -1");
+  std::ofstream(path) << "# ffctl record\nt_us,x,y,touch,taken_us\n1000,10,10,1\n";
+  Recording short_row;
+  EXPECT_FALSE(read_recording(path, short_row, error));
+  EXPECT_EQ(error, path + ":3: taken_us must be a time in us or -1");
+  std::ofstream(path) << "# ffctl record\n# 200 Hz\nt_us,x,y,touch,taken_us\n1000,ten,10,1,1500\n";
+  Recording bad_x;
+  EXPECT_FALSE(read_recording(path, bad_x, error));
+  EXPECT_EQ(error.rfind(path + ":4:2: x is not a number", 0), 0u) << error;
+}
+
 TEST(IntelHex, ParsesWithExtendedAddressesAndRejectsBadRecords) {
   FlashImage image;
   std::string error;
