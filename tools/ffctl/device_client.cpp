@@ -380,9 +380,11 @@ bool RecordingWriter::open(const std::string& path, const std::vector<std::strin
            false;
   }
   // Large buffers, flushed explicitly after whole rows: a kill never leaves half a row.
-  for (std::FILE* f : {trace_, ticks_, force_}) {
-    std::setvbuf(f, nullptr, _IOFBF, 1 << 20);
-    for (const std::string& line : metadata) std::fprintf(f, "# %s\n", line.c_str());
+  std::FILE* const files[] = {trace_, ticks_, force_};
+  for (size_t i = 0; i < 3; ++i) {
+    buffers_[i] = std::make_unique<char[]>(kBufferBytes);
+    std::setvbuf(files[i], buffers_[i].get(), _IOFBF, kBufferBytes);
+    for (const std::string& line : metadata) std::fprintf(files[i], "# %s\n", line.c_str());
   }
   std::fputs("t_us,x,y,touch,taken_us\n", trace_);
   std::fputs("t_us,amplitude,dac,present\n", ticks_);

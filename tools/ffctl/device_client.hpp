@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,9 @@ class RecordingWriter final : public RecordSink {
   std::FILE* trace_ = nullptr;
   std::FILE* ticks_ = nullptr;
   std::FILE* force_ = nullptr;
+  // Each file's stdio buffer, ours: glibc ignores setvbuf's size without one.
+  static constexpr size_t kBufferBytes = size_t{1} << 20;
+  std::unique_ptr<char[]> buffers_[3];
   std::string path_;
   bool failed_ = false;
 };

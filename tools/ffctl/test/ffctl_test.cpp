@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <deque>
 #include <filesystem>
 #include <functional>
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <sys/resource.h>
 
 #include "device_client.hpp"
 #include "firmware/app/firmware_app.hpp"
@@ -766,6 +768,86 @@ TEST(Ffctl, ARecordingsTakenTimesStayWithTheirRowsWhateverLinesAreBetween) {
   Recording bad_x;
   EXPECT_FALSE(read_recording(path, bad_x, error));
   EXPECT_EQ(error.rfind(path + ":4:2: x is not a number", 0), 0u) << error;
+}
+
+TEST(Ffctl, AnOutputPathIsCheckedBeforeTheDeviceIsTouched) {
+  std::string error;
+  EXPECT_FALSE(check_output_path("", error));
+  EXPECT_EQ(error, "-o: no file name");
+  const std::string folder = support::scratch_path("ffctl_out_folder");
+  std::filesystem::create_directories(folder);
+  EXPECT_FALSE(check_output_path(folder, error));
+  EXPECT_EQ(error, "-o " + folder + ": is a folder; give a file name such as " + folder + "/run1.csv");
+  EXPECT_FALSE(check_output_path(folder + "/missing/run1.csv", error));
+  EXPECT_EQ(error, "-o " + folder + "/missing/run1.csv: the folder " + folder + "/missing does not exist");
+  EXPECT_TRUE(check_output_path(folder + "/run1.csv", error)) << error;
+}
+
+std::string file_text(const std::string& path) {
+  std::stringstream text;
+  text << std::ifstream(path).rdbuf();
+  return text.str();
+}
+
+DeviceSample sample_at(uint64_t i) {
+  return {{1000000 + 5000 * i, 100.0f + 0.25f * static_cast<float>(i % 7), 240.5f, true}, false, 0};
+}
+
+TEST(Ffctl, ARecordingReachesTheDiskInWholeRowsWhenFlushed) {
+  // A killed recorder leaves what the last flush wrote: rows kept back until
+  // then may be lost, but never half a row.
+  const std::string path = support::scratch_path("ffctl_whole_rows.csv");
+  RecordingWriter w;
+  std::string error;
+  ASSERT_TRUE(w.open(path, {"ffctl record"}, Recording{}, error)) << error;
+  const std::string header = "# ffctl record\nt_us,x,y,touch,taken_us\n";
+  EXPECT_EQ(file_text(path), header);
+  for (uint64_t i = 0; i < 3000; ++i) w.sample(sample_at(i));  // ~80 kB, several stdio buffers' worth
+  EXPECT_EQ(file_text(path), header);
+  ASSERT_TRUE(w.flush());
+  const std::string flushed = file_text(path);
+  EXPECT_EQ(std::count(flushed.begin(), flushed.end(), '\n'), 3002);
+  EXPECT_EQ(flushed.back(), '\n');
+  EXPECT_TRUE(w.close(error)) << error;
+}
+
+// Files may grow to `bytes` while it lives (RLIMIT_FSIZE): a full disk on demand.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    previous_signal_ = std::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead of killing us
+    getrlimit(RLIMIT_FSIZE, &previous_);
+    rlimit limit = previous_;
+    limit.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &previous_);
+    std::signal(SIGXFSZ, previous_signal_);
+  }
+
+ private:
+  rlimit previous_{};
+  void (*previous_signal_)(int) = nullptr;
+};
+
+TEST(Ffctl, AWriteThatFailsIsReportedWithTheFilesName) {
+  const std::string path = support::scratch_path("ffctl_disk_full.csv");
+  std::string error;
+  {
+    FileSizeLimit full(8);  // not even the header fits
+    RecordingWriter w;
+    EXPECT_FALSE(w.open(path, {"ffctl record"}, Recording{}, error));
+  }
+  EXPECT_EQ(error, "writing " + path + " failed");
+  {
+    FileSizeLimit full(16384);  // the header fits, the rows do not
+    RecordingWriter w;
+    ASSERT_TRUE(w.open(path, {"ffctl record"}, Recording{}, error)) << error;
+    for (uint64_t i = 0; i < 3000; ++i) w.sample(sample_at(i));
+    EXPECT_FALSE(w.close(error));
+  }
+  EXPECT_EQ(error, "writing " + path + " failed (disk full?)");
 }
 
 TEST(IntelHex, ParsesWithExtendedAddressesAndRejectsBadRecords) {
