@@ -441,29 +441,6 @@ bool write_recording(const std::string& path, const Recording& r, std::string& e
 
 namespace {
 
-// A CSV without its leading `# ` metadata lines; `skipped` says how many.
-std::string without_metadata(const std::string& path, size_t& skipped, bool& opened) {
-  std::ifstream in(path);
-  opened = static_cast<bool>(in);
-  std::string line, rest;
-  skipped = 0;
-  bool header_seen = false;
-  while (std::getline(in, line)) {
-    if (!header_seen && !line.empty() && line[0] == '#') {
-      ++skipped;
-      continue;
-    }
-    header_seen = true;
-    rest += line;
-    rest += '\n';
-  }
-  return rest;
-}
-
-}  // namespace
-
-namespace {
-
 // The sensor trace of a recording, with the device's taken_us where ffctl
 // wrote it (-1: unknown; a plain sensor trace has no such column).
 bool read_samples(const std::string& path, std::vector<DeviceSample>& samples, std::string& error) {
@@ -490,35 +467,42 @@ bool read_samples(const std::string& path, std::vector<DeviceSample>& samples, s
   return terr.message.empty() || (error = terr.to_string(path), false);
 }
 
-}  // namespace
-
-bool read_recording(const std::string& path, Recording& r, std::string& error) {
-  if (!read_samples(path, r.samples, error)) return false;
-  const std::string tpath = ticks_path_for(path);
-  size_t tskipped = 0;
-  bool opened = false;
-  const std::string ticks_text = without_metadata(tpath, tskipped, opened);
-  if (!opened) return error = tpath + ": cannot open (ffctl record writes it next to the trace)", false;
-  std::istringstream in(ticks_text);
+// NAME.ticks.csv: a header, then t_us,amplitude,dac,present per row; '#' and
+// blank lines anywhere are skipped, as in every trace file.
+bool read_ticks(const std::string& path, std::vector<DeviceTick>& ticks, std::string& error) {
+  std::ifstream in(path);
+  if (!in) return error = path + ": cannot open (ffctl record writes it next to the trace)", false;
+  bool header_seen = false;
   std::string line;
-  std::getline(in, line);
-  for (int line_no = 2 + static_cast<int>(tskipped); std::getline(in, line); ++line_no) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    if (!header_seen) {
+      header_seen = true;
+      continue;
+    }
     unsigned long long time = 0;
     unsigned dac = 0;
     int present = 0;
     float amp = 0.0f;
     char tail = 0;
+    line.erase(line.find_last_not_of(" \t\r") + 1);  // Windows line ends
     if (std::sscanf(line.c_str(), "%llu,%f,%u,%d%c", &time, &amp, &dac, &present, &tail) != 4 || dac > 4095 ||
         present < 0 || present > 1 || !std::isfinite(amp)) {
-      return error = tpath + ":" + std::to_string(line_no) + ": expected t_us,amplitude,dac,present", false;
+      return error = path + ":" + std::to_string(line_no) + ": expected t_us,amplitude,dac,present", false;
     }
-    if (!r.ticks.empty() && time <= r.ticks.back().t_us) {
-      return error = tpath + ":" + std::to_string(line_no) + ": tick times must increase", false;
+    if (!ticks.empty() && time <= ticks.back().t_us) {
+      return error = path + ":" + std::to_string(line_no) + ": tick times must increase", false;
     }
-    r.ticks.push_back({time, amp, static_cast<uint16_t>(dac), present != 0});
+    ticks.push_back({time, amp, static_cast<uint16_t>(dac), present != 0});
   }
+  return true;
+}
+
+}  // namespace
+
+bool read_recording(const std::string& path, Recording& r, std::string& error) {
+  if (!read_samples(path, r.samples, error) || !read_ticks(ticks_path_for(path), r.ticks, error)) return false;
   const std::string cpath = condition_path_for(path);
   r.has_condition = std::ifstream(cpath).good();
   if (r.has_condition && !read_condition(cpath, r.condition, error)) return false;

@@ -770,6 +770,49 @@ TEST(Ffctl, ARecordingsTakenTimesStayWithTheirRowsWhateverLinesAreBetween) {
   EXPECT_EQ(error.rfind(path + ":4:2: x is not a number", 0), 0u) << error;
 }
 
+std::string file_text(const std::string& path) {
+  std::stringstream text;
+  text << std::ifstream(path).rdbuf();
+  return text.str();
+}
+
+TEST(Ffctl, ATicksFileReadsLikeEveryTraceFile) {
+  const std::string path = support::scratch_path("ffctl_ticks_shape.csv");
+  std::ofstream(path) << "t_us,x,y,touch\n1000,10,10,1\n";
+  std::ofstream(ticks_path_for(path)) << "# ffctl record\r\nt_us,amplitude,dac,present\r\n500,0.5,2048,1\r\n"
+                                         "# the plate was touched here\r\n\r\n   \r\n1000,0.25,1024,0\r\n";
+  Recording r;
+  std::string error;
+  ASSERT_TRUE(read_recording(path, r, error)) << error;
+  ASSERT_EQ(r.ticks.size(), 2u);
+  EXPECT_EQ(r.ticks[1].t_us, 1000u);
+  EXPECT_EQ(r.ticks[1].amplitude, 0.25f);
+  EXPECT_EQ(r.ticks[1].dac, 1024u);
+  EXPECT_FALSE(r.ticks[1].present);
+  // Errors name the file's own line, metadata counted.
+  std::ofstream(ticks_path_for(path)) << "# a\n# b\nt_us,amplitude,dac,present\n500,0.5,2048,1\n# c\n1000,0.5,5000,1\n";
+  Recording broken;
+  EXPECT_FALSE(read_recording(path, broken, error));
+  EXPECT_EQ(error, ticks_path_for(path) + ":6: expected t_us,amplitude,dac,present");
+  std::filesystem::remove(ticks_path_for(path));
+  Recording no_ticks;
+  EXPECT_FALSE(read_recording(path, no_ticks, error));
+  EXPECT_EQ(error, ticks_path_for(path) + ": cannot open (ffctl record writes it next to the trace)");
+  std::filesystem::remove(path);
+  Recording nothing;
+  EXPECT_FALSE(read_recording(path, nothing, error));
+  EXPECT_EQ(error, path + ": cannot open: No such file or directory");
+}
+
+TEST(Ffctl, ARecordingsForcesAreWrittenBesideIt) {
+  Recording r;
+  r.forces = {{1000, 250.5f, false}, {3000, 4100.0f, true}};
+  const std::string path = support::scratch_path("ffctl_forces.csv");
+  std::string error;
+  ASSERT_TRUE(write_recording(path, r, error, {"ffctl record"})) << error;
+  EXPECT_EQ(file_text(force_path_for(path)), "# ffctl record\nt_us,force_mN,over_force\n1000,250.5,0\n3000,4100,1\n");
+}
+
 TEST(Ffctl, AnOutputPathIsCheckedBeforeTheDeviceIsTouched) {
   std::string error;
   EXPECT_FALSE(check_output_path("", error));
@@ -781,12 +824,6 @@ TEST(Ffctl, AnOutputPathIsCheckedBeforeTheDeviceIsTouched) {
   EXPECT_FALSE(check_output_path(folder + "/missing/run1.csv", error));
   EXPECT_EQ(error, "-o " + folder + "/missing/run1.csv: the folder " + folder + "/missing does not exist");
   EXPECT_TRUE(check_output_path(folder + "/run1.csv", error)) << error;
-}
-
-std::string file_text(const std::string& path) {
-  std::stringstream text;
-  text << std::ifstream(path).rdbuf();
-  return text.str();
 }
 
 DeviceSample sample_at(uint64_t i) {
