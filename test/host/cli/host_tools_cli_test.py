@@ -7,9 +7,12 @@ counts), not from the tools.
 usage: host_tools_cli_test.py path/to/ff-replay path/to/ff-scene-render
 """
 import os
+import resource
+import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import unittest
 
 REPLAY = SCENE_RENDER = None
@@ -165,7 +168,80 @@ class ReplayOutput(Case):
         self.assertEqual(run(REPLAY).returncode, 2)
         self.assertEqual(run(REPLAY, self.path("missing.csv")).returncode, 2)
         self.assertEqual(run(REPLAY, self.tmp).returncode, 2)
-        self.assertEqual(run(REPLAY, trace, "--screen", "800").returncode, 2)
+        res = run(REPLAY, trace, "--screen", "800")
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("--screen '800': expected WxH", res.stderr)
+        for out in (self.tmp, self.path("missing/r.csv")):  # a folder; a file in a missing one
+            res = run(REPLAY, trace, "-o", out)
+            self.assertEqual(res.returncode, 2, out)
+            self.assertIn(f"cannot write {out}", res.stderr)
+        res = run(REPLAY, trace, "--tracker", "psychic")
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("unknown tracker 'psychic': recommended, thesis", res.stderr)
+        res = run(REPLAY, trace, "--derivative", "sideways")
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("--derivative is filtered or raw", res.stderr)
+
+    def test_a_header_without_the_columns_names_the_file_and_line(self):
+        trace = self.path("t.csv")
+        write_trace(trace, [(0, 1, 2)], header="time,x,y", prefix="# from a logger\n")
+        res = run(REPLAY, trace, "-o", self.path("r.csv"))
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("t.csv:2: header must name the columns t_us, x, y and touch", res.stderr)
+
+    def test_a_trace_without_rows_is_refused(self):
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        write_trace(trace, [], prefix="# the logger stopped at once\n")
+        res = run(REPLAY, trace, "-o", out)
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("t.csv: no samples after the header", res.stderr)
+        self.assertFalse(os.path.exists(out))
+
+    def test_a_full_disk_is_said_and_leaves_no_output(self):
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        write_trace(trace, stroke(200))
+
+        def disk_of_4_kb():  # in the child: files may not grow past 4 kB
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (4096, resource.getrlimit(resource.RLIMIT_FSIZE)[1]))
+
+        res = run(REPLAY, "-q", trace, "-o", out, preexec_fn=disk_of_4_kb)
+        self.assertEqual(res.returncode, 2)
+        self.assertIn(f"cannot write {out}", res.stderr)
+        self.assertFalse(os.path.exists(out))
+        self.assertFalse(os.path.exists(out + ".partial"))
+
+    def test_a_fifo_is_written_directly(self):
+        # -o to a named pipe (a plot reading live, a compressor): the rows go
+        # straight in, no temporary file beside it.
+        trace, fifo = self.path("t.csv"), self.path("rows.fifo")
+        write_trace(trace, stroke(20))
+        os.mkfifo(fifo)
+        received = []
+        reader = threading.Thread(target=lambda: received.append(open(fifo).read()), daemon=True)
+        reader.start()
+        res = run(REPLAY, "-q", trace, "-o", fifo, timeout=60)
+        reader.join(60)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        lines = received[0].splitlines()
+        self.assertIn("t_us,x,y,vx,vy,amplitude,dac,present", lines)
+        rows = [line for line in lines if line and not line.startswith("#")][1:]
+        self.assertEqual(len(rows), (19 * 5000 + 100000) // TICK_US + 1)  # the last report + --extra-ms 100
+
+    def test_the_derivative_choice_reaches_the_thesis_filter(self):
+        # The thesis' 1-euro filter sets its cutoff from the derivative, so the
+        # two choices filter a stroke differently.
+        trace = self.path("t.csv")
+        write_trace(trace, stroke(60))
+        rows = {}
+        for derivative in ("filtered", "raw"):
+            out = self.path(derivative + ".csv")
+            res = run(REPLAY, "--tracker", "thesis", "--derivative", derivative, trace, "-o", out)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            self.assertIn("  events/faults: touch_down=1\n", res.stderr)  # one finger, down once
+            meta, _, rows[derivative] = read_replay(out)
+            self.assertEqual(meta["tracker"], f"thesis (derivative {derivative})")
+        self.assertNotEqual([r["x"] for r in rows["filtered"]], [r["x"] for r in rows["raw"]])
 
 
 class BoundedReplay(Case):
