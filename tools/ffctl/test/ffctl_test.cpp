@@ -541,6 +541,34 @@ TEST(Ffctl, ARecordingLongerThanHalfTheClocksRangeKeepsItsTimes) {
   for (uint64_t k = 0; k < 6; ++k) EXPECT_EQ(r.ticks[k].t_us, 1000 + k * 1000000000) << k;
 }
 
+TEST(Ffctl, AReportStampedBeforeTheRecordingsFirstTimeIsAtZero) {
+  // The first tick at 100 us; a report stamped 150 us before it (the device's
+  // clock read backwards, 2^32 - 50) cannot be 2^64 - 50 us long after it.
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back(streams({ticks_at(100), reports_at({0xFFFFFFFFu - 49u}), ticks_at(600)}));
+  Recording r;
+  std::string error;
+  record(client, 0.0, r, error);
+  ASSERT_EQ(r.samples.size(), 1u);
+  EXPECT_EQ(r.samples[0].row.t_us, 0u);
+  ASSERT_EQ(r.ticks.size(), 2u);
+  EXPECT_EQ(r.ticks[1].t_us, 600u);
+}
+
+TEST(Ffctl, AnotherAnswerToTheProfileQueryIsAnError) {
+  ScriptedDevice device;
+  DeviceClient client(device);
+  device.replies.push_back(
+      [](const Message& c) { return std::vector<std::vector<uint8_t>>{encoded(ack_for(c.type), c.sequence)}; });
+  SensorProfile profile;
+  profile.white_noise_px = 2.5f;
+  std::string error;
+  EXPECT_FALSE(query_sensor_profile(client, profile, error));
+  EXPECT_EQ(error, "the device answered QuerySensorProfile with another message");
+  EXPECT_EQ(profile.white_noise_px, 2.5f);  // untouched
+}
+
 TEST(Ffctl, ReportsThatArrivedBeforeAnUnplugAreMadeDurable) {
   DurableCount sink;
   ScriptedDevice device;
