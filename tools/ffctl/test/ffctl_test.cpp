@@ -520,7 +520,10 @@ struct DurableCount final : RecordSink {
   void sample(const DeviceSample&) override { ++samples; }
   void tick(const DeviceTick&) override { ++ticks; }
   void force(const DeviceForce&) override {}
-  bool flush() override { return durable = samples, disk_full ? false : true; }
+  bool flush() override {
+    durable = samples;
+    return !disk_full;
+  }
   size_t samples = 0, ticks = 0, durable = 0;
   bool disk_full = false;
 };
