@@ -27,10 +27,7 @@
 #include "frictionfield/host/trace_csv.hpp"
 #include "frictionfield/protocol/hid_channel.hpp"
 #include "emulated_firmware.hpp"
-#include "halfkay.hpp"
-#include "hex_record.hpp"
 #include "hid_transport.hpp"
-#include "intel_hex.hpp"
 #include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
@@ -917,136 +914,6 @@ TEST(Ffctl, AWriteThatFailsIsReportedWithTheFilesName) {
   }
   EXPECT_EQ(error, "writing " + path + " failed (disk full?)");
 }
-
-TEST(IntelHex, ParsesWithExtendedAddressesAndRejectsBadRecords) {
-  FlashImage image;
-  std::string error;
-  // Two bytes at 0x0000, one at 0x10000 (extended linear address 0x0001), end.
-  ASSERT_TRUE(parse_intel_hex(":020000000102FB\n:020000040001F9\n:0100000055AA\n:00000001FF\n", image, error)) << error;
-  EXPECT_EQ(image.bytes[0], 0x01);
-  EXPECT_EQ(image.bytes[1], 0x02);
-  EXPECT_EQ(image.bytes[0x10000], 0x55);
-  EXPECT_EQ(image.highest, 0x10001u);
-  FlashImage bad;
-  EXPECT_FALSE(parse_intel_hex(":020000000102FC\n:00000001FF\n", bad, error));
-  EXPECT_NE(error.find("line 1: checksum"), std::string::npos) << error;
-  EXPECT_FALSE(parse_intel_hex(":00000007F9\n", bad, error));
-  EXPECT_NE(error.find("unknown record type 7"), std::string::npos) << error;
-  EXPECT_FALSE(parse_intel_hex(":020000000102FB\n", bad, error));
-  EXPECT_NE(error.find("no end-of-file"), std::string::npos) << error;
-}
-
-TEST(HalfKay, BlocksHaveTheMk66LayoutSkipBlanksButTheFirstAndEndWithBoot) {
-  FlashImage image;
-  image.bytes[5] = 0xAB;         // block 0
-  image.bytes[3 * 1024 + 7] = 1;  // block 3; blocks 1 and 2 stay blank
-  image.highest = 3 * 1024 + 8;
-  const auto writes = halfkay_writes(image);
-  ASSERT_EQ(writes.size(), 3u);  // block 0, block 3, boot
-  EXPECT_EQ(writes[0].report.size(), 64u + 1024u);
-  EXPECT_EQ(writes[0].report[0], 0);
-  EXPECT_EQ(writes[0].report[64 + 5], 0xAB);
-  EXPECT_EQ(writes[1].address, 3u * 1024u);
-  EXPECT_EQ(writes[1].report[0], 0x00);
-  EXPECT_EQ(writes[1].report[1], 0x0C);  // 3072 = 0x000C00, little-endian
-  EXPECT_EQ(writes[1].report[2], 0x00);
-  EXPECT_EQ(writes[1].report[64 + 7], 1);
-  EXPECT_EQ(writes[2].report[0], 0xFF);
-  EXPECT_EQ(writes[2].report[1], 0xFF);
-  EXPECT_EQ(writes[2].report[2], 0xFF);
-  FlashImage blank;
-  blank.highest = 2048;
-  EXPECT_EQ(halfkay_writes(blank).size(), 2u);  // the first block is always written: it erases the chip
-}
-
-// teensy_loader_cli's rule, modelled from the HEX records themselves (which
-// addresses a record wrote, and with what): write block 0 always, any other
-// block only if a record wrote into it and not only 0xFF.
-std::vector<uint32_t> loader_cli_blocks(const std::vector<std::pair<uint32_t, std::vector<uint8_t>>>& records,
-                                        uint32_t code_size) {
-  std::vector<uint32_t> blocks;
-  for (uint32_t addr = 0; addr < code_size; addr += 1024) {
-    bool within = false, blank = true;
-    for (const auto& rec : records) {
-      for (size_t i = 0; i < rec.second.size(); ++i) {
-        const uint32_t a = rec.first + static_cast<uint32_t>(i);
-        if (a < addr || a >= addr + 1024) continue;
-        within = true;
-        blank = blank && rec.second[i] == 0xFF;
-      }
-    }
-    if (addr == 0 || (within && !blank)) blocks.push_back(addr);
-  }
-  return blocks;
-}
-
-
-TEST(HalfKay, SameBlocksAsTeensyLoaderCliWouldWrite) {
-  // Records: data in block 0; only 0xFF in block 2; data and 0xFF in block 5;
-  // one byte at the very end of the flash (extended linear address 0x000F).
-  const std::vector<std::pair<uint32_t, std::vector<uint8_t>>> records = {
-      {0x0000, {0x00, 0x80, 0x00, 0x20}},
-      {0x0800, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}},
-      {0x1400, {0xFF, 0x12, 0xFF}},
-      {0xFFFFF, {0x5A}},
-  };
-  std::string text;
-  for (const auto& rec : records) {
-    if (rec.first > 0xFFFF) text += hex_record(0, 0x04, {0x00, static_cast<uint8_t>(rec.first >> 16)});
-    text += hex_record(static_cast<uint16_t>(rec.first), 0x00, rec.second);
-  }
-  text += hex_record(0, 0x01, {});
-  FlashImage image;
-  std::string error;
-  ASSERT_TRUE(parse_intel_hex(text, image, error)) << error;
-  EXPECT_EQ(image.highest, kMk66FlashBytes);
-  const auto writes = halfkay_writes(image);
-  std::vector<uint32_t> ours;
-  for (size_t i = 0; i + 1 < writes.size(); ++i) ours.push_back(writes[i].address);
-  const std::vector<uint32_t> expected = loader_cli_blocks(records, static_cast<uint32_t>(kMk66FlashBytes));
-  EXPECT_EQ(ours, expected);
-  EXPECT_EQ(expected, (std::vector<uint32_t>{0x0000, 0x1400, 0xFFC00}));
-  for (const auto& w : writes) {
-    ASSERT_EQ(w.report.size(), 1088u);  // teensy_loader_cli's write_size for 1024-byte blocks
-    EXPECT_TRUE(std::all_of(w.report.begin() + 3, w.report.begin() + 64, [](uint8_t b) { return b == 0; }));
-  }
-  EXPECT_EQ(writes[2].report[0], 0x00);  // 0x0FFC00 little-endian
-  EXPECT_EQ(writes[2].report[1], 0xFC);
-  EXPECT_EQ(writes[2].report[2], 0x0F);
-  EXPECT_EQ(writes[2].report[64 + 1023], 0x5A);
-  EXPECT_EQ(writes[1].report[64 + 1], 0x12);
-  EXPECT_EQ(writes[1].report[64 + 3], 0xFF);  // unwritten flash reads erased
-  const auto& boot = writes.back().report;  // FF FF FF, then zeros
-  EXPECT_TRUE(boot[0] == 0xFF && boot[1] == 0xFF && boot[2] == 0xFF);
-  EXPECT_TRUE(std::all_of(boot.begin() + 3, boot.end(), [](uint8_t b) { return b == 0; }));
-}
-
-#ifdef FF_TOOLCHAIN_HEX
-std::string slurp(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-TEST(HalfKay, ImageFromTheCrossToolchainsObjcopy) {
-  // objcopy put intel_hex.cpp's bytes at 0x10000 (extended linear address records).
-  const std::string data = slurp(FF_TOOLCHAIN_HEX_SOURCE);
-  FlashImage image;
-  std::string error;
-  ASSERT_TRUE(parse_intel_hex(slurp(FF_TOOLCHAIN_HEX), image, error)) << error;
-  ASSERT_EQ(image.highest, 0x10000u + data.size());
-  EXPECT_TRUE(std::equal(data.begin(), data.end(), image.bytes.begin() + 0x10000));
-  const auto writes = halfkay_writes(image);
-  // Block 0 (blank, but written: it erases), every block under the data, the boot command.
-  const size_t data_blocks = (data.size() + kHalfKayBlock - 1) / kHalfKayBlock;
-  ASSERT_EQ(writes.size(), 1 + data_blocks + 1);
-  EXPECT_EQ(writes[0].address, 0u);
-  EXPECT_EQ(writes[1].address, 0x10000u);
-  EXPECT_EQ(writes[1].report[2], 0x01);  // 0x010000 little-endian: byte 2
-  EXPECT_EQ(writes[1].report[kHalfKayHeader], static_cast<uint8_t>(data[0]));
-}
-#endif
 
 }  // namespace
 }  // namespace ff::ffctl
