@@ -268,6 +268,92 @@ TEST_F(Faults, EachFaultLooksLikeItsName) {
   }
 }
 
+TEST_F(Faults, NonFiniteAndOffScreenReportsTakeEveryKindInTurn) {
+  const GeneratedTrace t = make();  // 5 non-finite, 4 off-screen: each kind once
+  int x_nan = 0, y_nan = 0, both_nan = 0, x_inf = 0, y_minus_inf = 0;
+  int left = 0, below = 0, no_value = 0, right = 0;
+  for (const TraceSample& s : t.samples) {
+    if (s.event == SampleEvent::NaN) {
+      const bool xn = std::isnan(s.x), yn = std::isnan(s.y);
+      x_nan += xn && !yn;
+      y_nan += yn && !xn;
+      both_nan += xn && yn;
+    } else if (s.event == SampleEvent::Infinite) {
+      x_inf += std::isinf(s.x) && s.x > 0.0 && std::isfinite(s.y);
+      y_minus_inf += std::isinf(s.y) && s.y < 0.0 && std::isfinite(s.x);
+    } else if (s.event == SampleEvent::OffScreen) {
+      left += s.x == -300.0 && s.y != 900.0;
+      below += s.y == 900.0 && s.x != -300.0;
+      no_value += s.x == 65535.0 && s.y == 65535.0;
+      right += s.x == 880.0;
+    }
+  }
+  EXPECT_EQ(x_nan, 1);
+  EXPECT_EQ(y_nan, 1);
+  EXPECT_EQ(both_nan, 1);
+  EXPECT_EQ(x_inf, 1);
+  EXPECT_EQ(y_minus_inf, 1);
+  EXPECT_EQ(left, 1);
+  EXPECT_EQ(below, 1);
+  EXPECT_EQ(no_value, 1);
+  EXPECT_EQ(right, 1);
+}
+
+TEST_F(Faults, ALateReportsLatencyIncludesHowLateItWasRead) {
+  TraceOptions o = clean(Strategy::Mixed, 13, 10.0);
+  o.sensor.noise_px = 0.0;
+  o.faults.late = 6;
+  const GeneratedTrace t = generate_trace(o);
+  int late = 0;
+  for (const TraceSample& s : t.samples) {
+    if (!s.touch) continue;
+    if (s.event != SampleEvent::Late) {
+      EXPECT_EQ(s.latency_us, 0.0);
+      continue;
+    }
+    ++late;
+    EXPECT_GE(s.latency_us, 1000.0);
+    EXPECT_LE(s.latency_us, 12000.0);
+    // What it reports is the finger at its scan, latency_us before its stamp.
+    const TrueState scanned = t.truth_at(s.t_us - static_cast<uint64_t>(s.latency_us));
+    EXPECT_NEAR(s.x, scanned.position.x, 1e-9);
+    EXPECT_NEAR(s.y, scanned.position.y, 1e-9);
+  }
+  EXPECT_EQ(late, 6);
+}
+
+TEST_F(Faults, InACrowdedTraceEachFaultStillHasOrdinaryReportsAroundIt) {
+  // 40 late reads asked of 2 s (~400 reports): far more sites are tried than
+  // fit, at both ends of the trace too.
+  TraceOptions o = clean(Strategy::Mixed, 5, 2.0);
+  o.faults.late = 40;
+  const GeneratedTrace t = generate_trace(o);
+  const int n = static_cast<int>(t.samples.size());
+  int late = 0;
+  for (int i = 0; i < n; ++i) {
+    if (t.samples[static_cast<size_t>(i)].event != SampleEvent::Late) continue;
+    ++late;
+    // 8 ordinary reports before it; after it 8, less the up to 3 its late
+    // stamp supersedes.
+    ASSERT_GE(i, 8);
+    ASSERT_LT(i + 5, n);
+    for (int k = i - 8; k <= i + 5; ++k) {
+      if (k == i) continue;
+      EXPECT_EQ(t.samples[static_cast<size_t>(k)].event, SampleEvent::Normal) << "row " << k;
+    }
+  }
+  EXPECT_GE(late, 10);
+}
+
+TEST_F(Faults, WithoutAFastStrokeTheClockWrapsAtTheMiddleReport) {
+  TraceOptions o = clean(Strategy::Along, 17, 10.0);
+  o.motion.speed_min_mm_s = 10.0;  // peaks of 50-100 px/s: never the 200 px/s a wrap looks for
+  o.motion.speed_max_mm_s = 20.0;
+  o.faults.wrap = true;
+  const GeneratedTrace t = generate_trace(o);
+  EXPECT_EQ(t.samples[t.samples.size() / 2].t_us, kWrap);
+}
+
 TEST_F(Faults, ClockWrapsBetweenTwoReportsInMidStroke) {
   TraceOptions o = clean(Strategy::Along, 17, 10.0);
   o.faults.wrap = true;

@@ -103,7 +103,6 @@ class SensorSimulator {
         out.push_back(r);
         last = r;
       } else if (was_touching) {
-        r.touch = false;
         r.x = last.x;
         r.y = last.y;
         r.event = SampleEvent::LiftReport;
@@ -253,7 +252,8 @@ class SensorSimulator {
 };
 
 // Motion time (s) at which the 32-bit clock should wrap: between two reports
-// while the finger moves fast, as near the middle as possible.
+// while the finger moves fast (so both touch: a stroke ends at rest before a
+// lift), as near the middle as possible.
 int64_t wrap_point_us(const Motion& motion, const std::vector<Report>& reports) {
   const size_t n = reports.size();
   for (size_t step = 0; step < n; ++step) {
@@ -262,7 +262,6 @@ int64_t wrap_point_us(const Motion& motion, const std::vector<Report>& reports) 
       if (i < 0 || i + 1 >= static_cast<int64_t>(n)) continue;
       const Report& a = reports[static_cast<size_t>(i)];
       const Report& b = reports[static_cast<size_t>(i) + 1];
-      if (!a.touch || !b.touch || b.t_rel_us <= a.t_rel_us) continue;
       const int64_t mid = (a.t_rel_us + b.t_rel_us) / 2;
       const TrueState s = motion.at(static_cast<double>(mid) * 1e-6);
       if (std::hypot(s.velocity.x, s.velocity.y) > 200.0) return mid;
