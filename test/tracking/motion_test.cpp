@@ -60,6 +60,16 @@ TEST(Motion, StraightStrokeTimedForItsPeakSpeed) {
   EXPECT_DOUBLE_EQ(end.velocity.x, 0.0);
 }
 
+TEST(Motion, AStrokeTimedByItsDurationRecordsTheSpeedItPeaksAt) {
+  Motion m({100.0, 100.0});
+  m.stroke_for({100.0, 400.0}, 0.75);
+  // 1.875 L / T = 1.875 * 300 / 0.75.
+  ASSERT_EQ(m.segments().size(), 1u);
+  EXPECT_NEAR(m.segments().front().peak_speed_px_s, 750.0, 1e-9);
+  EXPECT_NEAR(m.at(0.375).velocity.y, 750.0, 1e-9);
+  EXPECT_NEAR(m.at(0.375).velocity.x, 0.0, 1e-9);
+}
+
 TEST(Motion, VelocityIsTheDerivativeOfPositionOnEveryShape) {
   Motion m({120.0, 240.0});
   m.stroke_to({300.0, 400.0}, 800.0, 25.0);          // bowed
@@ -99,6 +109,35 @@ TEST(Motion, HoldsRestsAndLifts) {
   EXPECT_TRUE(m.at(0.75).touching);
   EXPECT_FALSE(m.at(0.75).resting);
   EXPECT_DOUBLE_EQ(m.at(0.75).position.x, 500.0);
+}
+
+TEST(Motion, WithNoSegmentsTheFingerIsDownWhereItStarted) {
+  const Motion m({120.0, 340.0});
+  const TrueState s = m.at(1.0);
+  EXPECT_TRUE(s.touching);
+  EXPECT_FALSE(s.resting);
+  EXPECT_DOUBLE_EQ(s.position.x, 120.0);
+  EXPECT_DOUBLE_EQ(s.position.y, 340.0);
+}
+
+TEST(Motion, AHoldOfNoTimeIsNoSegment) {
+  Motion m({200.0, 200.0});
+  m.hold(0.0, false);
+  m.hold(-0.1, true);
+  EXPECT_TRUE(m.segments().empty());
+  EXPECT_DOUBLE_EQ(m.duration_s(), 0.0);
+}
+
+TEST(Motion, AfterALastLiftTheFingerIsDownWhereItLanded) {
+  Motion m({200.0, 200.0});
+  m.lift(0.2, {500.0, 300.0});
+  EXPECT_FALSE(m.at(0.1).touching);
+  EXPECT_DOUBLE_EQ(m.at(0.1).position.x, 200.0);  // off the screen where it left
+  const TrueState landed = m.at(0.3);
+  EXPECT_TRUE(landed.touching);
+  EXPECT_DOUBLE_EQ(landed.position.x, 500.0);
+  EXPECT_DOUBLE_EQ(landed.position.y, 300.0);
+  EXPECT_DOUBLE_EQ(m.position().x, 500.0);
 }
 
 }  // namespace

@@ -57,8 +57,7 @@ void Motion::push(Segment s) {
 }
 
 void Motion::stroke_to(Point p1, double peak_speed_px_s, double bow_px) {
-  Segment s;
-  s.shape = StrokeShape::Bowed;
+  Segment s;  // bowed, as the default shape
   s.p0 = cursor_;
   s.p1 = p1;
   s.bow_px = bow_px;
@@ -70,7 +69,6 @@ void Motion::stroke_to(Point p1, double peak_speed_px_s, double bow_px) {
 void Motion::stroke_for(Point p1, double duration_s, double bow_px) {
   Segment s;
   s.kind = SegmentKind::Stroke;
-  s.shape = StrokeShape::Bowed;
   s.p0 = cursor_;
   s.p1 = p1;
   s.bow_px = bow_px;
@@ -97,8 +95,7 @@ void Motion::stroke_along_path(double x1, double rise_px, double u1, double peak
 
 void Motion::hold(double duration_s, bool rest, bool hesitation) {
   if (duration_s <= 0.0) return;
-  Segment s;
-  s.kind = SegmentKind::Hold;
+  Segment s;  // a hold, the default kind
   s.p0 = s.p1 = cursor_;
   s.duration_s = duration_s;
   s.rest = rest;
