@@ -1,6 +1,9 @@
 #include "frictionfield/host/output_file.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <system_error>
 #include <utility>
 
 namespace ff::host {
@@ -33,6 +36,27 @@ bool write_file_atomically(const std::string& path, const std::string& content) 
   if (!file.open()) return false;
   file.stream() << content;
   return file.commit();
+}
+
+ToolOutput::ToolOutput(std::string path) : path_(std::move(path)), out_(&std::cout) {}
+
+bool ToolOutput::open() {
+  if (path_ == "-") return true;
+  std::error_code ec;
+  if (std::filesystem::exists(path_, ec) && !std::filesystem::is_regular_file(path_, ec)) {
+    direct_.open(path_);
+    out_ = &direct_;
+    return static_cast<bool>(direct_);
+  }
+  file_ = std::make_unique<OutputFile>(path_);
+  out_ = &file_->stream();
+  return file_->open();
+}
+
+bool ToolOutput::commit() {
+  out_->flush();
+  if (file_) return file_->commit();
+  return static_cast<bool>(*out_);
 }
 
 }  // namespace ff::host

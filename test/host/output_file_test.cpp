@@ -1,5 +1,6 @@
 // OutputFile: nothing under the real name until commit; an uncommitted or
-// failed file leaves nothing at all.
+// failed file leaves nothing at all. ToolOutput: the same for a file, and
+// standard output or a device as they are.
 #include "frictionfield/host/output_file.hpp"
 
 #include <gtest/gtest.h>
@@ -7,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 namespace ff::host {
@@ -54,6 +56,61 @@ TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
   }
   EXPECT_EQ(read(path), "x\n");
   EXPECT_FALSE(std::filesystem::exists(partial));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ToolOutput, AFileIsCommittedAtomicallyADeviceWrittenIntoAFolderRefused) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ff_tool_output_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / "out.csv";
+  {
+    ToolOutput out(path.string());
+    ASSERT_TRUE(out.open());
+    out.stream() << "a\n";
+    EXPECT_TRUE(std::filesystem::exists(dir / "out.csv.partial"));
+    EXPECT_FALSE(std::filesystem::exists(path));
+    EXPECT_TRUE(out.commit());
+  }
+  EXPECT_EQ(read(path), "a\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv.partial"));
+  {
+    ToolOutput out("/dev/null");  // NAME.partial could not be renamed onto a device
+    ASSERT_TRUE(out.open());
+    EXPECT_NE(&out.stream(), &std::cout);
+    out.stream() << "b\n";
+    EXPECT_TRUE(out.commit());
+  }
+  EXPECT_FALSE(std::filesystem::exists("/dev/null.partial"));
+  {
+    ToolOutput out("/dev/full");  // every write fails (ENOSPC): seen at the commit's flush
+    ASSERT_TRUE(out.open());
+    out.stream() << "b\n";
+    EXPECT_FALSE(out.commit());
+  }
+  {
+    ToolOutput out(dir.string());  // a folder
+    EXPECT_FALSE(out.open());
+  }
+  {
+    ToolOutput out((dir / "no-such-dir" / "f").string());
+    EXPECT_FALSE(out.open());
+  }
+  {
+    ToolOutput out(path.string());  // a write failed: the old file stays
+    ASSERT_TRUE(out.open());
+    out.stream() << "c\n";
+    out.stream().setstate(std::ios::badbit);
+    EXPECT_FALSE(out.commit());
+  }
+  EXPECT_EQ(read(path), "a\n");
+  {
+    ToolOutput out("-");
+    ASSERT_TRUE(out.open());
+    EXPECT_EQ(&out.stream(), &std::cout);
+    EXPECT_TRUE(out.commit());
+  }
+  EXPECT_EQ(std::filesystem::directory_iterator(dir)->path(), path);  // nothing else left
   std::filesystem::remove_all(dir);
 }
 

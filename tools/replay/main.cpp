@@ -143,26 +143,12 @@ int main(int argc, char** argv) {
     return kExitBadUsage;
   }
 
-  std::unique_ptr<ff::host::OutputFile> file;
-  std::ofstream device;  // -o /dev/null, a FIFO: written directly
-  std::ostream* out = &std::cout;
-  const bool special = output != "-" && std::filesystem::exists(output, ec) &&
-                       !std::filesystem::is_regular_file(output, ec);
-  if (special) {
-    device.open(output);
-    if (!device) {
-      std::cerr << "ff-replay: cannot write " << output << "\n";
-      return kExitBadUsage;
-    }
-    out = &device;
-  } else if (output != "-") {
-    file = std::make_unique<ff::host::OutputFile>(output);
-    if (!file->open()) {
-      std::cerr << "ff-replay: cannot write " << output << "\n";
-      return kExitBadUsage;
-    }
-    out = &file->stream();
+  ff::host::ToolOutput output_file(output);
+  if (!output_file.open()) {
+    std::cerr << "ff-replay: cannot write " << output << "\n";
+    return kExitBadUsage;
   }
+  std::ostream* out = &output_file.stream();
   const uint64_t input_bytes = std::filesystem::file_size(input, ec);
   ff::host::write_metadata(
       *out, {{"tool", std::string("ff-replay ") + ff::host::project_version()},
@@ -224,8 +210,7 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(rejected),
                 static_cast<unsigned long long>(summary.rows_after_time_jump));
   ff::host::write_metadata(*out, {{"summary", line}});
-  out->flush();
-  if (file && !file->commit()) {
+  if (!output_file.commit()) {
     std::cerr << "ff-replay: cannot write " << output << "\n";
     return kExitBadUsage;
   }
