@@ -2,14 +2,17 @@
 // the tracking benchmark and the stress tests.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/output_file.hpp"
+#include "frictionfield/host/trace_csv.hpp"
 #include "support/models/sensor_model.hpp"
 #include "support/models/trace_classes.hpp"
 #include "trace_writer.hpp"
@@ -31,12 +34,13 @@ constexpr const char* kDescription =
     "stamp latency, period jitter, correlated noise, drift) is off by default and switched on one\n"
     "by one or as a named class (--class; docs/tracking.md#trace-classes).\n"
     "\n"
-    "Output (docs/spec.md#trace-files): t_us,x,y,touch,x_true,y_true[,x_tremor,y_tremor][,event]\n"
+    "Output (docs/spec.md#trace-files): '#' metadata lines (tool, command, seed, motion, sensor,\n"
+    "faults), then t_us,x,y,touch,x_true,y_true[,x_tremor,y_tremor][,event], then '# summary:'\n"
     "  x_true, y_true  the true finger at t_us (readers ignore these columns; nan while lifted):\n"
     "                  its voluntary motion, without tremor\n"
     "  x_tremor, y_tremor  with tremor: the tremor's displacement at t_us, on top of x_true, y_true\n"
     "  event           with --events: what each row exercises (touch-down, lift-off, late, jump, ...)\n"
-    "The same seed and options always give the same file.";
+    "The same seed and options always give the same file (so the metadata has no date).";
 
 constexpr const char* kFooter =
     "Examples:\n"
@@ -70,28 +74,105 @@ void print_progress(const char* what, double fraction) {
   std::fflush(stderr);
 }
 
-void print_summary(const GeneratedTrace& trace, const TraceOptions& o) {
-  double peak_max = 0.0, peak_sum = 0.0;
+struct Counts {
   int strokes = 0, rests = 0, lifts = 0;
+  double peak_max_px_s = 0.0, peak_mean_px_s = 0.0;
+  std::string rows_by_kind;  // "touch-down=1 lift-off=1 late=2 ..."
+};
+
+Counts count(const GeneratedTrace& trace) {
+  Counts c;
+  double peak_sum = 0.0;
   for (const Segment& s : trace.motion.segments()) {
     if (s.kind == SegmentKind::Stroke) {
-      ++strokes;
+      ++c.strokes;
       peak_sum += s.peak_speed_px_s;
-      peak_max = std::max(peak_max, s.peak_speed_px_s);
+      c.peak_max_px_s = std::max(c.peak_max_px_s, s.peak_speed_px_s);
     } else if (s.kind == SegmentKind::Hold && s.rest) {
-      ++rests;
+      ++c.rests;
     } else if (s.kind == SegmentKind::Lifted) {
-      ++lifts;
+      ++c.lifts;
     }
   }
+  c.peak_mean_px_s = c.strokes ? peak_sum / c.strokes : 0.0;
+  c.rows_by_kind = "touch-down=" + std::to_string(trace.events[static_cast<int>(SampleEvent::TouchDown)]) +
+                   " lift-off=" + std::to_string(trace.events[static_cast<int>(SampleEvent::LiftReport)]);
+  for (int e = static_cast<int>(SampleEvent::AfterGap); e < static_cast<int>(SampleEvent::kCount); ++e) {
+    if (trace.events[e] == 0) continue;
+    c.rows_by_kind += " " + std::string(to_string(static_cast<SampleEvent>(e))) + "=" + std::to_string(trace.events[e]);
+  }
+  return c;
+}
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  return buf;
+}
+
+// The command as typed: arguments with spaces or quotes in single quotes.
+std::string command_line(int argc, char** argv) {
+  std::string line = "ff-tracegen";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool plain = !a.empty() && a.find_first_of(" \t'\"\\$`") == std::string::npos;
+    line += plain ? " " + a : " '" + a + "'";
+  }
+  return line;
+}
+
+std::string motion_words(const TraceOptions& o) {
+  const MotionOptions& m = o.motion;
+  const std::string tremor =
+      o.tremor.amplitude_px > 0.0
+          ? format("tremor %g px at %g-%g Hz", o.tremor.amplitude_px, o.tremor.min_hz, o.tremor.max_hz)
+          : "no tremor";
+  if (m.rest_only) return format("a finger at rest for %g s, %s", m.duration_s, tremor.c_str());
+  return format("%s strategy, %s paths, %g s, peaks %g-%g mm/s, dwell up to %g s, %d rests, %d lifts, "
+                "slow strokes %g %%, hesitations %g %%, reversals %g %%, %s",
+                to_string(m.strategy), to_string(m.paths), m.duration_s, m.speed_min_mm_s, m.speed_max_mm_s,
+                m.dwell_max_s, m.rests, m.lifts, 100.0 * m.slow_fraction, 100.0 * m.hesitation_fraction,
+                100.0 * m.reversal_fraction, tremor.c_str());
+}
+
+std::string sensor_words(const SensorOptions& s) {
+  return format("%g Hz, stamp jitter %g us, noise %g px, quantum %g px, latency %g-%g us, period jitter %g us, "
+                "correlated noise %g px (tau %g ms), drift %g px (tau %g s)",
+                s.rate_hz, s.jitter_us, s.noise_px, s.quantum_px, s.latency_us, s.latency_us + s.latency_spread_us,
+                s.period_jitter_us, s.correlated_noise_px, s.correlated_noise_tau_s * 1e3, s.drift_px, s.drift_tau_s);
+}
+
+std::string fault_words(const FaultOptions& f) {
+  const std::string start =
+      f.wrap ? "the 32-bit clock wraps mid-stroke" : "first report at t_us " + std::to_string(f.start_us);
+  return format("missing %d, late %d, jumps %d, duplicates %d, non-finite %d, off-screen %d, %s", f.missing, f.late,
+                f.jumps, f.duplicates, f.non_finite, f.off_screen, start.c_str());
+}
+
+ff::host::Metadata metadata(const TraceOptions& o, const std::string& trace_class, const std::string& command) {
+  ff::host::Metadata m = {{"tool", std::string("ff-tracegen ") + ff::host::project_version()},
+                          {"command", command},
+                          {"seed", std::to_string(o.seed)}};
+  if (!trace_class.empty()) m.push_back({"class", trace_class});
+  m.push_back({"motion", motion_words(o)});
+  m.push_back({"sensor", sensor_words(o.sensor)});
+  m.push_back({"faults", fault_words(o.faults)});
+  return m;
+}
+
+void print_summary(const GeneratedTrace& trace, const TraceOptions& o, const Counts& c) {
   std::fprintf(stderr, "ff-tracegen: %zu rows, %.2f s, %s strategy, seed %llu, noise %.2f px, t_us %llu..%llu%s\n",
                trace.samples.size(), trace.motion.duration_s(), to_string(o.motion.strategy),
                static_cast<unsigned long long>(o.seed), o.sensor.noise_px,
                static_cast<unsigned long long>(trace.samples.empty() ? 0 : trace.samples.front().t_us),
                static_cast<unsigned long long>(trace.end_us()),
                trace.end_us() >= (uint64_t{1} << 32) && trace.start_us < (uint64_t{1} << 32) ? " (32-bit clock wraps)" : "");
-  std::fprintf(stderr, "ff-tracegen: %d strokes, peak speed mean %.0f mm/s, max %.0f mm/s; %d rests, %d lifts\n", strokes,
-               strokes ? peak_sum / strokes * kMmPerPx : 0.0, peak_max * kMmPerPx, rests, lifts);
+  std::fprintf(stderr, "ff-tracegen: %d strokes, peak speed mean %.0f mm/s, max %.0f mm/s; %d rests, %d lifts\n",
+               c.strokes, c.peak_mean_px_s * kMmPerPx, c.peak_max_px_s * kMmPerPx, c.rests, c.lifts);
   const SensorOptions& so = o.sensor;
   if (trace.tremor.enabled() || o.motion.slow_fraction > 0.0 || o.motion.hesitation_fraction > 0.0 ||
       o.motion.reversal_fraction > 0.0 || so.latency_us > 0.0 || so.latency_spread_us > 0.0 ||
@@ -107,14 +188,7 @@ void print_summary(const GeneratedTrace& trace, const TraceOptions& o) {
                  so.latency_us + so.latency_spread_us, so.period_jitter_us, so.correlated_noise_px,
                  so.correlated_noise_tau_s * 1e3, so.drift_px);
   }
-  std::string faults;
-  for (int e = static_cast<int>(SampleEvent::AfterGap); e < static_cast<int>(SampleEvent::kCount); ++e) {
-    if (trace.events[e] == 0) continue;
-    faults += " " + std::string(to_string(static_cast<SampleEvent>(e))) + "=" + std::to_string(trace.events[e]);
-  }
-  std::fprintf(stderr, "ff-tracegen: rows by kind: touch-down=%d lift-off=%d%s\n",
-               trace.events[static_cast<int>(SampleEvent::TouchDown)],
-               trace.events[static_cast<int>(SampleEvent::LiftReport)], faults.c_str());
+  std::fprintf(stderr, "ff-tracegen: rows by kind: %s\n", c.rows_by_kind.c_str());
 }
 
 // The value of --class NAME / --class=NAME, read before the other options
@@ -293,40 +367,43 @@ int main(int argc, char** argv) {
   const GeneratedTrace trace = generate_trace(o);
   if (show_progress) print_progress("planning and sampling", 1.0);
 
-  std::ofstream file;
-  std::ostream* out = &std::cout;
-  if (cli.output != "-") {
-    file.open(cli.output);
-    if (!file) {
-      std::fprintf(stderr, "ff-tracegen: cannot write %s\n", cli.output.c_str());
-      return 1;
-    }
-    out = &file;
+  const Counts counts = count(trace);
+  const std::string command = command_line(argc, argv);
+  ff::host::ToolOutput out(cli.output);
+  if (!out.open()) {
+    std::fprintf(stderr, "ff-tracegen: cannot write %s\n", cli.output.c_str());
+    return ff::host::kExitBadUsage;
   }
-  write_trace(*out, trace, cli.events);
-  out->flush();
-  if (!*out) {
+  ff::host::write_metadata(out.stream(), metadata(o, cli.trace_class, command));
+  write_trace(out.stream(), trace, cli.events);
+  std::string summary = format("rows=%zu strokes=%d rests=%d lifts=%d %s", trace.samples.size(), counts.strokes,
+                               counts.rests, counts.lifts, counts.rows_by_kind.c_str());
+  if (trace.tremor.enabled()) summary += format(" tremor_hz=%.2f", trace.tremor.frequency_hz());  // drawn per trace
+  ff::host::write_metadata(out.stream(), {{"summary", summary}});
+  if (!out.commit()) {
     std::fprintf(stderr, "ff-tracegen: writing %s failed\n", cli.output.c_str());
-    return 1;
+    return ff::host::kExitBadUsage;
   }
 
   if (!cli.truth_ticks.empty()) {
-    std::ofstream ticks(cli.truth_ticks);
-    if (!ticks) {
+    ff::host::ToolOutput ticks(cli.truth_ticks);
+    if (!ticks.open()) {
       std::fprintf(stderr, "ff-tracegen: cannot write %s\n", cli.truth_ticks.c_str());
-      return 1;
+      return ff::host::kExitBadUsage;
     }
+    ff::host::Metadata m = metadata(o, cli.trace_class, command);
+    m.insert(m.begin() + 1, {"what", "the true finger at every 500 us tick of the trace " + cli.output});
+    ff::host::write_metadata(ticks.stream(), m);
     Progress progress;
     if (show_progress) progress = [](double f) { print_progress("truth at ticks", f); };
-    const uint64_t rows = write_truth_ticks(ticks, trace, progress);
-    ticks.flush();
-    if (!ticks) {
+    const uint64_t rows = write_truth_ticks(ticks.stream(), trace, progress);
+    if (!ticks.commit()) {
       std::fprintf(stderr, "ff-tracegen: writing %s failed\n", cli.truth_ticks.c_str());
-      return 1;
+      return ff::host::kExitBadUsage;
     }
     if (!cli.quiet) std::fprintf(stderr, "ff-tracegen: %llu tick rows in %s\n", static_cast<unsigned long long>(rows),
                                  cli.truth_ticks.c_str());
   }
-  if (!cli.quiet) print_summary(trace, o);
+  if (!cli.quiet) print_summary(trace, o, counts);
   return 0;
 }

@@ -194,7 +194,12 @@ class TuneOnAClass(unittest.TestCase):
 
 
 def read_trace(text):
-    return list(csv.DictReader(io.StringIO(text)))
+    return list(csv.DictReader(line for line in io.StringIO(text) if not line.startswith("#")))
+
+
+def read_metadata(text):
+    """The '# key: value' lines, in order."""
+    return [tuple(line[2:].rstrip("\n").split(": ", 1)) for line in io.StringIO(text) if line.startswith("# ")]
 
 
 class TracegenClasses(unittest.TestCase):
@@ -215,7 +220,57 @@ class TracegenClasses(unittest.TestCase):
         a = run(TRACEGEN, "-q", "--class", "white-200hz", "--seed", "3", "--duration", "2")
         b = run(TRACEGEN, "-q", "--quantise", "zforce", "--seed", "3", "--duration", "2")
         self.assertEqual(a.returncode, 0, a.stderr)
-        self.assertEqual(a.stdout, b.stdout)
+        rows = [line for line in a.stdout.splitlines() if not line.startswith("#")]
+        self.assertEqual(rows, [line for line in b.stdout.splitlines() if not line.startswith("#")])
+        self.assertGreater(len(rows), 300)
+        # The same settings in words; only the command and the class name differ.
+        settings = lambda text: [m for m in read_metadata(text) if m[0] not in ("command", "class")]
+        self.assertEqual(settings(a.stdout), settings(b.stdout))
+
+    def test_metadata_says_how_the_trace_was_made(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "t.csv")
+            res = run(TRACEGEN, "-q", "--class", "realistic-200hz", "--seed", "4", "--duration", "2",
+                      "--late", "1", "-o", path)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            self.assertEqual(os.listdir(tmp), ["t.csv"])  # no .partial left
+            with open(path) as f:
+                text = f.read()
+        lines = text.splitlines()
+        meta = dict(read_metadata(text))
+        self.assertTrue(meta["tool"].startswith("ff-tracegen "))
+        self.assertEqual(meta["command"], "ff-tracegen -q --class realistic-200hz --seed 4 --duration 2 "
+                                          "--late 1 -o " + path)
+        self.assertEqual(meta["seed"], "4")
+        self.assertEqual(meta["class"], "realistic-200hz")
+        # The class's numbers (docs/tracking.md#trace-classes), as the trace was made with them.
+        for words in ("200 Hz", "noise 0.5 px", "quantum 0.5 px", "latency 1000-3000 us", "period jitter 100 us",
+                      "correlated noise 1.5 px (tau 30 ms)", "drift 2 px (tau 10 s)"):
+            self.assertIn(words, meta["sensor"])
+        for words in ("slow strokes 10 %", "hesitations 20 %", "reversals 30 %", "tremor 1 px at 8-12 Hz"):
+            self.assertIn(words, meta["motion"])
+        self.assertIn("late 1,", meta["faults"])
+        self.assertTrue(lines[0].startswith("# tool: "))
+        self.assertTrue(lines[-1].startswith("# summary: "))
+        rows = read_trace(text)
+        summary = dict(kv.split("=") for kv in meta["summary"].split())
+        self.assertEqual(int(summary["rows"]), len(rows))
+        self.assertEqual(int(summary["late"]), 1)
+        self.assertEqual(int(summary["lift-off"]), sum(1 for r in rows if r["touch"] == "0"))
+        self.assertTrue(8.0 <= float(summary["tremor_hz"]) <= 12.0)
+
+    def test_an_output_that_cannot_be_written_is_refused_and_a_device_is_written_into(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "no-such-folder", "t.csv"))
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("cannot write", res.stderr)
+            res = run(TRACEGEN, "-q", "--duration", "1", "-o", tmp)  # a folder
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("cannot write", res.stderr)
+            self.assertEqual(os.listdir(tmp), [])
+        res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.devnull)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertFalse(os.path.exists(os.devnull + ".partial"))
 
     def test_options_change_the_class_they_follow(self):
         base = read_trace(run(TRACEGEN, "-q", "--class", "latency", "--seed", "2", "--duration", "2").stdout)
