@@ -7,14 +7,16 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/output_file.hpp"
+#include "frictionfield/host/trace_csv.hpp"
 #include "accuracy.hpp"
 #include "bench_cases.hpp"
 #include "bench_workload.hpp"
@@ -167,7 +169,17 @@ int main(int argc, char** argv) {
   }
 
   const std::string cases_path = out_dir + "/host_cases.csv";
-  std::ofstream cases(cases_path);
+  // What made these numbers, first in each file (make_report.py skips '#' lines).
+  char settings[160];
+  std::snprintf(settings, sizeof settings, "%s, error grid every %g px, %s, %d threads%s%s", smoke ? "smoke" : "full",
+                grid_step, timing ? "timed (Google Benchmark)" : "not timed", threads,
+                filter.empty() ? "" : ", only ids containing ", filter.c_str());
+  const ff::host::Metadata metadata = {{"tool", std::string("ff-bench ") + ff::host::project_version()},
+                                       {"date", ff::host::utc_timestamp()},
+                                       {"run", settings},
+                                       {"host", "host-build costs in ns; not a Teensy (docs/benchmarks.md)"}};
+  std::ostringstream cases;
+  ff::host::write_metadata(cases, metadata);
   cases << "id,scene,strategy,builtin,default,rendering,status,table_bytes,plan_bytes,fits_teensy,"
            "gradient_evaluations,max_g_core,max_g_ref,max_lsb,rms_lsb,p99_lsb,max_interior_lsb,worst_x,worst_y,worst_direction_deg,"
            "error_samples,eval_checksum,host_eval_ns,host_prepare_us,host_tick_ns\n";
@@ -186,14 +198,16 @@ int main(int argc, char** argv) {
           << lookup(costs.prepare_us, r.id, "%.2f") << ',' << lookup(costs.tick_ns, r.id, "%.2f") << '\n';
   }
   const std::string trackers_path = out_dir + "/host_trackers.csv";
-  std::ofstream trackers(trackers_path);
+  std::ostringstream trackers;
+  ff::host::write_metadata(trackers, metadata);
   trackers << "config,host_update_ns\n";
   for (int i = 0; i < kTrackerConfigCount; ++i) {
     trackers << tracker_config_name(i) << ',' << lookup(costs.tracker_ns, tracker_config_name(i), "%.2f") << '\n';
   }
-  if (!cases || !trackers) {
-    std::fprintf(stderr, "cannot write into %s\n", out_dir.c_str());
-    return 1;
+  if (!ff::host::write_file_atomically(cases_path, cases.str()) ||
+      !ff::host::write_file_atomically(trackers_path, trackers.str())) {
+    std::fprintf(stderr, "ff-bench: cannot write into %s\n", out_dir.c_str());
+    return ff::host::kExitBadUsage;
   }
   std::fprintf(stderr, "wrote %s (%zu cases) and %s; %d failed\n", cases_path.c_str(), results.size(),
                trackers_path.c_str(), failures);

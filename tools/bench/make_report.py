@@ -41,14 +41,18 @@ def fnum(text):
         return None
 
 
+def without_metadata(f):
+    return (line for line in f if not line.startswith("#"))
+
+
 def read_host(folder):
     with open(os.path.join(folder, "host_cases.csv"), newline="") as f:
-        cases = list(csv.DictReader(f))
+        cases = list(csv.DictReader(without_metadata(f)))
     trackers = {}
     path = os.path.join(folder, "host_trackers.csv")
     if os.path.exists(path):
         with open(path, newline="") as f:
-            for row in csv.DictReader(f):
+            for row in csv.DictReader(without_metadata(f)):
                 trackers[row["config"]] = fnum(row["host_update_ns"])
     return cases, trackers
 

@@ -351,7 +351,7 @@ int emit_class_run(const ClassRunOutput& run, const std::string& table, const st
     csv << csv_body;
     if (!host::write_file_atomically(csv_path, csv.str())) {
       std::fprintf(stderr, "ff-track-bench: cannot write %s\n", csv_path.c_str());
-      return 1;
+      return host::kExitBadUsage;
     }
     std::fprintf(stderr, "ff-track-bench: figures written to %s\n", csv_path.c_str());
   }
@@ -359,7 +359,7 @@ int emit_class_run(const ClassRunOutput& run, const std::string& table, const st
     std::string error;
     if (!replace_marked_section(doc_path, table, error, run.marker)) {
       std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
-      return 1;
+      return host::kExitBadUsage;
     }
     std::fprintf(stderr, "ff-track-bench: table written to %s\n", doc_path.c_str());
   }
@@ -493,7 +493,7 @@ int run_calibration(const std::vector<std::string>& paths, const SensorProfile& 
   if (!profile_out.empty()) {
     if (!write_profile_file(profile_out, paths[0], calibration.profile, error)) {
       std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
-      return 1;
+      return host::kExitBadUsage;
     }
     std::fprintf(stderr, "ff-track-bench: profile written to %s\n", profile_out.c_str());
   }
@@ -700,7 +700,7 @@ int main(int argc, char** argv) {
     std::string error;
     if (!replace_marked_section(doc_path, table, error)) {
       std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
-      return 1;
+      return host::kExitBadUsage;
     }
     std::fprintf(stderr, "ff-track-bench: table written to %s\n", doc_path.c_str());
   }

@@ -122,6 +122,12 @@ class Calibrate(unittest.TestCase):
             self.assertIn(message, res.stderr)
             self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
             self.assertEqual(res.stdout, "")
+        # A profile file that cannot be written: the calibration is printed, the file refused.
+        nowhere = os.path.join(self.tmp, "no-such-folder", "profile.txt")
+        res = run(BENCH, "--calibrate", self.rest, "--profile-out", nowhere)
+        self.assertEqual(res.returncode, 2, res.stderr)
+        self.assertIn("cannot write " + nowhere, res.stderr)
+        self.assertIn("ffctl sensor-profile ", res.stdout)
         # A missing file is a usage error: CLI11's line and its pointer to --help.
         res = run(BENCH, "--calibrate", os.path.join(self.tmp, "nope.csv"))
         self.assertEqual(res.returncode, 2)
