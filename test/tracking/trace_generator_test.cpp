@@ -193,6 +193,20 @@ TEST(TraceGenerator, RestsAndLifts) {
   }
 }
 
+TEST(TraceGenerator, ATraceNeverEndsInTheAir) {
+  // More lifts than strokes fit: the last event handled is a lift, after
+  // which the finger lands and makes one more stroke, in either strategy.
+  for (Strategy strategy : {Strategy::Along, Strategy::Across}) {
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+      TraceOptions o = clean(strategy, seed, 1.0);
+      o.motion.lifts = 12;
+      const GeneratedTrace t = generate_trace(o);
+      EXPECT_EQ(t.motion.segments().back().kind, SegmentKind::Stroke) << to_string(strategy) << " seed " << seed;
+      EXPECT_EQ(t.events[static_cast<int>(SampleEvent::TouchDown)], 13);
+    }
+  }
+}
+
 class Faults : public ::testing::Test {
  protected:
   static GeneratedTrace make() {
