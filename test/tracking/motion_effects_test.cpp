@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -231,7 +232,12 @@ TEST(TraceClasses, NamedOnceFoundByNameAndWhite200HzIsTodaysModel) {
   today.sensor.noise_px = kNoiseLowPx;
   today.sensor.quantum_px = kZForceQuantumPx;
   TraceOptions white = today;
-  white.sensor.correlated_noise_px = 3.0;  // whatever was set before, the class resets it
+  // Whatever was set before, the class resets it: each effect of the finger and the sensor.
+  white.motion.slow_fraction = 0.5;
+  white.motion.hesitation_fraction = 0.5;
+  white.motion.reversal_fraction = 0.5;
+  white.tremor.amplitude_px = 2.0;
+  white.sensor.correlated_noise_px = 3.0;
   find_trace_class("white-200hz")->apply(white);
   std::ostringstream a, b;
   write_trace(a, generate_trace(today), false);
@@ -244,6 +250,76 @@ TEST(TraceClasses, NamedOnceFoundByNameAndWhite200HzIsTodaysModel) {
   EXPECT_GT(fast.sensor.correlated_noise_px, 0.0);
   EXPECT_GT(fast.motion.slow_fraction, 0.0);
   EXPECT_EQ(fast.seed, today.seed);
+}
+
+TEST(TraceClasses, EachClassHasTheNumbersDocsTrackingMdGivesIt) {
+  struct Expected {
+    const char* name;
+    double slow, hesitation, reversal, tremor_px, latency_us, latency_spread_us, noise_px, correlated_px, tau_s,
+        rate_hz, period_jitter_us, drift_px;
+  };
+  // docs/tracking.md#trace-classes, by hand; every class keeps the 150 us
+  // stamp jitter and the 0.5 px quantum; the drift's tau is 10 s.
+  const Expected table[] = {
+      {"white-200hz", 0, 0, 0, 0, 0, 0, 1.0, 0, 0.03, 200, 0, 0},
+      {"slow-fingers", 0.1, 0.2, 0.3, 0, 0, 0, 1.0, 0, 0.03, 200, 0, 0},
+      {"tremor", 0, 0, 0, 1.5, 0, 0, 1.0, 0, 0.03, 200, 0, 0},
+      {"latency", 0, 0, 0, 0, 1000, 2000, 1.0, 0, 0.03, 200, 0, 0},
+      {"correlated-noise", 0, 0, 0, 0, 0, 0, 0.5, 1.5, 0.03, 200, 0, 0},
+      {"realistic-100hz", 0.1, 0.2, 0.3, 1.0, 1000, 2000, 0.5, 1.5, 0.03, 100, 200, 2.0},
+      {"realistic-200hz", 0.1, 0.2, 0.3, 1.0, 1000, 2000, 0.5, 1.5, 0.03, 200, 100, 2.0},
+      {"realistic-1khz", 0.1, 0.2, 0.3, 1.0, 1000, 2000, 0.5, 1.5, 0.03, 1000, 20, 2.0},
+  };
+  ASSERT_EQ(trace_classes().size(), std::size(table));
+  for (const Expected& e : table) {
+    SCOPED_TRACE(e.name);
+    TraceOptions o;
+    const TraceClass* c = find_trace_class(e.name);
+    ASSERT_NE(c, nullptr);
+    c->apply(o);
+    EXPECT_DOUBLE_EQ(o.motion.slow_fraction, e.slow);
+    EXPECT_DOUBLE_EQ(o.motion.hesitation_fraction, e.hesitation);
+    EXPECT_DOUBLE_EQ(o.motion.reversal_fraction, e.reversal);
+    EXPECT_DOUBLE_EQ(o.tremor.amplitude_px, e.tremor_px);
+    EXPECT_DOUBLE_EQ(o.tremor.min_hz, 8.0);
+    EXPECT_DOUBLE_EQ(o.tremor.max_hz, 12.0);
+    EXPECT_DOUBLE_EQ(o.sensor.latency_us, e.latency_us);
+    EXPECT_DOUBLE_EQ(o.sensor.latency_spread_us, e.latency_spread_us);
+    EXPECT_DOUBLE_EQ(o.sensor.noise_px, e.noise_px);
+    EXPECT_DOUBLE_EQ(o.sensor.quantum_px, 0.5);
+    EXPECT_DOUBLE_EQ(o.sensor.jitter_us, 150.0);
+    EXPECT_DOUBLE_EQ(o.sensor.correlated_noise_px, e.correlated_px);
+    EXPECT_DOUBLE_EQ(o.sensor.correlated_noise_tau_s, e.tau_s);
+    EXPECT_DOUBLE_EQ(o.sensor.rate_hz, e.rate_hz);
+    EXPECT_DOUBLE_EQ(o.sensor.period_jitter_us, e.period_jitter_us);
+    EXPECT_DOUBLE_EQ(o.sensor.drift_px, e.drift_px);
+    EXPECT_DOUBLE_EQ(o.sensor.drift_tau_s, 10.0);
+  }
+}
+
+TEST(TraceClasses, TheNominalProfileIsTheClassSensorInTheProfilesTerms) {
+  // By hand: white noise with the quantum's q^2/12, stamp jitter twice and
+  // period jitter once in the interval's spread, the mean latency.
+  const SensorProfile white = class_profile("white-200hz");
+  EXPECT_FLOAT_EQ(white.white_noise_px, static_cast<float>(std::sqrt(1.0 + 0.25 / 12.0)));
+  EXPECT_EQ(white.correlated_noise_px, 0.0f);
+  EXPECT_EQ(white.correlation_time_ms, 0.0f);  // no wander: no correlation time either
+  EXPECT_EQ(white.tremor_px, 0.0f);
+  EXPECT_EQ(white.report_rate_hz, 200.0f);
+  EXPECT_FLOAT_EQ(white.jitter_us, static_cast<float>(150.0 * std::sqrt(2.0)));
+  EXPECT_EQ(white.latency_us, 0u);
+  const SensorProfile real = class_profile("realistic-100hz");
+  EXPECT_FLOAT_EQ(real.white_noise_px, static_cast<float>(std::sqrt(0.25 + 0.25 / 12.0)));
+  EXPECT_EQ(real.correlated_noise_px, 1.5f);
+  EXPECT_EQ(real.correlation_time_ms, 30.0f);
+  EXPECT_EQ(real.tremor_px, 1.0f);
+  EXPECT_EQ(real.report_rate_hz, 100.0f);
+  EXPECT_FLOAT_EQ(real.jitter_us, static_cast<float>(std::sqrt(2.0 * 150.0 * 150.0 + 200.0 * 200.0)));
+  EXPECT_EQ(real.latency_us, 2000u);  // 1-3 ms
+}
+
+TEST(TraceClassesDeathTest, AMisspeltClassStopsTheTestAndSaysWhich) {
+  EXPECT_DEATH(class_profile("realistic-200Hz"), "no trace class \"realistic-200Hz\"");
 }
 
 }  // namespace

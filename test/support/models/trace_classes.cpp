@@ -15,8 +15,7 @@ void white_200hz(TraceOptions& o) {
   o.motion.hesitation_fraction = plain.hesitation_fraction;
   o.motion.reversal_fraction = plain.reversal_fraction;
   o.tremor = TremorOptions{};
-  o.sensor = SensorOptions{};
-  o.sensor.noise_px = kNoiseLowPx;
+  o.sensor = SensorOptions{};  // 200 Hz, 150 us, kNoiseLowPx
   o.sensor.quantum_px = kZForceQuantumPx;
 }
 
@@ -37,11 +36,10 @@ void latency_only(TraceOptions& o) {
   o.sensor.latency_spread_us = 2000.0;
 }
 
-// Most of the noise a slow wander (1.5 px, 30 ms), a little white.
+// Most of the noise a slow wander (1.5 px, the default tau of 30 ms), a little white.
 void correlated_only(TraceOptions& o) {
   o.sensor.noise_px = 0.5;
   o.sensor.correlated_noise_px = 1.5;
-  o.sensor.correlated_noise_tau_s = 0.03;
 }
 
 void realistic(TraceOptions& o, double rate_hz) {
@@ -52,8 +50,7 @@ void realistic(TraceOptions& o, double rate_hz) {
   correlated_only(o);
   o.sensor.rate_hz = rate_hz;
   o.sensor.period_jitter_us = 0.02 * 1e6 / rate_hz;
-  o.sensor.drift_px = 2.0;
-  o.sensor.drift_tau_s = 10.0;
+  o.sensor.drift_px = 2.0;  // tau: the default 10 s
 }
 
 }  // namespace

@@ -9,6 +9,7 @@ import csv
 import io
 import math
 import os
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -301,6 +302,26 @@ class TracegenClasses(unittest.TestCase):
             self.assertIn(option, help_text)
         for name in CLASSES:
             self.assertIn(name, help_text)
+
+    def test_each_bundled_trace_is_what_its_recorded_command_makes(self):
+        traces = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "traces")
+        bundled = sorted(f for f in os.listdir(traces) if f.startswith("gen_") and not f.endswith(".golden.csv"))
+        self.assertEqual(len(bundled), 5)
+        for name in bundled:
+            with open(os.path.join(traces, name)) as f:
+                stored = f.read()
+            command = shlex.split(dict(read_metadata(stored))["command"])
+            self.assertEqual(command[0], "ff-tracegen")
+            self.assertEqual(command[command.index("-o") + 1], name)
+            with tempfile.TemporaryDirectory() as tmp:
+                made_path = os.path.join(tmp, name)
+                command[command.index("-o") + 1] = made_path
+                res = run(TRACEGEN, *command[1:])
+                self.assertEqual(res.returncode, 0, res.stderr)
+                with open(made_path) as f:
+                    made = f.read()
+            without_command = lambda text: [l for l in text.splitlines() if not l.startswith("# command: ")]
+            self.assertEqual(without_command(made), without_command(stored), name)
 
     def test_bad_values_exit_2(self):
         self.assertEqual(run(TRACEGEN, "--class", "no-such-class").returncode, 2)
