@@ -26,6 +26,15 @@ TEST(FormatNumber, ShortestFixedThreeDecimals) {
   EXPECT_EQ(format_number(std::nan("")), "nan");
   EXPECT_EQ(format_number(HUGE_VAL), "inf");
   EXPECT_EQ(format_number(-HUGE_VAL), "-inf");
+  // A NaN with its sign bit set (0 * inf on x86) is still "nan", not printf's "-nan".
+  EXPECT_EQ(format_number(-std::nan("")), "nan");
+}
+
+TEST(WriteTruthTicks, AnEmptyTraceIsItsHeaderAlone) {
+  const GeneratedTrace empty;
+  std::stringstream csv;
+  EXPECT_EQ(write_truth_ticks(csv, empty), 0u);
+  EXPECT_EQ(csv.str(), "t_us,x_true,y_true,vx_true,vy_true,touch\n");
 }
 
 TraceOptions faulty() {
