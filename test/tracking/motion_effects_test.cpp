@@ -73,7 +73,8 @@ TEST(SlowStrokes, AlongAPathTheyAreSizedByThePathsArc) {
   for (uint64_t seed = 1; seed <= 20; ++seed) {
     MotionOptions o = long_motion(Strategy::Along, 120.0);
     o.slow_fraction = 1.0;
-    for (const Segment* s : strokes_of(plan_motion(o, seed))) {
+    const Motion m = plan_motion(o, seed);
+    for (const Segment* s : strokes_of(m)) {
       if (s->shape != StrokeShape::AlongPath || s->duration_s < 0.7) continue;  // short enough unshortened
       ++shortened;
       EXPECT_LE(s->duration_s, 2.1) << "seed " << seed;
