@@ -104,8 +104,7 @@ Counts count(const GeneratedTrace& trace) {
   return c;
 }
 
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...) {
+__attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
   char buf[512];
   va_list args;
   va_start(args, fmt);
@@ -347,7 +346,6 @@ int main(int argc, char** argv) {
   if (!from_class || app.count("--quantise") > 0)
     o.sensor.quantum_px = cli.quantise == "px" ? 1.0 : (cli.quantise == "zforce" ? kZForceQuantumPx : 0.0);
   if (cli.quantum_px >= 0.0) o.sensor.quantum_px = cli.quantum_px;
-  o.motion.dwell_min_s = 0.0;
   if (cli.all_faults) {
     auto at_least = [&app](const char* option, int& count, int value) {
       if (app.count(option) == 0) count = value;

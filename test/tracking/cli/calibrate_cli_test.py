@@ -58,6 +58,9 @@ class Calibrate(unittest.TestCase):
             rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#")) if r["touch"] == "1"]
         self.assertEqual(len(rows), 2001)
         self.assertEqual({(r["x_true"], r["y_true"]) for r in rows}, {("400", "240")})
+        with open(self.rest) as f:
+            motion = [line for line in f if line.startswith("# motion: ")]
+        self.assertEqual(motion, ["# motion: a finger at rest for 10 s, tremor 1.5 px at 10-10 Hz\n"])
 
     def test_the_printed_ffctl_line_holds_the_generators_parameters(self):
         out = self.calibrate("--latency-us", 1500).stdout

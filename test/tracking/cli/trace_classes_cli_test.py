@@ -260,6 +260,55 @@ class TracegenClasses(unittest.TestCase):
         self.assertEqual(int(summary["lift-off"]), sum(1 for r in rows if r["touch"] == "0"))
         self.assertTrue(8.0 <= float(summary["tremor_hz"]) <= 12.0)
 
+    def test_the_summary_on_stderr_and_the_progress_line(self):
+        # Every stroke planned for 100 mm/s: the mean and the largest peak are 100 mm/s.
+        res = subprocess.run([TRACEGEN, "--strategy", "along", "--speed-min", "100", "--speed-max", "100",
+                              "--seed", "2", "--duration", "3", "--progress", "-o", os.devnull], capture_output=True)
+        stderr = res.stderr.decode()  # as bytes: text mode would turn each \r into \n
+        self.assertEqual(res.returncode, 0, stderr)
+        self.assertRegex(stderr, r"ff-tracegen: \d+ strokes, peak speed mean 100 mm/s, max 100 mm/s; 0 rests, 0 lifts\n")
+        # The progress line is redrawn in place and ends with a newline at 100 %.
+        self.assertIn("\rff-tracegen: planning and sampling   0%\rff-tracegen: planning and sampling 100%\n", stderr)
+        self.assertIn("ff-tracegen: rows by kind: touch-down=1 lift-off=1\n", stderr)
+        # With tremor: its amplitude and the frequency drawn, as the file's summary has it.
+        res = run(TRACEGEN, "--class", "tremor", "--seed", "2", "--duration", "1")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        tremor_hz = float(dict(kv.split("=") for kv in dict(read_metadata(res.stdout))["summary"].split())["tremor_hz"])
+        self.assertIn("tremor 1.50 px at %.1f Hz;" % tremor_hz, res.stderr)
+
+    def test_noise_px_and_quantum_px_override_the_named_levels(self):
+        # No noise at all, though --noise high asks for 2.5 px: each report is the truth.
+        res = run(TRACEGEN, "-q", "--noise", "high", "--noise-px", "0", "--seed", "4", "--duration", "2")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        rows = [r for r in read_trace(res.stdout) if r["touch"] == "1"]
+        self.assertGreater(len(rows), 300)
+        self.assertTrue(all((r["x"], r["y"]) == (r["x_true"], r["y_true"]) for r in rows))
+        # A 2 px step, though --quantise zforce asks for 0.5 px: every coordinate a multiple of 2.
+        res = run(TRACEGEN, "-q", "--quantise", "zforce", "--quantum-px", "2", "--seed", "4", "--duration", "2")
+        rows = [r for r in read_trace(res.stdout) if r["touch"] == "1"]
+        self.assertTrue(all(float(r["x"]) % 2.0 == 0.0 and float(r["y"]) % 2.0 == 0.0 for r in rows))
+        self.assertTrue(any(float(r["x"]) % 4.0 == 2.0 for r in rows))
+
+    def test_paths_keeps_the_along_strategy_on_one_path(self):
+        # docs/spec.md#paths: from y = 240 at the start, the top path rises to y = 40, the
+        # bottom one falls to 440; the finger strays at most 18 px off (+ 5 px sigma at the start).
+        for path, inside in (("top", lambda y: y <= 270.0), ("bottom", lambda y: y >= 210.0)):
+            res = run(TRACEGEN, "-q", "--strategy", "along", "--paths", path, "--seed", "3", "--duration", "20")
+            self.assertEqual(res.returncode, 0, res.stderr)
+            ys = [float(r["y_true"]) for r in read_trace(res.stdout) if r["touch"] == "1"]
+            self.assertTrue(all(inside(y) for y in ys), path)
+            self.assertGreater(max(abs(y - 240.0) for y in ys), 150.0, path)  # it went along the path
+
+    def test_class_is_read_first_in_either_spelling_and_help_has_examples(self):
+        a = run(TRACEGEN, "-q", "--seed", "5", "--duration", "1", "--class", "correlated-noise")
+        b = run(TRACEGEN, "-q", "--seed", "5", "--duration", "1", "--class=correlated-noise")
+        self.assertEqual(a.returncode, 0, a.stderr)
+        self.assertEqual(read_trace(a.stdout), read_trace(b.stdout))
+        self.assertIn("correlated noise 1.5 px", dict(read_metadata(b.stdout))["sensor"])
+        help_text = run(TRACEGEN, "--help").stdout
+        self.assertIn("Examples:\n  ff-tracegen --strategy along", help_text)
+        self.assertIn("realistic-1khz: every effect at 1 kHz", help_text)  # each class with what it is
+
     def test_an_output_that_cannot_be_written_is_refused_and_a_device_is_written_into(self):
         with tempfile.TemporaryDirectory() as tmp:
             res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "no-such-folder", "t.csv"))
@@ -272,6 +321,33 @@ class TracegenClasses(unittest.TestCase):
         res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.devnull)
         self.assertEqual(res.returncode, 0, res.stderr)
         self.assertFalse(os.path.exists(os.devnull + ".partial"))
+        res = run(TRACEGEN, "-q", "--duration", "1", "-o", "/dev/full")  # every write fails: a full disk
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("writing /dev/full failed", res.stderr)
+        with tempfile.TemporaryDirectory() as tmp:
+            res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "t.csv"),
+                      "--truth-ticks", os.path.join(tmp, "no-such-folder", "ticks.csv"))
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("cannot write " + os.path.join(tmp, "no-such-folder", "ticks.csv"), res.stderr)
+            res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "t.csv"), "--truth-ticks", "/dev/full")
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("writing /dev/full failed", res.stderr)
+
+    def test_truth_ticks_carry_the_traces_metadata_and_show_progress(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            trace, ticks = os.path.join(tmp, "t.csv"), os.path.join(tmp, "ticks.csv")
+            res = subprocess.run([TRACEGEN, "--seed", "6", "--duration", "1", "--progress", "-o", trace,
+                                  "--truth-ticks", ticks], capture_output=True)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            self.assertIn("\rff-tracegen: truth at ticks 100%\n", res.stderr.decode())
+            with open(ticks) as f:
+                text = f.read()
+        meta = read_metadata(text)
+        self.assertEqual(meta[0][0], "tool")
+        self.assertEqual(meta[1], ("what", "the true finger at every 500 us tick of the trace " + trace))
+        self.assertEqual(dict(meta)["seed"], "6")
+        header = [line for line in text.splitlines() if not line.startswith("#")][0]
+        self.assertEqual(header, "t_us,x_true,y_true,vx_true,vy_true,touch")
 
     def test_options_change_the_class_they_follow(self):
         base = read_trace(run(TRACEGEN, "-q", "--class", "latency", "--seed", "2", "--duration", "2").stdout)
