@@ -113,13 +113,19 @@ __attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
   return buf;
 }
 
-// The command as typed: arguments with spaces or quotes in single quotes.
+// The command as typed, quoted as a POSIX shell reads it back: an argument
+// with spaces or quotes in single quotes, each ' in it written '\''.
 std::string command_line(int argc, char** argv) {
   std::string line = "ff-tracegen";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    const bool plain = !a.empty() && a.find_first_of(" \t'\"\\$`") == std::string::npos;
-    line += plain ? " " + a : " '" + a + "'";
+    if (!a.empty() && a.find_first_of(" \t'\"\\$`") == std::string::npos) {
+      line += " " + a;
+      continue;
+    }
+    line += " '";
+    for (char c : a) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += "'";
   }
   return line;
 }

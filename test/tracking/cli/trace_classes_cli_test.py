@@ -309,6 +309,16 @@ class TracegenClasses(unittest.TestCase):
         self.assertIn("Examples:\n  ff-tracegen --strategy along", help_text)
         self.assertIn("realistic-1khz: every effect at 1 kHz", help_text)  # each class with what it is
 
+    def test_the_recorded_command_reads_back_as_typed(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "it's a trace.csv")  # a space and a single quote
+            args = ["-q", "--duration", "1", "-o", path, "--truth-ticks", os.path.join(tmp, 'say "ticks".csv')]
+            res = run(TRACEGEN, *args)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            with open(path) as f:
+                command = dict(read_metadata(f.read()))["command"]
+        self.assertEqual(shlex.split(command), ["ff-tracegen"] + args)
+
     def test_an_output_that_cannot_be_written_is_refused_and_a_device_is_written_into(self):
         with tempfile.TemporaryDirectory() as tmp:
             res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "no-such-folder", "t.csv"))
