@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "frictionfield/host/output_file.hpp"
 #include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/host/sensor_profile_options.hpp"
 
@@ -262,12 +263,12 @@ std::string stem_of(const std::string& trace_path) {
 }
 
 // `m` as a hex frame line after `# ` comment lines: exact, and the codec checks it on the way back.
+// Written whole or not at all (a killed recorder leaves the old file or none).
 bool write_frame_file(const std::string& path, const Message& m, const std::vector<std::string>& comments,
                       std::string& error) {
   uint8_t frame[protocol::kMaxFrame];
   const size_t n = protocol::encode(m, frame, sizeof frame);
-  std::ofstream out(path);
-  if (!out || n == 0) return error = "cannot write " + path, false;
+  std::ostringstream out;
   for (const std::string& line : comments) out << "# " << line << "\n";
   out << "frame ";
   char hex[3];
@@ -276,7 +277,7 @@ bool write_frame_file(const std::string& path, const Message& m, const std::vect
     out << hex;
   }
   out << "\n";
-  return static_cast<bool>(out) || (error = "writing " + path + " failed", false);
+  return (n > 0 && host::write_file_atomically(path, out.str())) || (error = "cannot write " + path, false);
 }
 
 // The frame line of a file write_frame_file() wrote, which must hold a message of `type`.

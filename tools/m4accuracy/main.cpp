@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/output_file.hpp"
+#include "frictionfield/host/trace_csv.hpp"
 #include "bench_cases.hpp"
 #include "accuracy.hpp"
 #include "scene_workload.hpp"
@@ -63,7 +65,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Amplitude and DAC error of the M4 build (ff-m4trace accuracy under qemu) against the double reference"};
   std::string input, csv_path;
   app.add_option("input", input, "what ff-m4trace printed in accuracy mode")->required()->check(CLI::ExistingFile);
-  app.add_option("--csv", csv_path, "per-scene results as CSV");
+  app.add_option("--csv", csv_path, "per-scene results as CSV (with '#' metadata)");
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   std::map<std::string, SceneId> ids;
@@ -100,12 +102,13 @@ int main(int argc, char** argv) {
   }
 
   const double strength = 0.8;  // kAccuracyStrength, exact
-  std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
-  if (!csv_path.empty() && csv == nullptr) {
-    std::fprintf(stderr, "ff-m4accuracy: cannot write %s\n", csv_path.c_str());
-    return 2;
-  }
-  if (csv) std::fprintf(csv, "scene,points,raw_max_lsb,scaled_max_lsb,scaled_rms_lsb,code_max_lsb,codes_off\n");
+  std::ostringstream csv;
+  ff::host::write_metadata(csv, {{"tool", std::string("ff-m4accuracy ") + ff::host::project_version()},
+                                 {"date", ff::host::utc_timestamp()},
+                                 {"input", input},
+                                 {"what", "per built-in scene, the M4 build's amplitudes (qemu) against the double "
+                                          "reference, in LSB of 1/4095; codes_off: DAC codes != round(exact)"}});
+  csv << "scene,points,raw_max_lsb,scaled_max_lsb,scaled_rms_lsb,code_max_lsb,codes_off\n";
   std::printf("| scene | points | raw amplitude max (LSB) | after strength 0.8 max / RMS (LSB) | DAC code vs exact, max (LSB) | codes != round(exact) |\n");
   std::printf("|---|---|---|---|---|---|\n");
   int total = 0;
@@ -131,14 +134,17 @@ int main(int argc, char** argv) {
     const double rms = std::sqrt(e.scaled_sq / e.points);
     std::printf("| %s | %d | %.3g | %.3g / %.3g | %.3f | %d |\n", name.c_str(), e.points, e.raw_max, e.scaled_max, rms,
                 e.code_max, e.code_off);
-    if (csv) {
-      std::fprintf(csv, "%s,%d,%.6g,%.6g,%.6g,%.6g,%d\n", name.c_str(), e.points, e.raw_max, e.scaled_max, rms,
-                   e.code_max, e.code_off);
-    }
+    char row[160];
+    std::snprintf(row, sizeof row, "%s,%d,%.6g,%.6g,%.6g,%.6g,%d\n", name.c_str(), e.points, e.raw_max, e.scaled_max,
+                  rms, e.code_max, e.code_off);
+    csv << row;
     total += e.points;
     worst_code = std::fmax(worst_code, e.code_max);
   }
-  if (csv) std::fclose(csv);
+  if (!csv_path.empty() && !ff::host::write_file_atomically(csv_path, csv.str())) {
+    std::fprintf(stderr, "ff-m4accuracy: cannot write %s\n", csv_path.c_str());
+    return 2;
+  }
   std::printf("\n%d points; worst DAC code %.3f LSB from the exact code (0.5 is rounding alone)\n", total, worst_code);
   return worst_code <= 1.0 ? 0 : 1;
 }

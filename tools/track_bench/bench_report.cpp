@@ -6,6 +6,8 @@
 #include <ostream>
 #include <sstream>
 
+#include "frictionfield/host/output_file.hpp"
+
 namespace ff::bench {
 
 namespace {
@@ -106,17 +108,10 @@ bool replace_marked_section(const std::string& path, const std::string& text, st
       document = s.str();
     }
   }
-  std::ofstream out(path);
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
-  out << replace_marked_text(document, text, marker);
-  if (!out) {
-    error = "writing " + path + " failed";
-    return false;
-  }
-  return true;
+  // Atomically: a killed or failed run leaves the document as it was.
+  if (host::write_file_atomically(path, replace_marked_text(document, text, marker))) return true;
+  error = "cannot write " + path;
+  return false;
 }
 
 }  // namespace ff::bench

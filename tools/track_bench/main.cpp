@@ -6,7 +6,6 @@
 #include <iterator>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -264,9 +263,46 @@ struct ClassResults {
   std::vector<LookaheadRow> lookahead;
 };
 
+// --dump-ticks: every tick of one case behind '#' metadata, written whole or
+// not at all (host::ToolOutput). false after a one-line message.
+bool write_tick_dump(const std::string& path, const Tuned& tuned, const SensorProfile& profile,
+                     const PreparedCase& c) {
+  host::ToolOutput out(path);
+  if (out.open()) {
+    host::write_metadata(out.stream(),
+                         {{"tool", std::string("ff-track-bench --dump-ticks ") + host::project_version()},
+                          {"date", host::utc_timestamp()},
+                          {"trace", c.spec.name},
+                          {"tracker", tuned_name(tuned)},
+                          {"sensor_profile", host::sensor_profile_flags(profile)},
+                          {"what", "every 500 us tick: the truth, the tracker's estimate, the rendered and the ideal "
+                                   "amplitudes (0..1, strength 1); tools/track_bench/standstill_breakdown.py reads it"}});
+    dump_ticks(out.stream(), proposed_tracker(tuned, profile), c);
+    if (out.commit()) return true;
+  }
+  std::fprintf(stderr, "ff-track-bench: cannot write %s\n", path.c_str());
+  return false;
+}
+
+// --class C --dump-ticks FILE: the first selected class's six traces as FILE,
+// FILE.1 ... FILE.5, each told its own profile as the class table's
+// recommended(profile) row is.
+bool dump_class_ticks(const std::vector<std::string>& names, double duration_s, const Tuned& tuned,
+                      const std::string& path) {
+  for (const tracegen::TraceClass& trace_class : tracegen::trace_classes()) {
+    if (!selected(names, trace_class.name)) continue;
+    const std::vector<PreparedCase> cases = prepare_cases(class_cases(trace_class, duration_s));
+    for (size_t i = 0; i < cases.size(); ++i)
+      if (!write_tick_dump(i == 0 ? path : path + "." + std::to_string(i), tuned, nominal_profile(cases[i]), cases[i]))
+        return false;
+    return true;
+  }
+  return true;
+}
+
 // The per-class figures: the thesis pipeline and recommended() on each class.
 ClassResults run_classes(const std::vector<std::string>& names, double duration_s, const EvalOptions& base,
-                         const Tuned& candidate, const std::string& dump_path) {
+                         const Tuned& candidate) {
   EvalOptions options = base;
   options.cost = false;
   std::vector<ClassRow> rows;
@@ -278,12 +314,6 @@ ClassResults run_classes(const std::vector<std::string>& names, double duration_
     const std::vector<PreparedCase> cases = prepare_cases(class_cases(trace_class, duration_s));
     const double slow = slow_share(cases, options.moving_speed_px_s);
     const SensorProfile sensor = tracegen::nominal_profile(cases.front().spec.options);
-    if (!dump_path.empty() && rows.empty()) {
-      for (size_t i = 0; i < cases.size(); ++i) {
-        std::ofstream dump(i == 0 ? dump_path : dump_path + "." + std::to_string(i));
-        dump_ticks(dump, proposed_tracker(candidate, nominal_profile(cases[i])), cases[i]);
-      }
-    }
     rows.push_back({trace_class.name, "thesis", evaluate(TrackerConfig::thesis(), cases, options), slow});
     rows.push_back({trace_class.name, "recommended()", evaluate(TrackerConfig::recommended(), cases, options), slow});
     EvalOptions profile_options = options;
@@ -608,7 +638,9 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv_path, "With --classes: also write every figure of the tables to this CSV (with '#' "
                                     "metadata), for tools/track_bench/plot_classes.py");
   app.add_option("--dump-ticks", dump_path, "Write every tick of the first low-noise trace for the tuned configuration "
-                                            "(truth, estimate, amplitudes) to this CSV, for plots");
+                                            "(truth, estimate, amplitudes) to this CSV (with '#' metadata), for plots "
+                                            "and tools/track_bench/standstill_breakdown.py; with --class, the first "
+                                            "class's six traces as FILE, FILE.1 ... FILE.5");
   if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   trace_options.target = target_word == "top" ? Target::Top : (target_word == "bottom" ? Target::Bottom : Target::Middle);
@@ -660,7 +692,8 @@ int main(int argc, char** argv) {
       tuned = tune(levels, bounds_given ? rest_bound : kClassRestBound, bounds_given ? max_lag_ms : kClassMaxLagMs,
                    kClassMaxFrictionmapRatio, options, std::cerr);
     }
-    const ClassResults results = run_classes(class_names, duration_s, options, tuned, dump_path);
+    if (!dump_path.empty() && !dump_class_ticks(class_names, duration_s, tuned, dump_path)) return host::kExitBadUsage;
+    const ClassResults results = run_classes(class_names, duration_s, options, tuned);
     const std::string table = class_tables(results, duration_s, options.moving_speed_px_s);
     std::ostringstream csv;
     write_class_csv(csv, results.rows, results.floors, results.lookahead);
@@ -688,8 +721,9 @@ int main(int argc, char** argv) {
                                            app.count("--rest-sigmas") + app.count("--moving-sigmas") +
                                            app.count("--maneuver-threshold") + app.count("--maneuver-time-ms") > 0;
   if (!dump_path.empty()) {
-    std::ofstream dump(dump_path);
-    dump_ticks(dump, proposed_tracker(tuned, levels.front().sensor), levels.front().cases.front());
+    const LevelSet& first = levels.front();
+    if (!write_tick_dump(dump_path, tuned, first.profile_of(first.cases.front()), first.cases.front()))
+      return host::kExitBadUsage;
   }
   const std::string table =
       judge(standard_configs(tuned, with_tuned), levels, options,

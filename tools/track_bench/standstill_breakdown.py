@@ -38,7 +38,10 @@ class InputError(Exception):
 def read_ticks(path):
     """The columns this needs, as float arrays, from one --dump-ticks file."""
     try:
-        data = np.genfromtxt(path, delimiter=",", names=True, comments="#")
+        # The '#' metadata lines go first: genfromtxt would take the first of them for the header.
+        with open(path) as f:
+            lines = [line for line in f if not line.startswith("#")]
+        data = np.genfromtxt(lines, delimiter=",", names=True)
     except (OSError, ValueError) as e:
         raise InputError(f"{path}: {e}") from None
     if data.dtype.names is None or data.size == 0:

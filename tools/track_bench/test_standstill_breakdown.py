@@ -15,7 +15,7 @@ def tick(t_us, vx_true, touching, vx, dx, dy, error, full_length_error):
             f"{0.5 + error},0.5,0.5,0.5,0.5,{0.5 + full_length_error}\n")
 
 
-def write_ticks(path):
+def write_ticks(path, metadata=""):
     # A tick every 0.5 ms: still at 0, moving at 0.5-2 ms, lifted at 2.5, moving again at 3.
     rows = [tick(0, 0, 1, 0, 0, 0, 0.0, 0.0),
             tick(500, 100, 1, 50, 0.6, 0.8, 0.1, 0.2),   # 0.5 ms after the standstill
@@ -24,7 +24,7 @@ def write_ticks(path):
             tick(2000, 100, 1, 100, 1.0, 0.0, 0.3, 0.0),  # 2.0
             tick(2500, 0, 0, 0, 0, 0, 0.0, 0.0),          # lifted: a standstill
             tick(3000, 100, 1, 100, 0.0, 0.0, 0.1, 0.0)]  # 0.5
-    path.write_text(HEADER + "".join(rows))
+    path.write_text(metadata + HEADER + "".join(rows))
 
 
 def test_shares_by_hand(tmp_path):
@@ -42,6 +42,17 @@ def test_shares_by_hand(tmp_path):
     assert totals["ticks"] == 5
     assert totals["rms"] == pytest.approx(math.sqrt(0.15 / 5))
     assert totals["full_length_rms"] == pytest.approx(math.sqrt(0.04 / 5))
+
+
+def test_metadata_lines_before_the_header_are_skipped(tmp_path):
+    # as ff-track-bench --dump-ticks writes them
+    plain, dumped = tmp_path / "plain.csv", tmp_path / "dumped.csv"
+    write_ticks(plain)
+    write_ticks(dumped, "# tool: ff-track-bench --dump-ticks 0.1.0\n# trace: white-200hz along-top\n")
+    a, b = standstill_breakdown.read_ticks(plain), standstill_breakdown.read_ticks(dumped)
+    assert a.keys() == b.keys()
+    for column in a:
+        assert list(a[column]) == list(b[column]), column
 
 
 def test_no_moving_ticks_is_an_error(tmp_path):

@@ -16,6 +16,7 @@ import tempfile
 import unittest
 
 BENCH = TRACEGEN = None
+REPO = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", ".."))
 CLASSES = ["white-200hz", "slow-fingers", "tremor", "latency", "correlated-noise",
            "realistic-100hz", "realistic-200hz", "realistic-1khz"]
 
@@ -88,6 +89,7 @@ class TrackBenchClasses(unittest.TestCase):
             self.assertNotIn("\nold\n", text)
             self.assertIn("| latency | recommended() |", text)
             self.assertTrue(text.endswith("<!-- track-bench-classes:end -->\nafter\n"))
+            self.assertEqual(os.listdir(tmp), ["doc.md"])  # written through doc.md.partial, renamed
 
     def test_csv_holds_the_tables_figures_with_metadata(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -134,6 +136,62 @@ class TrackBenchClasses(unittest.TestCase):
         self.assertIn("causal, anchored at rest", res.stdout)
         self.assertIn("told all but each stroke's direction", res.stdout)
         self.assertIn("told when each stroke starts", res.stdout)
+
+    def test_dump_ticks_writes_the_classes_six_traces_with_metadata(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "tremor.csv")
+            res = run(BENCH, "--class", "tremor", "--duration", "2", "--direction-q", "60", "--dump-ticks", path)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            names = ["tremor.csv"] + ["tremor.csv.%d" % i for i in range(1, 6)]
+            self.assertEqual(sorted(os.listdir(tmp)), sorted(names))  # no .partial left behind
+            traces, tremor_hz = set(), set()
+            for name in names:
+                with open(os.path.join(tmp, name)) as f:
+                    lines = f.read().splitlines()
+                meta = dict(l[2:].split(": ", 1) for l in lines if l.startswith("# "))
+                self.assertEqual(set(meta), {"tool", "date", "trace", "tracker", "sensor_profile", "what"}, name)
+                self.assertTrue(meta["tool"].startswith("ff-track-bench --dump-ticks "))
+                self.assertTrue(meta["trace"].startswith("tremor "), meta["trace"])
+                self.assertIn("direction q 60,", meta["tracker"])  # the options' tracker, not the default
+                traces.add(meta["trace"])
+                flags = meta["sensor_profile"].split()
+                tremor_hz.add(float(flags[flags.index("--tremor-hz") + 1]))
+                rows = list(csv.DictReader(l for l in lines if not l.startswith("#")))
+                self.assertGreater(len(rows), 1000, name)  # 2 s of 500 us ticks and more
+                steps = {int(b["t_us"]) - int(a["t_us"]) for a, b in zip(rows, rows[1:])}
+                self.assertEqual(steps, {500}, name)
+                for r in rows:
+                    self.assertTrue(0.0 <= float(r["hm"]) <= 1.0 and 0.0 <= float(r["hm_ideal"]) <= 1.0, r)
+            self.assertEqual(len(traces), 6)
+            # Each trace is told its own tremor, drawn in 8-12 Hz (docs/tracking.md#trace-classes).
+            self.assertEqual(len(tremor_hz), 6)
+            self.assertTrue(all(8.0 <= hz <= 12.0 for hz in tremor_hz), tremor_hz)
+            breakdown = os.path.join(REPO, "tools", "track_bench", "standstill_breakdown.py")
+            res = run(sys.executable, breakdown, *[os.path.join(tmp, n) for n in names])
+            self.assertEqual(res.returncode, 0, res.stderr)
+
+    def test_a_dump_or_doc_that_cannot_be_written_exits_2_and_leaves_nothing(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            res = run(BENCH, "--class", "latency", "--duration", "2",
+                      "--dump-ticks", os.path.join(tmp, "missing", "d.csv"))
+            self.assertEqual(res.returncode, 2)
+            self.assertEqual(res.stderr.strip().splitlines()[-1],
+                             "ff-track-bench: cannot write %s" % os.path.join(tmp, "missing", "d.csv"))
+            self.assertEqual(res.stdout, "")  # refused before the class is evaluated
+            res = run(BENCH, "--class", "latency", "--duration", "2", "--write-doc", tmp)  # a folder
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("cannot write " + tmp, res.stderr)
+            self.assertEqual(os.listdir(tmp), [])
+            # The doc is written whole through doc.md.partial, then renamed: where the partial
+            # file cannot be made (a folder in its way here), the doc stays as it was.
+            doc = os.path.join(tmp, "doc.md")
+            with open(doc, "w") as f:
+                f.write("kept\n")
+            os.mkdir(doc + ".partial")
+            res = run(BENCH, "--class", "latency", "--duration", "2", "--write-doc", doc)
+            self.assertEqual(res.returncode, 2)
+            with open(doc) as f:
+                self.assertEqual(f.read(), "kept\n")
 
     def test_bad_usage_exits_2(self):
         res = run(BENCH, "--csv", "x.csv")

@@ -80,6 +80,22 @@ class TrackBenchTrace(TraceFiles):
             self.assertLess(column(recommended, 8), column(thesis, 8))  # heightmap amplitude RMS
             self.assertLess(column(recommended, 4), column(thesis, 4))  # lag
 
+    def test_dump_ticks_of_a_trace_file_names_it_and_the_profile_told(self):
+        path = os.path.join(self.tmp, "ticks.csv")
+        res = run(BENCH, "--trace", self.generated, "--white-noise-px", "2.5", "--dump-ticks", path)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        with open(path) as f:
+            lines = f.read().splitlines()
+        meta = dict(l[2:].split(": ", 1) for l in lines if l.startswith("# "))
+        self.assertEqual(meta["trace"], self.generated)
+        self.assertIn("--white-noise-px 2.5 ", meta["sensor_profile"])
+        header = next(l for l in lines if not l.startswith("#"))
+        self.assertTrue(header.startswith("t_us,x_true,y_true,"), header)
+        self.assertEqual(sorted(os.listdir(self.tmp)), ["ticks.csv"])
+        res = run(BENCH, "--trace", self.generated, "--dump-ticks", self.tmp)  # a folder
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("ff-track-bench: cannot write " + self.tmp, res.stderr)
+
     def test_bad_files_exit_2_with_one_line(self):
         missing = run(BENCH, "--trace", os.path.join(self.tmp, "nope.csv"))
         self.assertEqual(missing.returncode, 2)

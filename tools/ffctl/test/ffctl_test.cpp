@@ -743,6 +743,17 @@ TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
   EXPECT_FALSE(write_recording(blocked, r, error));
   EXPECT_EQ(error, "cannot write " + condition_path_for(blocked));
   std::filesystem::remove_all(condition_path_for(blocked));
+  // The condition file is written whole through NAME.condition.partial: where that cannot be
+  // made (a folder in its way), the file already there is left as it was.
+  std::ofstream(condition_path_for(blocked)) << "kept\n";
+  std::filesystem::create_directory(condition_path_for(blocked) + ".partial");
+  EXPECT_FALSE(write_recording(blocked, r, error));
+  EXPECT_EQ(error, "cannot write " + condition_path_for(blocked));
+  std::stringstream kept;
+  kept << std::ifstream(condition_path_for(blocked)).rdbuf();
+  EXPECT_EQ(kept.str(), "kept\n");
+  std::filesystem::remove_all(condition_path_for(blocked) + ".partial");
+  std::filesystem::remove(condition_path_for(blocked));
 }
 
 TEST(Ffctl, ARecordingWithBrokenTicksIsRefusedWithItsLine) {
