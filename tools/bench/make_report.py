@@ -264,18 +264,35 @@ def plot(rows, path, have_m4):
     fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=9)
     fig.suptitle("Cost against error for every evaluation strategy (marker area ~ table + plan bytes; "
                  "errors below 1e-4 LSB drawn at 1e-4)")
+    write_whole(path, lambda partial: fig.savefig(partial, dpi=90, bbox_inches="tight", format="png"))
+
+
+def write_whole(path, write):
+    """write(partial) into PATH.partial, then renamed to PATH: a killed or failed run leaves the old
+    file as it was (docs/tools.md#files), never half a new one."""
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    fig.savefig(path, dpi=90, bbox_inches="tight")
+    partial = path + ".partial"
+    try:
+        write(partial)
+        os.replace(partial, path)
+    finally:
+        if os.path.exists(partial):
+            os.remove(partial)
 
 
-def write_csv(rows, path):
+def write_csv(rows, path, metadata):
     cols = ["id", "scene", "strategy", "default", "fits_teensy", "table_bytes", "plan_bytes", "max_lsb", "p99_lsb",
             "rms_lsb", "max_interior_lsb", "worst_x", "worst_y", "worst_direction_deg", "where", "max_g_core",
             "max_g_ref", "m4_eval_instr", "m4_tick_instr", "m4_tick_estimated", "m4_tick_max_instr",
             "m4_prepare_instr", "gradient_evaluations", "host_eval_ns", "host_prepare_us", "host_tick_ns",
             "checksum_match"]
-    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    write_whole(path, lambda partial: write_csv_rows(rows, cols, partial, metadata))
+
+
+def write_csv_rows(rows, cols, path, metadata):
     with open(path, "w", newline="") as f:
+        for key, value in metadata:
+            f.write("# %s: %s\n" % (key, value))
         w = csv.writer(f)
         w.writerow(cols)
         for r in rows:
@@ -760,12 +777,21 @@ def main():
         if m4["errors"]:
             sys.exit("make_report: the harness reported errors: " + "; ".join(m4["errors"]))
     rows = merge(host_cases, m4)
-    write_csv(rows, args.csv)
+    inputs = ", ".join("%s %s" % (flag, value) for flag, value in
+                       (("--host", args.host), ("--m4", args.m4), ("--cycles", args.cycles),
+                        ("--m4-accuracy", args.m4_accuracy)) if value)
+    write_csv(rows, args.csv, [("tool", "tools/bench/make_report.py"),
+                               ("date", datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")),
+                               ("input", inputs),
+                               ("environment", args.environment or "not given"),
+                               ("what", "every figure of %s, one row per scene and evaluation strategy" % args.md)])
     plot(rows, args.png, m4 is not None and bool(m4["cases"]))
     text = report(rows, m4, host_trackers, args)
-    os.makedirs(os.path.dirname(args.md) or ".", exist_ok=True)
-    with open(args.md, "w") as f:
-        f.write(text)
+
+    def write_md(partial):
+        with open(partial, "w") as f:
+            f.write(text)
+    write_whole(args.md, write_md)
     print("make_report: wrote %s, %s, %s (%d strategies)" % (args.md, args.csv, args.png, len(rows)))
 
 
