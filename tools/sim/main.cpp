@@ -107,13 +107,17 @@ int main(int argc, char** argv) {
   teensy_model::boot();
   teensy_model::run_until(teensy_model::now_us() + 200000);
   const uint64_t t0 = teensy_model::now_us();
+  std::vector<ff::SensorSample> trace;
   if (!rows.empty()) {
     // The trace keeps its own clock: a report stamped t_us arrives t_us after ff-sim is ready
     // (a recorder started at once sees the plate at rest before the finger lands).
-    std::vector<ff::SensorSample> trace;
     for (const auto& r : rows) trace.push_back({static_cast<uint32_t>(t0 + r.t_us), r.x, r.y, r.touch});
     devices.zforce.load_trace(trace);
   }
+  // The trace's finger presses the plate from a touching report to the next lifted one; before
+  // its first report and after its last it is away.
+  size_t next_report = 0;
+  bool trace_touching = false;
 
   // From here simulated time follows the wall clock (times --speed).
   using clock = std::chrono::steady_clock;
@@ -149,7 +153,10 @@ int main(int argc, char** argv) {
       finger.step(now, devices.zforce);
       devices.set_force_mN(finger.state().down ? finger.state().force_N * 1000.0f : 0.0f);
     } else {
-      devices.set_force_mN(devices.zforce.frames_pending() > 0 ? trace_force_N * 1000.0f : 0.0f);
+      for (; next_report < trace.size() && trace[next_report].t_us <= now; ++next_report)
+        trace_touching = trace[next_report].touch;
+      if (next_report == trace.size()) trace_touching = false;
+      devices.set_force_mN(trace_touching ? trace_force_N * 1000.0f : 0.0f);
     }
     teensy_model::run_until(now + 1000);
     if (live_line && clock::now() >= next_line) {

@@ -145,6 +145,45 @@ TEST(FfSim, AFingerFromDatagramsRendersTheSceneAndPressesTheLoadCells) {
   EXPECT_FALSE(sim.status().status.finger_present);
 }
 
+TEST(FfSim, ATracesFingerPressesTheLoadCellsOnlyWhileItTouches) {
+  // Half-second phases: away (no reports yet), down sliding right, lifted, down again, lifted
+  // reports to the end. The sensor has frames to deliver from the start to 2 s, but the plate is
+  // pressed only while the trace touches. The firmware averages 5 load-cell readings 30 ms apart
+  // (150 ms to settle), so each check comes 350 ms after a change and 150 ms before the next:
+  // ff-sim may fall 200 ms behind the wall clock on a loaded machine and still pass.
+  const std::string path = ::testing::TempDir() + "ff_sim_force_trace.csv";
+  {
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "t_us,x,y,touch\n");
+    for (int t_ms = 500; t_ms <= 2500; t_ms += 5) {
+      const bool down = (t_ms < 1000) || (t_ms >= 1500 && t_ms < 2000);
+      std::fprintf(f, "%d,%d,240,%d\n", t_ms * 1000, 200 + (t_ms - 500) / 10, down ? 1 : 0);
+    }
+    std::fclose(f);
+  }
+  Sim sim("--trace " + path);
+  ASSERT_NE(sim.port, 0);
+  auto at_ms = [&sim](int ms) { std::this_thread::sleep_until(sim.started + sim.ready_after + std::chrono::milliseconds(ms)); };
+  // Whole ADC counts per cell: 300 mN / (4 x 10.508) = 7.14 -> 7 counts each: 294.2 mN.
+  const float pressed_mN = 294.22f;
+  at_ms(350);
+  EXPECT_LT(sim.status().status.force_mN, 50.0f) << "before the trace's first report";
+  at_ms(850);
+  const Message down = sim.status();
+  EXPECT_TRUE(down.status.finger_present);
+  EXPECT_NEAR(down.status.force_mN, pressed_mN, 0.5f);
+  at_ms(1350);
+  const Message lifted = sim.status();
+  EXPECT_FALSE(lifted.status.finger_present);
+  EXPECT_LT(lifted.status.force_mN, 50.0f) << "lifted between two strokes";
+  at_ms(1850);
+  EXPECT_NEAR(sim.status().status.force_mN, pressed_mN, 0.5f) << "down again";
+  at_ms(2350);
+  EXPECT_LT(sim.status().status.force_mN, 50.0f) << "lifted reports still arriving";
+  std::remove(path.c_str());
+}
+
 TEST(FfSim, RefusesABadTraceWithExitCode2) {
   const int rc = std::system((std::string(FF_SIM_BINARY) + " --trace /nonexistent.csv -q 2>/dev/null").c_str());
   ASSERT_TRUE(WIFEXITED(rc));
