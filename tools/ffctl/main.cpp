@@ -6,7 +6,6 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -15,6 +14,7 @@
 
 #include "device_client.hpp"
 #include "frictionfield/drivers/zforce_sensor.hpp"
+#include "frictionfield/host/cli_conventions.hpp"
 #include "frictionfield/host/scene_spec.hpp"
 #include "frictionfield/host/sensor_profile_options.hpp"
 #include "halfkay.hpp"
@@ -22,30 +22,28 @@
 #include "scene_command.hpp"
 #include "udp_transport.hpp"
 
-#ifndef FF_VERSION
-#define FF_VERSION "unknown"
-#endif
-
 namespace {
 
 using ff::protocol::Message;
 using ff::protocol::MessageType;
 
-// One exit-code convention for every frictionfield tool.
-constexpr int kExitOk = 0;
-constexpr int kExitFailed = 1;  // a failed check: verify mismatch, the device refused or did not answer
-constexpr int kExitUsage = 2;   // bad usage or input: options, files, images
+// One exit-code convention for every frictionfield tool (cli_conventions.hpp): 1 is a failed
+// check (verify mismatch, the device refused or did not answer), 2 bad usage or input
+// (options, files, images).
+using ff::host::kExitBadUsage;
+using ff::host::kExitCheckFailed;
+using ff::host::kExitOk;
 
 volatile std::sig_atomic_t g_interrupted = 0;
 void on_interrupt(int) { g_interrupted = 1; }
 
 int fail(const std::string& what) {
   std::cerr << "ffctl: " << what << "\n";
-  return kExitFailed;
+  return kExitCheckFailed;
 }
 int usage(const std::string& what) {
   std::cerr << "ffctl: " << what << "\n";
-  return kExitUsage;
+  return kExitBadUsage;
 }
 
 // Whether any of the shared scene words (--scene, --target, --strength, ...) was given.
@@ -70,13 +68,6 @@ std::string words_after(int argc, char** argv, const std::string& subcommand) {
     if (argv[i] == subcommand) after = true;
   }
   return out;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
 }
 
 bool set_condition(ff::ffctl::DeviceClient& client, const ff::host::SceneSpec& spec,
@@ -247,13 +238,14 @@ bool read_file(const std::string& path, std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ffctl " FF_VERSION ": talk to a frictionfield device (Teensy 3.6) over USB (USB type USB_HID) or UDP.\n"
+  const std::string version = ff::host::project_version();
+  CLI::App app{"ffctl " + version + ": talk to a frictionfield device (Teensy 3.6) over USB (USB type USB_HID) or UDP.\n"
                "  ffctl list | status | monitor | scene --scene heightmap --target top --strength 0.66\n"
                "  ffctl sensor-profile --white-noise-px 1.2 ... (ff-track-bench --calibrate prints them) | --show\n"
                "  ffctl record -o trace.csv [--seconds 30] [scene words] | verify trace.csv\n"
                "  ffctl carrier 34900 | sweep 25000 70000 30000 | reboot | reset | flash [--wait] firmware.hex"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "ffctl " FF_VERSION " (protocol " + std::to_string(ff::protocol::kVersion) + ")");
+  app.set_version_flag("--version", "ffctl " + version + " (protocol " + std::to_string(ff::protocol::kVersion) + ")");
   app.footer(
       "A session:\n"
       "  ffctl list                          is the device on USB?\n"
@@ -335,12 +327,7 @@ int main(int argc, char** argv) {
   auto* flash = app.add_subcommand("flash", "write a firmware image (Intel HEX for the MK66FX1M0) through the Teensy bootloader");
   flash->add_option("firmware", hex, "firmware.hex from `pio run -e teensy36`")->required();
   flash->add_flag("-w,--wait", flash_wait, "wait (until Ctrl-C) for the bootloader: press the Teensy's button");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help, version or the error
-    return code == 0 ? kExitOk : kExitUsage;
-  }
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   // Usage and input, checked before any device is touched.
   std::string udp_host;
@@ -436,7 +423,7 @@ int main(int argc, char** argv) {
                     "prove anything\n",
                     100.0 * v.coverage(), min_coverage_pct);
       }
-      return kExitFailed;
+      return kExitCheckFailed;
     }
     if (*flash) {
       std::string text, error;
@@ -532,7 +519,7 @@ int main(int argc, char** argv) {
       if (refused) std::printf("the device refused the profile (outside its limits); it keeps the one it had\n");
       std::printf("the device's tracker uses: %s\n", ff::ffctl::describe(active).c_str());
       std::printf("  ffctl sensor-profile %s\n", ff::host::sensor_profile_flags(active).c_str());
-      return refused ? kExitFailed : kExitOk;
+      return refused ? kExitCheckFailed : kExitOk;
     }
     if (*monitor) {
       std::signal(SIGINT, on_interrupt);
@@ -551,7 +538,7 @@ int main(int argc, char** argv) {
         if (tty) {
           std::printf("\r%s\033[K", line.c_str());
         } else if (changing != last_changing) {
-          std::printf("%s %s\n", utc_now().c_str(), line.c_str());
+          std::printf("%s %s\n", ff::host::utc_timestamp().c_str(), line.c_str());
         }
         std::fflush(stdout);
         last_changing = changing;
@@ -584,8 +571,8 @@ int main(int argc, char** argv) {
     }
     if (*rec) {
       ff::ffctl::Recording r;
-      std::vector<std::string> metadata = {"ffctl " FF_VERSION " record " + words_after(argc, argv, "record"),
-                                           "date " + utc_now(),
+      std::vector<std::string> metadata = {"ffctl " + version + " record " + words_after(argc, argv, "record"),
+                                           "date " + ff::host::utc_timestamp(),
                                            "device " + (udp.empty() ? "usb" + (serial.empty() ? "" : " serial " + serial)
                                                                     : "udp " + udp_host + ":" + std::to_string(udp_port))};
       if (scene_words_given(*rec)) {
