@@ -14,11 +14,13 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <string>
 #include <thread>
 
+#include "frictionfield/host/cli_conventions.hpp"
 #include "frictionfield/host/trace_csv.hpp"
 #include "live_finger.hpp"
 #include "sim_devices.hpp"
@@ -66,11 +68,7 @@ int main(int argc, char** argv) {
   app.add_flag("--stroke", stroke, "a scripted finger sliding along the middle path")->excludes(trace_opt);
   app.add_option("--trace-force", trace_force_N, "force on the plate while the trace touches, N")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no live status line");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  if (const int code = ff::host::parse_command_line(app, argc, argv); code >= 0) return code;
 
   std::vector<ff::host::TraceRow> rows;
   if (!trace_path.empty()) {
