@@ -6,7 +6,7 @@ import os
 import sys
 import warnings
 
-from . import VERSION, analysis, figures, logs, stats
+from . import VERSION, analysis, figures, files, logs, stats
 
 EPILOG = """\
 Reads each folder's session.json, trials.csv, frames.csv and (if present)
@@ -101,8 +101,8 @@ def run(argv):
             name = f"participant_{p.number}.png"
             figures.participant_page(p, os.path.join(args.output, name))
             names.append(name)
-    with open(os.path.join(args.output, "summary.md"), "w", encoding="utf-8") as f:
-        f.write(summary_text(participants, group, names))
+    text = summary_text(participants, group, names)
+    files.write_whole(os.path.join(args.output, "summary.md"), lambda f: f.write(text))
     print(f"ff-analyse: {len(participants)} participant(s) -> {os.path.join(args.output, 'summary.md')}")
     return 0
 

@@ -10,7 +10,7 @@ import os
 
 import numpy as np
 
-from . import logs
+from . import files, logs
 
 EXCLUSION_COLUMNS = ["trial", "reason"]
 JUMP_PX_PER_S = 8000.0       # ~1.5 m/s on the 7" screen: faster than an exploring finger
@@ -74,9 +74,11 @@ def propose(folder):
 def write_proposal(folder, candidates):
     """Writes exclusions.proposed.csv for a person to review (never exclusions.csv)."""
     path = os.path.join(folder, "exclusions.proposed.csv")
-    with open(path, "w", newline="", encoding="utf-8") as f:
+
+    def write(f):
         w = csv.writer(f, lineterminator="\n")
         w.writerow(EXCLUSION_COLUMNS + ["detail"])
         for n, reason, detail in candidates:
             w.writerow([n, reason, detail])
+    files.write_whole(path, write)
     return path

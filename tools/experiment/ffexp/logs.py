@@ -16,6 +16,8 @@ import json
 import math
 import os
 
+from . import files
+
 FORMAT = "ff-experiment-log"
 FORMAT_VERSION = 1
 
@@ -86,18 +88,15 @@ def _cell(v):
 
 
 def write_session(folder, header):
-    """Writes session.json atomically (temp file, fsync, rename)."""
+    """Writes session.json whole (files.write_whole: partial file, fsync, rename)."""
     data = dict(header)
     data["format"] = FORMAT
     data["format_version"] = FORMAT_VERSION
-    path = os.path.join(folder, "session.json")
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as f:
+
+    def write(f):
         json.dump(data, f, indent=2, sort_keys=True)
         f.write("\n")
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
+    files.write_whole(os.path.join(folder, "session.json"), write)
 
 
 class ParticipantLog:
