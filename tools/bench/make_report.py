@@ -11,6 +11,9 @@ import platform
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ff_files  # noqa: E402
+
 BUDGET_CYCLES = 90_000      # one 500 us tick at 180 MHz
 CLOCK_HZ = 180e6            # Teensy 3.6
 PREPARE_GOAL_INSTR = 360_000  # 2 ms at 180 MHz, 1 instruction ~ 1 cycle
@@ -264,20 +267,8 @@ def plot(rows, path, have_m4):
     fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=9)
     fig.suptitle("Cost against error for every evaluation strategy (marker area ~ table + plan bytes; "
                  "errors below 1e-4 LSB drawn at 1e-4)")
-    write_whole(path, lambda partial: fig.savefig(partial, dpi=90, bbox_inches="tight", format="png"))
-
-
-def write_whole(path, write):
-    """write(partial) into PATH.partial, then renamed to PATH: a killed or failed run leaves the old
-    file as it was (docs/tools.md#files), never half a new one."""
-    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    partial = path + ".partial"
-    try:
-        write(partial)
-        os.replace(partial, path)
-    finally:
-        if os.path.exists(partial):
-            os.remove(partial)
+    ff_files.save_figure(fig, path, "tools/bench/make_report.py", "every evaluation strategy's cost against its error",
+                          dpi=90, bbox_inches="tight")
 
 
 def write_csv(rows, path, metadata):
@@ -286,25 +277,24 @@ def write_csv(rows, path, metadata):
             "max_g_ref", "m4_eval_instr", "m4_tick_instr", "m4_tick_estimated", "m4_tick_max_instr",
             "m4_prepare_instr", "gradient_evaluations", "host_eval_ns", "host_prepare_us", "host_tick_ns",
             "checksum_match"]
-    write_whole(path, lambda partial: write_csv_rows(rows, cols, partial, metadata))
+    ff_files.write_whole(path, lambda f: write_csv_rows(rows, cols, f, metadata))
 
 
-def write_csv_rows(rows, cols, path, metadata):
-    with open(path, "w", newline="") as f:
-        for key, value in metadata:
-            f.write("# %s: %s\n" % (key, value))
-        w = csv.writer(f)
-        w.writerow(cols)
-        for r in rows:
-            def g(v, d=6):
-                return "" if v is None else (("%." + str(d) + "g") % v if isinstance(v, float) else v)
-            w.writerow([r["id"], r["scene"], r["strategy"], r["default"], r["fits_teensy"], r["table_bytes"],
-                        r["plan_bytes"], r["max_lsb"], r["p99_lsb"], r["rms_lsb"], r["max_interior_lsb"],
-                        r["worst_x"], r["worst_y"], r["worst_direction_deg"], r["where"], r["max_g_core"],
-                        r["max_g_ref"], g(r["m4_eval"], 5), g(r["m4_tick"], 5), int(r["m4_tick_estimated"]),
-                        g(r["m4_tick_max"]), g(r["m4_prepare"]), r["gradient_evaluations"], r["host_eval_ns"],
-                        r["host_prepare_us"], r["host_tick_ns"],
-                        "" if r["checksum_match"] is None else int(r["checksum_match"])])
+def write_csv_rows(rows, cols, f, metadata):
+    for key, value in metadata:
+        f.write("# %s: %s\n" % (key, value))
+    w = csv.writer(f)
+    w.writerow(cols)
+    for r in rows:
+        def g(v, d=6):
+            return "" if v is None else (("%." + str(d) + "g") % v if isinstance(v, float) else v)
+        w.writerow([r["id"], r["scene"], r["strategy"], r["default"], r["fits_teensy"], r["table_bytes"],
+                    r["plan_bytes"], r["max_lsb"], r["p99_lsb"], r["rms_lsb"], r["max_interior_lsb"],
+                    r["worst_x"], r["worst_y"], r["worst_direction_deg"], r["where"], r["max_g_core"],
+                    r["max_g_ref"], g(r["m4_eval"], 5), g(r["m4_tick"], 5), int(r["m4_tick_estimated"]),
+                    g(r["m4_tick_max"]), g(r["m4_prepare"]), r["gradient_evaluations"], r["host_eval_ns"],
+                    r["host_prepare_us"], r["host_tick_ns"],
+                    "" if r["checksum_match"] is None else int(r["checksum_match"])])
 
 
 def tool_version(cmd):
@@ -788,10 +778,7 @@ def main():
     plot(rows, args.png, m4 is not None and bool(m4["cases"]))
     text = report(rows, m4, host_trackers, args)
 
-    def write_md(partial):
-        with open(partial, "w") as f:
-            f.write(text)
-    write_whole(args.md, write_md)
+    ff_files.write_whole(args.md, lambda f: f.write(text))
     print("make_report: wrote %s, %s, %s (%d strategies)" % (args.md, args.csv, args.png, len(rows)))
 
 

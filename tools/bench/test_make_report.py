@@ -1,30 +1,6 @@
-"""make_report.py's outputs are written whole: through NAME.partial, renamed
-only once complete, so a failed or killed run leaves the old file."""
-import pytest
-
+"""make_report.py's CSV: metadata first, then the rows (the files are
+written whole by ff_files, tools/common/test_ff_files.py)."""
 import make_report
-
-
-def test_a_complete_write_replaces_the_file_and_leaves_no_partial(tmp_path):
-    path = tmp_path / "sub" / "benchmarks.md"
-    make_report.write_whole(str(path), lambda partial: open(partial, "w").write("new\n"))
-    assert path.read_text() == "new\n"
-    assert sorted(p.name for p in path.parent.iterdir()) == ["benchmarks.md"]
-
-
-def test_a_failed_write_leaves_the_old_file_as_it_was(tmp_path):
-    path = tmp_path / "benchmarks.md"
-    path.write_text("old\n")
-
-    def half_then_fail(partial):
-        with open(partial, "w") as f:
-            f.write("half")
-        raise OSError("disk full")
-
-    with pytest.raises(OSError):
-        make_report.write_whole(str(path), half_then_fail)
-    assert path.read_text() == "old\n"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["benchmarks.md"]
 
 
 def test_the_csv_starts_with_its_metadata_and_reads_back_without_it(tmp_path):

@@ -23,8 +23,9 @@ import tempfile
 import threading
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path[:0] = [str(Path(__file__).resolve().parent), str(Path(__file__).resolve().parent.parent / "common")]
 
+import ff_files  # noqa: E402
 from disassembly import disassemble, symbols  # noqa: E402
 from model import CORE_HZ, ISR_BEST, ISR_WORST, TICK_BUDGET_CYCLES, CodeMap  # noqa: E402
 from exec_log import executed_addresses, measure_calls  # noqa: E402
@@ -175,12 +176,13 @@ def summarise(rows):
 
 
 def write_csv(path, rows, metadata):
-    with open(path, "w", newline="") as f:
+    def write(f):
         f.write(f"# {metadata}\n")
         writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()), extrasaction="ignore")
         writer.writeheader()
         for row in rows:
             writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
+    ff_files.write_whole(path, write)
 
 
 def print_summary(summary):

@@ -33,7 +33,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scene_render"))
+TOOLS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+sys.path[:0] = [os.path.join(TOOLS, "scene_render"), os.path.join(TOOLS, "common")]
+import ff_files  # noqa: E402
 from scene_sampler import ToolError, describe, find_binary, grid, parse_metadata, sample  # noqa: E402
 
 WIDTH, HEIGHT = 800, 480
@@ -238,7 +240,9 @@ def plot(args, words):
     bx.set_ylabel("amplitude A")
     bx.legend(loc="upper right", fontsize=8, ncol=3, framealpha=0.85)
     bx.grid(alpha=0.3)
-    fig.savefig(args.output, dpi=90, bbox_inches="tight")
+    ff_files.save_figure(fig, args.output, "plot_replay.py", "; ".join(
+        [f"trace: {args.trace}", f"replay: {args.replay}"] + [f"{key}: {value}" for key, value in meta.items()]),
+        dpi=90, bbox_inches="tight")
     plt.close(fig)
 
 

@@ -18,6 +18,7 @@ Any other option is passed to ff-scene-render (see its --help).
 Exit codes: 0 ok, 2 bad usage or input (one line on stderr).
 """
 import argparse
+import os
 import sys
 
 import matplotlib
@@ -26,6 +27,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from scene_sampler import ToolError, describe, find_binary, grid, sample  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ff_files  # noqa: E402
 
 CANDIDATE_DIRECTIONS = range(0, 360, 45)
 
@@ -84,7 +88,8 @@ def render(args, words):
         a.set_ylabel("y [px]")
     fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(args.output, dpi=90)
+    ff_files.save_figure(fig, args.output, "render_scene.py",
+                         "; ".join(f"{key}: {value}" for key, value in meta.items()), dpi=90)
     plt.close(fig)
     return direction, title
 

@@ -23,7 +23,10 @@ import csv
 import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ff_files  # noqa: E402
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -64,8 +67,7 @@ def save_figure(fig, output, software, metadata, title, dpi, top):
     fig.suptitle("%s; %s; %s" % (title, metadata.get("traces", "generated traces"), metadata.get("tool", "")),
                  fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, top))
-    fig.savefig(output, dpi=dpi, metadata={
-        "Software": software, "Description": "; ".join("%s: %s" % kv for kv in metadata.items())})
+    ff_files.save_figure(fig, output, software, "; ".join("%s: %s" % kv for kv in metadata.items()), dpi=dpi)
     plt.close(fig)
 
 

@@ -6,7 +6,9 @@ import os
 import sys
 import warnings
 
-from . import VERSION, analysis, figures, files, logs, stats
+import ff_files
+
+from . import VERSION, analysis, figures, logs, stats
 
 EPILOG = """\
 Reads each folder's session.json, trials.csv, frames.csv and (if present)
@@ -102,7 +104,7 @@ def run(argv):
             figures.participant_page(p, os.path.join(args.output, name))
             names.append(name)
     text = summary_text(participants, group, names)
-    files.write_whole(os.path.join(args.output, "summary.md"), lambda f: f.write(text))
+    ff_files.write_whole(os.path.join(args.output, "summary.md"), lambda f: f.write(text))
     print(f"ff-analyse: {len(participants)} participant(s) -> {os.path.join(args.output, 'summary.md')}")
     return 0
 

@@ -10,7 +10,9 @@ import os
 
 import numpy as np
 
-from . import files, logs
+import ff_files
+
+from . import logs
 
 EXCLUSION_COLUMNS = ["trial", "reason"]
 JUMP_PX_PER_S = 8000.0       # ~1.5 m/s on the 7" screen: faster than an exploring finger
@@ -80,5 +82,5 @@ def write_proposal(folder, candidates):
         w.writerow(EXCLUSION_COLUMNS + ["detail"])
         for n, reason, detail in candidates:
             w.writerow([n, reason, detail])
-    files.write_whole(path, write)
+    ff_files.write_whole(path, write)
     return path

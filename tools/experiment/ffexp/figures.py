@@ -7,7 +7,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import analysis, files, geometry, metrics  # noqa: E402
+import ff_files  # noqa: E402
+
+from . import VERSION, analysis, geometry, metrics  # noqa: E402
+
+SOFTWARE = "ff-analyse " + VERSION
 
 COLOURS = {"heightmap": "tab:blue", "frictionmap": "tab:red"}
 STRENGTH_LABELS = ["1.00", "0.66", "0.33"]
@@ -130,7 +134,7 @@ def participant_page(participant, path):
     ax.set_xlabel("extra |dx| (px)"); ax.set_ylabel("total |dy| (px)")
     angles(fig.add_subplot(grid[3, 1:3]), ps)
     fig.suptitle(f"participant {participant.number} (order {participant.order})")
-    files.save_figure(fig, path, dpi=80)
+    ff_files.save_figure(fig, path, SOFTWARE, dpi=80)
     plt.close(fig)
 
 
@@ -146,14 +150,14 @@ def group_figures(participants, group, folder):
         fig, ax = plt.subplots(figsize=(5, 3.5))
         draw(ax)
         fig.tight_layout()
-        files.save_figure(fig, os.path.join(folder, name), dpi=100)
+        ff_files.save_figure(fig, os.path.join(folder, name), SOFTWARE, dpi=100)
         plt.close(fig)
         names.append(name)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(5, 6))
     blocks(a1, participants)
     learning(a2, participants, group["learning"])
     fig.tight_layout()
-    files.save_figure(fig, os.path.join(folder, "fig15_learning.png"), dpi=100)
+    ff_files.save_figure(fig, os.path.join(folder, "fig15_learning.png"), SOFTWARE, dpi=100)
     plt.close(fig)
     names.append("fig15_learning.png")
     return names

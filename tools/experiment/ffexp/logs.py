@@ -16,7 +16,7 @@ import json
 import math
 import os
 
-from . import files
+import ff_files
 
 FORMAT = "ff-experiment-log"
 FORMAT_VERSION = 1
@@ -88,7 +88,7 @@ def _cell(v):
 
 
 def write_session(folder, header):
-    """Writes session.json whole (files.write_whole: partial file, fsync, rename)."""
+    """Writes session.json whole (ff_files.write_whole: partial file, fsync, rename)."""
     data = dict(header)
     data["format"] = FORMAT
     data["format_version"] = FORMAT_VERSION
@@ -96,7 +96,7 @@ def write_session(folder, header):
     def write(f):
         json.dump(data, f, indent=2, sort_keys=True)
         f.write("\n")
-    files.write_whole(os.path.join(folder, "session.json"), write)
+    ff_files.write_whole(os.path.join(folder, "session.json"), write)
 
 
 class ParticipantLog:

@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 import pytest
+from PIL import Image
 
 SCRIPT = "tools/plot/plot_replay.py"
 SCENES = [["--scene", s] for s in ("heightmap", "frictionmap", "neutral", "tunnel-converging", "tunnel-diverging",
@@ -50,6 +51,11 @@ def test_every_scene_is_drawn_from_the_replays_metadata(tmp_path, replayed, run_
     res = run_tool(SCRIPT, trace, out, "-o", png, "--bin", ff_scene_render)
     assert res.returncode == 0, res.stderr
     assert png.stat().st_size > 10000
+    with Image.open(png) as image:  # the PNG says what made it and from what
+        assert image.text["Software"] == "plot_replay.py"
+        description = image.text["Description"]
+    assert f"trace: {trace}; replay: {out}; " in description and f"scene: --scene {words[1]}" in description
+    assert sorted(os.listdir(tmp_path)) == sorted([os.path.basename(trace), os.path.basename(out), "p.png"])
 
 
 def test_a_scene_file_is_drawn_too(tmp_path, replayed, run_tool, ff_scene_render):

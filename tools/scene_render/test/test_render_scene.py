@@ -5,6 +5,7 @@ import subprocess
 
 import numpy as np
 import pytest
+from PIL import Image
 
 SCRIPT = "tools/scene_render/render_scene.py"
 SCENES = ["heightmap", "frictionmap", "neutral", "tunnel-converging", "tunnel-diverging", "tunnel-neutral",
@@ -24,6 +25,10 @@ def test_every_scene_draws(tmp_path, run_tool, ff_scene_render, scene):
     res = run_tool(SCRIPT, "--scene", scene, "--step", "8", "-o", png, "--bin", ff_scene_render)
     assert res.returncode == 0, res.stderr
     assert png.stat().st_size > 10000
+    with Image.open(png) as image:  # the PNG says what made it and which scene
+        assert image.text["Software"] == "render_scene.py"
+        assert f"scene: --scene {scene} " in image.text["Description"]
+    assert os.listdir(tmp_path) == ["s.png"]
 
 
 def test_a_tunnel_is_drawn_moving_across_it(tmp_path, run_tool, ff_scene_render):

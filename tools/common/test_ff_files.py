@@ -1,0 +1,93 @@
+"""ff_files: the Python tools' outputs written whole, through NAME.partial,
+flushed to disk and renamed only once complete, so a failed or killed run
+leaves the old file and no partial one."""
+import os
+import threading
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from PIL import Image  # noqa: E402
+import pytest  # noqa: E402
+
+import ff_files  # noqa: E402
+
+
+def test_a_complete_write_replaces_the_file_and_leaves_no_partial(tmp_path):
+    path = tmp_path / "summary.md"
+    path.write_text("old\n")
+    ff_files.write_whole(str(path), lambda f: f.write("new é\r\n"))
+    assert path.read_bytes() == "new é\r\n".encode("utf-8")  # UTF-8, line ends as written
+    assert os.listdir(tmp_path) == ["summary.md"]
+
+
+def test_a_missing_folder_is_made(tmp_path):
+    path = tmp_path / "report" / "benchmarks.md"
+    ff_files.write_whole(str(path), lambda f: f.write("new\n"))
+    assert path.read_text() == "new\n"
+
+
+def test_a_failed_write_leaves_the_old_file_as_it_was(tmp_path):
+    path = tmp_path / "exclusions.proposed.csv"
+    path.write_text("old\n")
+
+    def half_then_fail(f):
+        f.write("half")
+        raise OSError("disk full")
+
+    with pytest.raises(OSError):
+        ff_files.write_whole(str(path), half_then_fail)
+    assert path.read_text() == "old\n"
+    assert os.listdir(tmp_path) == ["exclusions.proposed.csv"]
+
+
+def test_the_data_reaches_the_disk_before_the_rename(tmp_path, monkeypatch):
+    calls = []
+    real_fsync, real_replace = os.fsync, os.replace
+    monkeypatch.setattr(os, "fsync", lambda fd: (calls.append("fsync"), real_fsync(fd))[1])
+    monkeypatch.setattr(os, "replace", lambda a, b: (calls.append("replace"), real_replace(a, b))[1])
+    ff_files.write_whole(str(tmp_path / "session.json"), lambda f: f.write("{}"))
+    assert calls == ["fsync", "replace"]
+
+
+def test_a_fifo_is_written_into_not_replaced(tmp_path):
+    fifo = str(tmp_path / "pipe")
+    os.mkfifo(fifo)
+    received = []
+    reader = threading.Thread(target=lambda: received.append(open(fifo).read()))
+    reader.start()
+    ff_files.write_whole(fifo, lambda f: f.write("through the pipe\n"))
+    reader.join(timeout=10)
+    assert received == ["through the pipe\n"]
+    assert os.path.exists(fifo) and not os.path.isfile(fifo)
+    assert os.listdir(tmp_path) == ["pipe"]
+
+
+def _figure():
+    fig, ax = plt.subplots(figsize=(2, 2))
+    ax.plot([0, 1], [0, 1])
+    return fig
+
+
+def test_a_figure_is_a_png_written_whole_saying_what_made_it(tmp_path):
+    fig = _figure()
+    path = tmp_path / "fig.png"
+    ff_files.save_figure(fig, str(path), "plot_replay.py", "trace: a.csv; scene: heightmap", dpi=50)
+    plt.close(fig)
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with Image.open(path) as image:
+        assert image.text["Software"] == "plot_replay.py"
+        assert image.text["Description"] == "trace: a.csv; scene: heightmap"
+    assert os.listdir(tmp_path) == ["fig.png"]
+
+
+def test_a_figure_takes_the_format_its_name_ends_with(tmp_path):
+    fig = _figure()
+    ff_files.save_figure(fig, str(tmp_path / "fig.svg"), "render_scene.py", "scene: vortex")
+    ff_files.save_figure(fig, str(tmp_path / "fig.pdf"), "render_scene.py", "scene: vortex")
+    ff_files.save_figure(fig, str(tmp_path / "fig.out"))  # no known ending: PNG
+    plt.close(fig)
+    svg = (tmp_path / "fig.svg").read_text()
+    assert svg.lstrip().startswith("<?xml") and "render_scene.py" in svg and "scene: vortex" in svg
+    assert (tmp_path / "fig.pdf").read_bytes()[:5] == b"%PDF-"
+    assert (tmp_path / "fig.out").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
