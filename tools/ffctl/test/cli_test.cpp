@@ -14,10 +14,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <fstream>
 #include <memory>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -84,7 +86,8 @@ class UdpDevice final : public firmware::Board {
   bool hid_receive(uint8_t*) override { return false; }
   void hid_send(const uint8_t*) override {}
   uint32_t cycles() override { return cycles_ += 700; }
-  void reboot_to_bootloader() override {}
+  void reboot_to_bootloader() override { ++reboots_; }
+  int reboots() const { return reboots_; }
 
  private:
   struct Datagram {
@@ -119,6 +122,7 @@ class UdpDevice final : public firmware::Board {
   int socket_ = -1;
   uint16_t port_ = 0;
   uint32_t cycles_ = 0;
+  std::atomic<int> reboots_{0};
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
@@ -231,6 +235,22 @@ TEST(FfctlCli, BadUsageIsExitTwoBeforeAnyDeviceIsTouched) {
   r = ffctl("--help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("Exit codes: 0 ok; 1 a failed check"), std::string::npos);
+  r = ffctl("");  // which command?
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("A subcommand is required"), std::string::npos) << r.err;
+  for (const char* bad : {"carrier 0", "carrier -34900", "carrier nan", "carrier inf", "sweep 0 40000 1000",
+                          "sweep 30000 -1 1000", "sweep 30000 40000 0", "sweep nan 40000 1000", "sweep 30000 40000"}) {
+    r = ffctl(std::string("--udp 127.0.0.1:9 ") + bad);  // nobody on port 9: refused before asking
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_EQ(r.err.find("no reply"), std::string::npos) << bad << ": " << r.err;
+  }
+  // The USB commands without a device: list says so (or lists what is there), --serial is an option.
+  r = ffctl("--serial 0123456 list");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(r.out.empty());
+  r = ffctl("--serial no-such-serial status");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("no frictionfield device with serial number no-such-serial"), std::string::npos) << r.err;
   // Nobody answers on this port: a failed operation, not bad usage.
   r = ffctl("--udp 127.0.0.1:9 status");
   EXPECT_EQ(r.exit_code, 1);
@@ -263,6 +283,10 @@ TEST(FfctlCli, FlashRefusesAnImageThatIsNotForTheMk66) {
   r = ffctl("flash " + write_hex("imxrt.hex", 0x20030000u, 0x60001001u));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("reset vector 0x60001001"), std::string::npos) << r.err;
+  // --wait changes only how the bootloader is found: the image is checked first all the same.
+  r = ffctl("flash --wait " + write_hex("even_reset_wait.hex", 0x20030000u, 0x00000400u));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("reset vector 0x00000400 is not an odd"), std::string::npos) << r.err;
 }
 
 TEST(Mk66Image, VectorTableChecksByHand) {
@@ -307,14 +331,21 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("firmware 1."), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("interrupt (whole, DWT)"), std::string::npos) << r.out;
+  // The fault counters and the sensor's: nonzero ones only, each list a line of its own.
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("\nfaults: (none|[a-z_]+ [1-9][0-9]*(, [a-z_]+ [1-9][0-9]*)*)\n")))
+      << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("\ntouch sensor: running, frames read [1-9][0-9]*(, [a-z ]+ [1-9][0-9]*)*\n")))
+      << r.out;
   r = ffctl(udp(device) + "scene --scene frictionmap --target bottom --strength 0.33");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("condition set: frictionmap, target bottom, strength 0.33"), std::string::npos) << r.out;
   r = ffctl(udp(device) + "status");
   EXPECT_NE(r.out.find("condition: frictionmap, target bottom, strength 0.33"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("device: conditions_set 1\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("touch sensor: running, frames read "), std::string::npos) << r.out;
   r = ffctl(udp(device) + "carrier 35000");
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("carrier set to 35000.0 Hz"), std::string::npos) << r.out;
   r = ffctl(udp(device) + "status");
   const size_t at = r.out.find("carrier ");
   ASSERT_NE(at, std::string::npos) << r.out;
@@ -335,7 +366,19 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   EXPECT_EQ(trace.rfind("# ffctl ", 0), 0u);
   EXPECT_NE(trace.find("record -o " + path + " --seconds 2 --scene heightmap"), std::string::npos);
   EXPECT_NE(trace.find("# firmware 1."), std::string::npos);
+  const size_t condition_line = trace.find("# condition heightmap, target top, strength 0.66,");
+  ASSERT_NE(condition_line, std::string::npos);
+  EXPECT_EQ(trace.find("(set by this recording)\n", condition_line), trace.find('\n', condition_line) - 23);
+  EXPECT_NE(r.err.find("condition set: heightmap, target top, strength 0.66,"), std::string::npos) << r.err;
   EXPECT_NE(trace.find("# date 20"), std::string::npos);
+  // By now the finger has come and gone: both counted, on the faults line.
+  r = ffctl(udp(device) + "status");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::smatch faults;
+  ASSERT_TRUE(std::regex_search(r.out, faults, std::regex("\nfaults: ([a-z_]+ [1-9][0-9]*(, [a-z_]+ [1-9][0-9]*)*)\n")))
+      << r.out;
+  EXPECT_NE(faults[1].str().find("touch_down "), std::string::npos) << r.out;
+  EXPECT_NE(faults[1].str().find("lift_off "), std::string::npos) << r.out;
   // Force every 30 ms: ~66 in 2 s.
   const std::string force = slurp(force_path_for(path));
   EXPECT_NE(force.find("t_us,force_mN,over_force\n"), std::string::npos);
@@ -347,9 +390,55 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("PASS"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("of " + std::to_string(rec.ticks.size()) + " recorded ticks (coverage "), std::string::npos) << r.out;
+  r = ffctl("verify " + path + " --min-coverage 60 --scene heightmap --target top --strength 0.66");
+  EXPECT_EQ(r.exit_code, 0) << r.out;  // the same condition given as words
+  EXPECT_NE(r.out.find("PASS"), std::string::npos) << r.out;
+  // Without its sensor-profile file verify takes the default profile, the one this device used, and says so.
+  ASSERT_EQ(std::remove(sensor_profile_path_for(path).c_str()), 0);
+  r = ffctl("verify " + path + " --min-coverage 60");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("sensor profile: the default (no " + sensor_profile_path_for(path) + ")"), std::string::npos)
+      << r.out;
   r = ffctl("verify " + path + " --scene heightmap --target bottom --strength 0.66");
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.out.find("FAIL"), std::string::npos) << r.out;
+}
+
+TEST(FfctlCli, SweepAndRebootOverUdp) {
+  UdpDevice device(strokes);
+  CliRun r = ffctl(udp(device) + "sweep 30000 40000 2000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("sweeping 30000.0 .. 40000.0 Hz over 2000 ms"), std::string::npos) << r.out;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  r = ffctl(udp(device) + "status");
+  const size_t at = r.out.find("carrier ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double hz = std::atof(r.out.c_str() + at + 8);
+  EXPECT_GT(hz, 30000.0) << r.out;  // under way: past its start, short of its end
+  EXPECT_LT(hz, 40000.0) << r.out;
+  r = ffctl(udp(device) + "sweep 30000 5000000 1000");  // beyond the AD9834's range
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  // Over UDP the device's acknowledgement is all there is to wait for (this one stays up).
+  r = ffctl(udp(device) + "reboot");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("the device acknowledged: it rests the plate"), std::string::npos) << r.out;
+  for (int i = 0; i < 100 && device.reboots() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(device.reboots(), 1);  // asked once (it replies first, then restarts)
+}
+
+TEST(FfctlCli, TheRecordersLiveLineOnlyWhereItIsWanted) {
+  UdpDevice device(strokes);
+  const std::string path = support::scratch_path("udp_progress.csv");
+  // stderr is a file here: no live line unless --progress asks for it.
+  CliRun r = ffctl(udp(device) + "record -o " + path + " --seconds 0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("wrote " + path), std::string::npos) << r.err;
+  r = ffctl(udp(device) + "record -o " + path + " --seconds 0.5 --progress");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("\r"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" ticks, "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" lost\033[K\nwrote " + path), std::string::npos) << r.err;  // the summary on a line of its own
 }
 
 TEST(FfctlCli, SensorProfileIsSentReadBackShownAndKeptByARecording) {
@@ -413,6 +502,8 @@ TEST(FfctlCli, VerifyFailsAnotherSceneWhenTheFingerNeverLifts) {
     r = ffctl("verify " + path + " " + other);
     EXPECT_EQ(r.exit_code, 1) << other << "\n" << r.out;
     EXPECT_NE(r.out.find("FAIL"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\n  the finger never left the plate: compared from the first tick"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\n    first at "), std::string::npos) << r.out;  // where each run starts
   }
 }
 
@@ -420,14 +511,38 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
   UdpDevice device(strokes);
   const std::string out = support::scratch_path("monitor.out");
   // The finger comes and goes every 0.8 s: stopped after the first line and two changes.
-  const auto two_changes = [&] { return lines_in(out) >= 3; };
+  // Each line reaches the file as it comes (flushed), whole: not a buffer's worth at a time.
+  std::string first_seen;
+  const auto two_changes = [&] {
+    const std::string text = slurp(out);
+    if (std::count(text.begin(), text.end(), '\n') < 3) return false;
+    first_seen = text;
+    return true;
+  };
   const int status = run_then_signal(device, {"monitor", "--interval", "0.05"}, two_changes, SIGINT, out);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
+  ASSERT_FALSE(first_seen.empty());
+  EXPECT_EQ(first_seen.back(), '\n') << first_seen;
+  EXPECT_LE(std::count(first_seen.begin(), first_seen.end(), '\n'), 6) << first_seen;  // ~0.4 s apart, polled every 20 ms
   const std::string text = slurp(out);
   const auto lines = std::count(text.begin(), text.end(), '\n');
   EXPECT_GE(lines, 3) << text;
   EXPECT_LT(lines, 30) << text;  // not every 50 ms query: only changes
+  // Each line differs from the one before in what counts as a change (from "finger" on).
+  std::istringstream in(text);
+  std::string line, previous;
+  while (std::getline(in, line)) {
+    const size_t at = line.find("finger ");
+    ASSERT_NE(at, std::string::npos) << line;
+    EXPECT_NE(line.substr(at), previous) << text;
+    previous = line.substr(at);
+    // Counters that are not 0 only; "none" when no fault was counted.
+    EXPECT_TRUE(std::regex_search(previous, std::regex("^finger (up|down), protocol errors [0-9]+, watchdog trips [0-9]+, "
+                                                       "stream overruns [0-9]+, faults (none|[a-z_]+=[1-9][0-9]*( [a-z_]+=[1-9][0-9]*)*), "
+                                                       "sensor running( [a-z_ ]+=[1-9][0-9]*)*$")))
+        << line;
+  }
   EXPECT_NE(text.find("finger down"), std::string::npos) << text;
   EXPECT_NE(text.find("finger up"), std::string::npos) << text;
   EXPECT_NE(text.find(", sensor running"), std::string::npos) << text;
