@@ -44,8 +44,17 @@ def test_a_failed_write_leaves_the_old_file_as_it_was(tmp_path):
 def test_the_data_reaches_the_disk_before_the_rename(tmp_path, monkeypatch):
     calls = []
     real_fsync, real_replace = os.fsync, os.replace
-    monkeypatch.setattr(os, "fsync", lambda fd: (calls.append("fsync"), real_fsync(fd))[1])
-    monkeypatch.setattr(os, "replace", lambda a, b: (calls.append("replace"), real_replace(a, b))[1])
+
+    def fsync(fd):
+        calls.append("fsync")
+        real_fsync(fd)
+
+    def replace(source, target):
+        calls.append("replace")
+        real_replace(source, target)
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    monkeypatch.setattr(os, "replace", replace)
     ff_files.write_whole(str(tmp_path / "session.json"), lambda f: f.write("{}"))
     assert calls == ["fsync", "replace"]
 
