@@ -122,6 +122,11 @@ void FirmwareApp::loop(uint32_t now_us) {
   preparing_.store(false, std::memory_order_release);
 
   const bool ticking = tick_alive(now_us);
+  if (reboot_pending_ && static_cast<int32_t>(now_us - reboot_at_us_) >= 0) {
+    reboot_pending_ = false;
+    board_.reboot_to_bootloader();
+    force_idle_.store(false, std::memory_order_release);  // a board without a bootloader returns
+  }
   read_sensor(now_us);
   read_host(now_us);
   move_mouse(now_us);
@@ -449,8 +454,10 @@ void FirmwareApp::handle_command(Channel channel, uint32_t now_us) {
       force_idle_.store(true, std::memory_order_release);
       rest_plate();
       reply(channel);
-      board_.reboot_to_bootloader();
-      force_idle_.store(false, std::memory_order_release);  // a board without a bootloader returns
+      // The restart waits for the reply to leave: _reboot_Teensyduino_() (usb_dev.c) is a bkpt
+      // that hands the chip to the bootloader, and what the SEREMU queue still holds is lost.
+      reboot_pending_ = true;
+      reboot_at_us_ = now_us + kRebootDelayUs;
       return;
     default:  // device-to-host types sent to the device
       ++counters_.protocol_errors;

@@ -43,6 +43,10 @@ constexpr uint32_t kWatchdogUs = 50000;
 constexpr uint32_t kPreparationWatchdogUs = 1000000;
 // No tick for this long: the loop rests the plate itself (20 missed ticks).
 constexpr uint32_t kTickStallUs = 10000;
+// From acknowledging RebootToBootloader to restarting: the host polls the IN
+// endpoint every 1 ms and the queue holds at most 6 reports (Teensyduino
+// waits 15 ms after its own serial request, usb_dev.c usb_reboot_timer).
+constexpr uint32_t kRebootDelayUs = 20000;
 // The zForce gave up configuring: start it again after this long.
 constexpr uint32_t kSensorRetryUs = 2000000;
 constexpr uint32_t kStreamFlushUs = 10000;       // streamed records wait at most this long
@@ -137,6 +141,8 @@ class FirmwareApp {
   std::atomic<uint32_t> heartbeat_us_{0};
   std::atomic<bool> preparing_{false};  // set before a preparation, cleared at the next loop
   std::atomic<bool> force_idle_{false};
+  bool reboot_pending_ = false;  // loop only: restart at reboot_at_us_
+  uint32_t reboot_at_us_ = 0;
   std::atomic<bool> streaming_{false};
   std::atomic<uint8_t> decimation_{1};
   // Written by the tick, read by the loop.

@@ -189,6 +189,29 @@ TEST(Binding, TheTickIsTheTimerAboveUsbAndTheDacFollowsTheScene) {
   EXPECT_GT(st.status.zforce_layout_beside, 0u);
 }
 
+// Teensyduino's own way in (usb_dev.c): a 4-byte SEREMU feature report of the
+// magic restarts the chip 5 ms later, from the USB interrupt, whatever the loop
+// does; any other 4 bytes only mark the serial emulation online.
+TEST(Binding, SeremuFeatureReportRestartsFiveFramesLater) {
+  BindingRig rig;
+  rig.boot();
+  rig.run_until(1000000);
+  const uint8_t other[4] = {0xA9, 0x45, 0xC2, 0x6C};
+  host_set_seremu_feature_report(other, 4);
+  const uint8_t magic[4] = {0xA9, 0x45, 0xC2, 0x6B};
+  host_set_seremu_feature_report(magic, 3);  // a wrong length is not the request
+  rig.run_until(1100000);
+  EXPECT_FALSE(rebooted());
+  EXPECT_TRUE(usb_seremu_online());
+  const uint64_t at = now_us();
+  host_set_seremu_feature_report(magic, 4);
+  rig.run_until(at + 3900);
+  EXPECT_FALSE(rebooted()) << "five frames, not fewer";
+  rig.run_until(at + 6500);
+  EXPECT_TRUE(rebooted());
+  EXPECT_LE(now_us(), at + 6500);
+}
+
 // A reboot the firmware decides rests the plate, and the tick keeps it resting
 // until the jump: whenever it lands relative to the tick.
 class RebootAt : public ::testing::TestWithParam<int> {};

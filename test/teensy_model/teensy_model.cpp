@@ -88,6 +88,9 @@ struct State {
   bool transmit_previous_timeout_seremu = false, transmit_previous_timeout_mouse = false;
   std::deque<std::vector<uint8_t>> host_out;
   uint64_t host_out_next = 0, host_in_next = 0;
+  uint64_t usb_frame_next = 0;    // the next start of frame (every 1 ms while configured)
+  uint8_t usb_reboot_timer = 0;   // usb_dev.c: frames until _reboot_Teensyduino_(), 0 idle
+  bool usb_seremu_online = false;
   std::vector<std::vector<uint8_t>> host_seremu_in;
   std::vector<MouseReport> host_mouse;
   bool host_polls = true;
@@ -167,7 +170,11 @@ void usb_host_step() {
         ++st.rx_memory_needed;
       }
     }
-    st.host_in_next = st.host_out_next = st.now;
+    st.host_in_next = st.host_out_next = st.usb_frame_next = st.now;
+  }
+  while (st.now >= st.usb_frame_next && !st.halted) {  // usb_isr's SOF handler
+    st.usb_frame_next += kHostInIntervalUs;
+    if (st.usb_reboot_timer > 0 && --st.usb_reboot_timer == 0) _reboot_Teensyduino_();
   }
   while (st.host_polls && st.now >= st.host_in_next) {
     st.host_in_next += kHostInIntervalUs;
@@ -304,6 +311,18 @@ uint64_t now_us() { return s().now; }
 bool rebooted() { return s().halted; }
 void host_write_out_packet(const uint8_t* data, size_t len) { s().host_out.emplace_back(data, data + len); }
 size_t host_out_backlog() { return s().host_out.size(); }
+void host_set_seremu_feature_report(const uint8_t* data, size_t len) {
+  // usb_dev.c usb_control: SET_REPORT (wValue 0x0300, wLength 4) on SEREMU_INTERFACE. The magic
+  // restarts into the bootloader 5 frames later; any other 4 bytes mark the serial emulation online.
+  State& st = s();
+  if (!usb_configuration || len != 4) return;
+  if (data[0] == 0xA9 && data[1] == 0x45 && data[2] == 0xC2 && data[3] == 0x6B) {
+    st.usb_reboot_timer = 5;
+  } else {
+    st.usb_seremu_online = true;
+  }
+}
+bool usb_seremu_online() { return s().usb_seremu_online; }
 std::vector<std::vector<uint8_t>> host_take_seremu_in() {
   std::vector<std::vector<uint8_t>> out;
   out.swap(s().host_seremu_in);

@@ -21,6 +21,8 @@
 //   count and read a packet only up to its first 0x00, and drop the rest;
 //   write() queues 64-byte IN packets, at most 6 (TX_PACKET_LIMIT), waiting
 //   up to 30 ms (TX_TIMEOUT) for room, then failing at once until the host reads.
+//   A 4-byte feature report (usb_dev.c) of A9 45 C2 6B restarts into the
+//   bootloader 5 ms (five start-of-frame interrupts) later, whatever the loop does.
 // - Mouse (usb_mouse.c): at most 3 queued reports, the same 30 ms wait.
 // - The host polls each IN endpoint every 1 ms (bInterval 1) and may send one
 //   OUT packet every 2 ms (SEREMU_RX_INTERVAL 2).
@@ -84,6 +86,9 @@ bool rebooted();                      // _reboot_Teensyduino_() was called (the 
 // ---- USB host ----
 void host_write_out_packet(const uint8_t* data, size_t len);  // queued; sent one per 2 ms while not NAKed
 size_t host_out_backlog();
+// A SET_REPORT feature report of `len` bytes (report id 0 not counted) on the SEREMU interface.
+void host_set_seremu_feature_report(const uint8_t* data, size_t len);
+bool usb_seremu_online();  // a feature report other than the reboot magic arrived
 std::vector<std::vector<uint8_t>> host_take_seremu_in();      // 64-byte IN packets read so far
 struct MouseReport { uint64_t t_us; uint16_t x, y; };
 std::vector<MouseReport> host_take_mouse();

@@ -105,6 +105,12 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   uint32_t cycles() override { return cycles_ += 700; }
   void reboot_to_bootloader() override { ++reboots; }
 
+  // Device time goes on by `us` (the loop and the tick) without the host.
+  void run_for(uint32_t us) {
+    const uint32_t until = fw_.now + us;
+    while (static_cast<int32_t>(until - fw_.now) > 0) fw_.step();
+  }
+
   int disconnect_after_frames = -1;
   bool corrupt_next_reply = false;
   bool disconnected = false;
@@ -361,6 +367,11 @@ TEST(Ffctl, TheRebootRequestGoesBelowTheProtocolAndTheMessageStillWorks) {
   std::string error;
   ASSERT_TRUE(client.request(m, reply, error)) << error;
   EXPECT_EQ(reply.ack.command, MessageType::RebootToBootloader);
+  // The acknowledgement leaves before the restart (kRebootDelayUs later), which would drop it.
+  EXPECT_EQ(device.reboots, 0);
+  device.run_for(firmware::kRebootDelayUs - 1000);
+  EXPECT_EQ(device.reboots, 0);
+  device.run_for(1100);
   EXPECT_EQ(device.reboots, 1);
 }
 
@@ -370,6 +381,7 @@ TEST(Ffctl, RebootAsksTheFirmwareFirstSoThePlateRests) {
   bool by_transport = true;
   ASSERT_TRUE(reboot_device(device, error, by_transport)) << error;
   EXPECT_FALSE(by_transport);
+  device.run_for(firmware::kRebootDelayUs);
   EXPECT_EQ(device.reboots, 1);          // the firmware's own reboot: it rests the plate first
   EXPECT_EQ(device.feature_reboots, 0);  // no feature report when the firmware answers
 }
