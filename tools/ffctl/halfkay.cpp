@@ -47,8 +47,7 @@ libusb_device_handle* open_halfkay(libusb_context* ctx, int& open_error) {
     libusb_device_descriptor d;
     if (libusb_get_device_descriptor(list[i], &d) != 0) continue;
     if (d.idVendor != kHalfKayVendor || d.idProduct != kHalfKayProduct) continue;
-    open_error = libusb_open(list[i], &handle);
-    if (open_error != 0) handle = nullptr;
+    open_error = libusb_open(list[i], &handle);  // sets handle only on success
   }
   if (list) libusb_free_device_list(list, 1);
   return handle;

@@ -52,6 +52,7 @@ TEST(HalfKay, BlocksHaveTheMk66LayoutSkipBlanksButTheFirstAndEndWithBoot) {
   EXPECT_EQ(writes[2].report[0], 0xFF);
   EXPECT_EQ(writes[2].report[1], 0xFF);
   EXPECT_EQ(writes[2].report[2], 0xFF);
+  EXPECT_EQ(writes[2].address, 0xFFFFFFu);  // what an error about it would name
   FlashImage blank;
   blank.highest = 2048;
   EXPECT_EQ(halfkay_writes(blank).size(), 2u);  // the first block is always written: it erases the chip

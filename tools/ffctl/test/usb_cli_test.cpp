@@ -101,13 +101,14 @@ size_t count_of(const std::vector<std::string>& events, const std::string& e) {
 // worked out here from the same bytes (not by ffctl's reader): the vector
 // table at 0 (stack at the end of RAM, reset at 0x10001), then 2500 bytes at
 // 0x10000 (an extended linear address record), i.e. blocks 0, 0x10000,
-// 0x10400 and 0x10800; everything between is blank and skipped.
+// 0x10400 and 0x10800 (or more blocks for more bytes); everything between is
+// blank and skipped.
 struct TestImage {
   std::string hex_path;
   std::string flash;  // 1 MiB as HalfKay must hold it
 };
 
-TestImage test_image(const std::string& name) {
+TestImage test_image(const std::string& name, uint32_t data_bytes = 2500) {
   TestImage t;
   t.flash.assign(1024 * 1024, '\xFF');
   std::string hex;
@@ -118,9 +119,9 @@ TestImage test_image(const std::string& name) {
   hex += hex_record(0, 0x00, vectors);
   for (size_t i = 0; i < vectors.size(); ++i) t.flash[i] = static_cast<char>(vectors[i]);
   hex += hex_record(0, 0x04, {0x00, 0x01});  // upper address 0x0001xxxx
-  for (uint32_t at = 0; at < 2500; at += 16) {
+  for (uint32_t at = 0; at < data_bytes; at += 16) {
     std::vector<uint8_t> data;
-    for (uint32_t i = at; i < std::min(at + 16u, 2500u); ++i) data.push_back(static_cast<uint8_t>(i * 7 + 3));
+    for (uint32_t i = at; i < std::min(at + 16u, data_bytes); ++i) data.push_back(static_cast<uint8_t>(i * 7 + 3));
     hex += hex_record(static_cast<uint16_t>(at), 0x00, data);
     for (size_t i = 0; i < data.size(); ++i) t.flash[0x10000 + at + i] = static_cast<char>(data[i]);
   }
@@ -211,6 +212,7 @@ TEST(FfctlUsb, RebootAsksTheFirmwareAndWaitsForTheBootloader) {
   const auto events = bus.events();
   EXPECT_EQ(count_of(events, "restarted into the bootloader"), 1u);
   EXPECT_EQ(count_of(events, "feature report: reboot"), 0u) << "the firmware answered: no fallback";
+  EXPECT_LE(count_of(events, "enumerate"), 10u) << "the bus is looked at every 200 ms while ffctl waits";
   // A bootloader slower than the 5 s ffctl waits for.
   Bus slow("reboot_slow", {{"device", "firmware"}, {"restart_ms", "8000"}});
   r = slow.ffctl("reboot");
@@ -257,18 +259,20 @@ TEST(FfctlUsb, FlashWithoutABoardWaitsOnlyWhenAsked) {
   UsbRun r = bus.ffctl("flash " + image.hex_path);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_TRUE(has(r.err, "no frictionfield device and no Teensy bootloader on USB")) << r.err;
-  // --wait: the button is pressed 1.5 s later.
+  // --wait: the button is pressed 10.5 s later, after the 10 s a flash without it waits for
+  // the bootloader after a restart. The bus is looked at every 250 ms, not as fast as it goes.
   std::thread press([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10500));
     bus.set("device", "bootloader");
   });
   const auto t0 = std::chrono::steady_clock::now();
   r = bus.ffctl("flash --wait " + image.hex_path);
   press.join();
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_GE(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(1500));
+  EXPECT_GE(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(10500));
   EXPECT_TRUE(has(r.err, "waiting for the Teensy bootloader (press the button; Ctrl-C gives up)")) << r.err;
   EXPECT_TRUE(read_all(bus.folder + "/flash.bin") == image.flash);
+  EXPECT_LE(count_of(bus.events(), "enumerate"), 60u);
 }
 
 TEST(FfctlUsb, FlashFailuresSayWhatToDo) {
@@ -286,6 +290,42 @@ TEST(FfctlUsb, FlashFailuresSayWhatToDo) {
                          "(the Teensy left the bus: cable?)"))
       << r.err;
   EXPECT_EQ(count_of(unplugged.events(), "boot"), 0u);
+  // A bootloader that stops answering after five blocks: the sixth (7 in all) gets its 0.5 s
+  // (the first five get 45 s: they may be erasing), then ffctl names it and gives up.
+  const TestImage seven = test_image("usb_flash_seven", 6000);
+  Bus hung("flash_hung", {{"device", "bootloader"}, {"hang_after_writes", "5"}, {"erase_ms", "10"}});
+  const auto t0 = std::chrono::steady_clock::now();
+  r = hung.ffctl("flash " + seven.hex_path);
+  const auto took = std::chrono::steady_clock::now() - t0;
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "7 blocks to write")) << r.err;
+  EXPECT_TRUE(has(r.err, "writing the block at 0x011000 failed: LIBUSB_ERROR_TIMEOUT\n")) << r.err;
+  EXPECT_GE(took, std::chrono::milliseconds(500));
+  EXPECT_LT(took, std::chrono::seconds(20));
+  // One that refuses at once is asked again every 10 ms (as teensy_loader_cli does) for those
+  // 0.5 s: about 50 times, not as fast as the bus allows.
+  Bus refusing("flash_refusing", {{"device", "bootloader"}, {"stall_after_writes", "5"}, {"erase_ms", "10"}});
+  r = refusing.ffctl("flash " + seven.hex_path);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "writing the block at 0x011000 failed: LIBUSB_ERROR_PIPE\n")) << r.err;
+  const size_t stalls = count_of(refusing.events(), "stall");
+  EXPECT_GE(stalls, 10u);
+  EXPECT_LE(stalls, 60u);
+}
+
+TEST(FfctlUsb, ACablePulledWhileRecordingKeepsWhatCame) {
+  Bus bus("record_unplugged", {{"device", "firmware"}, {"unplug_after_ms", "1500"}});
+  const std::string path = bus.folder + "/rec.csv";
+  UsbRun r = bus.ffctl("record -o " + path + " --seconds 5");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "the device disconnected while recording")) << r.err;
+  Recording rec;
+  std::string error;
+  ASSERT_TRUE(read_recording(path, rec, error)) << error;
+  EXPECT_GT(rec.ticks.size(), 1000u) << "what came before the cable went is kept";
+  EXPECT_LT(rec.ticks.size(), 3000u);
+  EXPECT_EQ(bus.device(), "absent");
+  EXPECT_EQ(count_of(bus.events(), "unplugged"), 1u);
 }
 
 TEST(FfctlUsb, ResetBootsWhatTheFlashHolds) {

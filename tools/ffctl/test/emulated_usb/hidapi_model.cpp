@@ -16,6 +16,8 @@
 //   full is dropped); hid_read_timeout returns one, 0 at the timeout, or -1
 //   once the device has left the bus.
 // - A feature report goes to usb_dev.c's SET_REPORT handler (the model's).
+// - With unplug_after_ms in the bus file, the cable comes out that long after
+//   the open: reads and writes fail from then on.
 #include <hidapi.h>
 
 #include <cerrno>
@@ -101,7 +103,14 @@ class EmulatedTeensy {
       if (hidraw_.size() < kHidrawBufferReports) hidraw_.push_back(std::move(report));
     }
   }
-  bool gone() const { return teensy_model::rebooted(); }
+  // The cable comes out this long after the device was opened (0: never).
+  void unplug_after(long ms) {
+    if (ms > 0) unplug_at_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  }
+  bool unplugged() const {
+    return unplug_at_ != std::chrono::steady_clock::time_point{} && std::chrono::steady_clock::now() >= unplug_at_;
+  }
+  bool gone() const { return teensy_model::rebooted() || unplugged(); }
   std::deque<std::vector<uint8_t>>& hidraw() { return hidraw_; }
 
  private:
@@ -110,7 +119,7 @@ class EmulatedTeensy {
   std::unique_ptr<teensy_model::SimDevices> devices_;
   std::deque<std::vector<uint8_t>> hidraw_;
   uint64_t t0_ = 0;
-  std::chrono::steady_clock::time_point wall0_;
+  std::chrono::steady_clock::time_point wall0_, unplug_at_{};
 };
 
 EmulatedTeensy& teensy() {
@@ -195,7 +204,10 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
   auto* d = new hid_device_;
   d->interface = interface;
   d->silent = device == "silent";
-  if (!d->silent && interface == kSeremuInterface && !teensy().running()) teensy().boot();
+  if (!d->silent && interface == kSeremuInterface && !teensy().running()) {
+    teensy().boot();
+    teensy().unplug_after(bus.get_long("unplug_after_ms", 0));
+  }
   return d;
 }
 
@@ -218,13 +230,15 @@ int HID_API_EXPORT HID_API_CALL hid_write(hid_device* dev, const unsigned char* 
 
 int HID_API_EXPORT HID_API_CALL hid_read_timeout(hid_device* dev, unsigned char* data, size_t length,
                                                  int milliseconds) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(milliseconds);
-  if (dev->silent || dev->interface != kSeremuInterface) {
-    if (dev->feature_reboot) {
-      std::this_thread::sleep_until(std::min(deadline, dev->feature_reboot_at));
-      if (std::chrono::steady_clock::now() >= dev->feature_reboot_at) return -1;
-      return 0;
+  // A negative timeout blocks until a report comes (hid_read), as hidraw's backend does.
+  const bool blocking = milliseconds < 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(blocking ? 0 : milliseconds);
+  if (dev->silent || dev->interface != kSeremuInterface) {  // no report ever comes
+    if (dev->feature_reboot && (blocking || dev->feature_reboot_at <= deadline)) {
+      std::this_thread::sleep_until(dev->feature_reboot_at);
+      return -1;
     }
+    while (blocking) std::this_thread::sleep_for(std::chrono::seconds(1));
     std::this_thread::sleep_until(deadline);
     return 0;
   }
@@ -238,7 +252,7 @@ int HID_API_EXPORT HID_API_CALL hid_read_timeout(hid_device* dev, unsigned char*
       return static_cast<int>(n);
     }
     if (teensy().gone()) return -1;
-    if (milliseconds >= 0 && std::chrono::steady_clock::now() >= deadline) return 0;
+    if (!blocking && std::chrono::steady_clock::now() >= deadline) return 0;
     teensy().run(1000);
   }
 }
@@ -271,10 +285,17 @@ void HID_API_EXPORT HID_API_CALL hid_close(hid_device* dev) {
     if (dev->feature_reboot) std::this_thread::sleep_until(dev->feature_reboot_at);
     restarted = dev->feature_reboot;
   } else if (dev->interface == kSeremuInterface && teensy().running()) {
-    teensy().run(20000);  // a restart the device was asked for happens within 5 ms
+    // The board runs on after the host lets go; a restart it was asked for comes within
+    // 20 ms of its Ack (kRebootDelayUs) or 5 ms of the feature report.
+    for (int ms = 0; ms < 50 && !teensy().gone(); ++ms) teensy().run(1000);
     restarted = teensy().gone();
   }
-  if (restarted) {
+  if (dev->interface == kSeremuInterface && teensy().unplugged()) {
+    UsbBus bus = UsbBus::load();
+    bus.plug("absent", 0);
+    bus.save();
+    bus.event("unplugged");
+  } else if (restarted) {
     UsbBus bus = UsbBus::load();
     if (bus.get("device") != "bootloader") {
       bus.plug("bootloader", bus.get_long("restart_ms", 300));

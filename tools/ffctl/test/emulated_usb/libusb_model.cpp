@@ -10,13 +10,20 @@
 //   LIBUSB_ERROR_TIMEOUT while the erase runs on (that block is not written);
 // - the address 0xFFFFFF boots what the flash holds: the bootloader leaves
 //   the bus and the firmware comes (as `firmware` after restart_ms);
+// - Linux's usbhid holds its interface 0: claiming it, or a transfer without
+//   the claim, is LIBUSB_ERROR_BUSY unless the kernel driver is detached
+//   (libusb_set_auto_detach_kernel_driver); a context not from libusb_init is
+//   refused; each enumeration is an `enumerate` event;
 // - opening it without the udev rule is LIBUSB_ERROR_ACCESS; once the cable
-//   is out every transfer is LIBUSB_ERROR_NO_DEVICE.
+//   is out every transfer is LIBUSB_ERROR_NO_DEVICE; one that stops
+//   answering (hang_after_writes) lets every transfer time out, one that
+//   refuses (stall_after_writes) stalls each at once.
 #include <libusb.h>
 
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -33,12 +40,20 @@ struct libusb_device {
   uint16_t vendor = 0, product = 0;
 };
 struct libusb_device_handle {
+  bool auto_detach = false;  // libusb_set_auto_detach_kernel_driver
   bool claimed = false;
 };
 
 namespace {
 
 constexpr size_t kBlock = 1024, kHeader = 64;
+
+// Contexts libusb_init made and libusb_exit has not ended: any other (a null one without
+// libusb_init(NULL) included) is API misuse, which libusb answers with an error at best.
+std::set<const libusb_context*>& live_contexts() {
+  static std::set<const libusb_context*> live;
+  return live;
+}
 
 void erase(const UsbBus& bus) {
   std::ofstream(bus.flash_path(), std::ios::binary | std::ios::trunc) << std::string(kMk66FlashBytes, '\xFF');
@@ -60,9 +75,13 @@ extern "C" {
 
 int LIBUSB_CALL libusb_init(libusb_context** ctx) {
   *ctx = new libusb_context;
+  live_contexts().insert(*ctx);
   return LIBUSB_SUCCESS;
 }
-void LIBUSB_CALL libusb_exit(libusb_context* ctx) { delete ctx; }
+void LIBUSB_CALL libusb_exit(libusb_context* ctx) {
+  live_contexts().erase(ctx);
+  delete ctx;
+}
 
 const char* LIBUSB_CALL libusb_error_name(int code) {
   switch (code) {
@@ -72,12 +91,20 @@ const char* LIBUSB_CALL libusb_error_name(int code) {
     case LIBUSB_ERROR_NOT_FOUND: return "LIBUSB_ERROR_NOT_FOUND";
     case LIBUSB_ERROR_TIMEOUT: return "LIBUSB_ERROR_TIMEOUT";
     case LIBUSB_ERROR_PIPE: return "LIBUSB_ERROR_PIPE";
+    case LIBUSB_ERROR_BUSY: return "LIBUSB_ERROR_BUSY";
+    case LIBUSB_ERROR_INVALID_PARAM: return "LIBUSB_ERROR_INVALID_PARAM";
     default: return "**UNKNOWN**";
   }
 }
 
-ssize_t LIBUSB_CALL libusb_get_device_list(libusb_context*, libusb_device*** list) {
-  const std::string device = UsbBus::load().device_now();
+ssize_t LIBUSB_CALL libusb_get_device_list(libusb_context* ctx, libusb_device*** list) {
+  const UsbBus bus = UsbBus::load();
+  if (!live_contexts().count(ctx)) {
+    bus.event("libusb: no context");
+    return LIBUSB_ERROR_INVALID_PARAM;
+  }
+  bus.event("enumerate");
+  const std::string device = bus.device_now();
   std::vector<libusb_device*> devices = {new libusb_device{0x1D6B, 0x0002}};  // the root hub
   if (device == "firmware" || device == "silent") devices.push_back(new libusb_device{0x16C0, 0x0482});
   if (device == "bootloader") devices.push_back(new libusb_device{0x16C0, 0x0478});
@@ -117,9 +144,14 @@ int LIBUSB_CALL libusb_open(libusb_device* dev, libusb_device_handle** handle) {
 }
 void LIBUSB_CALL libusb_close(libusb_device_handle* handle) { delete handle; }
 
-int LIBUSB_CALL libusb_set_auto_detach_kernel_driver(libusb_device_handle*, int) { return LIBUSB_SUCCESS; }
+int LIBUSB_CALL libusb_set_auto_detach_kernel_driver(libusb_device_handle* handle, int enable) {
+  handle->auto_detach = enable != 0;
+  return LIBUSB_SUCCESS;
+}
+// Linux binds usbhid to HalfKay's interface 0: only a handle that detaches it may claim it.
 int LIBUSB_CALL libusb_claim_interface(libusb_device_handle* handle, int interface_number) {
   if (interface_number != 0) return LIBUSB_ERROR_NOT_FOUND;
+  if (!handle->auto_detach) return LIBUSB_ERROR_BUSY;
   handle->claimed = true;
   return LIBUSB_SUCCESS;
 }
@@ -128,16 +160,29 @@ int LIBUSB_CALL libusb_release_interface(libusb_device_handle* handle, int) {
   return LIBUSB_SUCCESS;
 }
 
-int LIBUSB_CALL libusb_control_transfer(libusb_device_handle*, uint8_t request_type, uint8_t request, uint16_t value,
-                                        uint16_t index, unsigned char* data, uint16_t length, unsigned int timeout) {
+int LIBUSB_CALL libusb_control_transfer(libusb_device_handle* handle, uint8_t request_type, uint8_t request,
+                                        uint16_t value, uint16_t index, unsigned char* data, uint16_t length,
+                                        unsigned int timeout) {
   UsbBus bus = UsbBus::load();
   if (bus.device_now() != "bootloader") return LIBUSB_ERROR_NO_DEVICE;
+  // usbfs claims the interface of a class request itself, which fails while usbhid holds it.
+  if (!handle->claimed && !handle->auto_detach) return LIBUSB_ERROR_BUSY;
   const long writes = bus.get_long("writes", 0), unplug_after = bus.get_long("unplug_after_writes", 0);
   if (unplug_after > 0 && writes >= unplug_after) {
     bus.plug("absent", 0);
     bus.save();
     bus.event("unplugged");
     return LIBUSB_ERROR_NO_DEVICE;
+  }
+  const long hang_after = bus.get_long("hang_after_writes", 0);
+  if (hang_after > 0 && writes >= hang_after) {  // it stops answering: every transfer times out
+    std::this_thread::sleep_for(std::chrono::milliseconds(timeout));
+    return LIBUSB_ERROR_TIMEOUT;
+  }
+  const long stall_after = bus.get_long("stall_after_writes", 0);
+  if (stall_after > 0 && writes >= stall_after) {  // it refuses every block at once
+    bus.event("stall");
+    return LIBUSB_ERROR_PIPE;
   }
   const size_t address = data ? data[0] | (data[1] << 8) | (data[2] << 16) : 0;
   if (request_type != 0x21 || request != 9 || value != 0x0200 || index != 0 || length != kHeader + kBlock ||

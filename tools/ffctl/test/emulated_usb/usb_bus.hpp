@@ -14,6 +14,9 @@
 //   restart_ms=300                           from a restart until the next device (HalfKay, firmware) is there
 //   erase_ms=150                             HalfKay's chip erase, answered only when done
 //   unplug_after_writes=0                    the cable comes out after this many blocks (0: never)
+//   hang_after_writes=0                      HalfKay stops answering after this many blocks (0: never)
+//   stall_after_writes=0                     HalfKay stalls every request after this many blocks (0: never)
+//   unplug_after_ms=0                        the cable comes out this long after ffctl opens the firmware
 //   appears_at_ms, erased, writes            kept by the models
 #include <cstdint>
 #include <map>
