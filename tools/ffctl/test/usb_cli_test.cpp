@@ -220,15 +220,23 @@ TEST(FfctlUsb, RebootAsksTheFirmwareAndWaitsForTheBootloader) {
   EXPECT_TRUE(has(r.err, "the device did not come back as the bootloader (16c0:0478) within 5 s")) << r.err;
 }
 
-TEST(FfctlUsb, ASketchThatDoesNotAnswerIsRestartedByTheFeatureReport) {
-  Bus bus("silent", {{"device", "silent"}, {"restart_ms", "100"}});
-  UsbRun r = bus.ffctl("reboot");
+// Another USB_HID sketch: one that never reads the channel, and one that prints
+// text on it every 10 ms (reports that never make a frame, and never stop).
+class FfctlUsbOtherSketch : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FfctlUsbOtherSketch, GetsNoReplyInTimeAndIsRestartedByTheFeatureReport) {
+  Bus bus(GetParam(), {{"device", GetParam()}, {"restart_ms", "100"}});
+  UsbRun r = bus.ffctl("status");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "no reply from the device within 2000 ms")) << r.err;
+  r = bus.ffctl("reboot");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(has(r.err, "the firmware did not answer: restarted by the SEREMU feature report")) << r.err;
   EXPECT_TRUE(has(r.out, "the bootloader is up")) << r.out;
   EXPECT_EQ(bus.device(), "bootloader");
   EXPECT_EQ(count_of(bus.events(), "feature report: reboot"), 1u);
 }
+INSTANTIATE_TEST_SUITE_P(FfctlUsb, FfctlUsbOtherSketch, ::testing::Values("silent", "chatty"));
 
 TEST(FfctlUsb, FlashRestartsTheFirmwareWritesEveryBlockAndBoots) {
   const TestImage image = test_image("usb_flash");

@@ -135,7 +135,9 @@ bool is_reboot_magic(const unsigned char* data, size_t length) {
 
 struct hid_device_ {
   int interface = 0;
-  bool silent = false;  // a sketch that never reads the channel
+  bool silent = false;  // another USB_HID sketch: it never reads the channel
+  bool chatty = false;  // ... and prints a line of text every 10 ms (Serial.println on SEREMU)
+  std::chrono::steady_clock::time_point next_line{};
   std::chrono::steady_clock::time_point feature_reboot_at{};  // silent: when the feature report restarts it
   bool feature_reboot = false;
 };
@@ -148,7 +150,7 @@ int HID_API_EXPORT hid_exit(void) { return 0; }
 struct hid_device_info HID_API_EXPORT* HID_API_CALL hid_enumerate(unsigned short vendor_id, unsigned short product_id) {
   const UsbBus bus = UsbBus::load();
   const std::string device = bus.device_now();
-  if (device != "firmware" && device != "silent") return nullptr;
+  if (device != "firmware" && device != "silent" && device != "chatty") return nullptr;
   if ((vendor_id && vendor_id != kVendor) || (product_id && product_id != kProduct)) return nullptr;
   hid_device_info* head = nullptr;
   for (int i = 4; i >= 0; --i) {
@@ -191,7 +193,7 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
   for (const Interface& i : kInterfaces) {
     if (path_of(i.number) == path) interface = i.number;
   }
-  if ((device != "firmware" && device != "silent") || interface < 0) {
+  if ((device != "firmware" && device != "silent" && device != "chatty") || interface < 0) {
     errno = ENOENT;
     return nullptr;
   }
@@ -203,7 +205,9 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
   bus.event(std::string("open ") + path);
   auto* d = new hid_device_;
   d->interface = interface;
-  d->silent = device == "silent";
+  d->silent = device == "silent" || device == "chatty";
+  d->chatty = device == "chatty";
+  d->next_line = std::chrono::steady_clock::now();
   if (!d->silent && interface == kSeremuInterface && !teensy().running()) {
     teensy().boot();
     teensy().unplug_after(bus.get_long("unplug_after_ms", 0));
@@ -233,10 +237,21 @@ int HID_API_EXPORT HID_API_CALL hid_read_timeout(hid_device* dev, unsigned char*
   // A negative timeout blocks until a report comes (hid_read), as hidraw's backend does.
   const bool blocking = milliseconds < 0;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(blocking ? 0 : milliseconds);
-  if (dev->silent || dev->interface != kSeremuInterface) {  // no report ever comes
-    if (dev->feature_reboot && (blocking || dev->feature_reboot_at <= deadline)) {
+  if (dev->silent || dev->interface != kSeremuInterface) {  // nothing for the protocol ever comes
+    const bool text = dev->chatty && dev->interface == kSeremuInterface;
+    if (dev->feature_reboot && (blocking || dev->feature_reboot_at <= deadline) &&
+        (!text || dev->feature_reboot_at <= dev->next_line)) {
       std::this_thread::sleep_until(dev->feature_reboot_at);
       return -1;
+    }
+    if (text && (blocking || dev->next_line <= deadline)) {
+      std::this_thread::sleep_until(dev->next_line);
+      dev->next_line += std::chrono::milliseconds(10);
+      static const char kLine[] = "another sketch, printing\r\n";  // usb_seremu.c pads a flushed packet with 0
+      const size_t n = std::min(length, size_t{64});
+      std::memset(data, 0, n);
+      std::memcpy(data, kLine, std::min(n, sizeof kLine - 1));
+      return static_cast<int>(n);
     }
     while (blocking) std::this_thread::sleep_for(std::chrono::seconds(1));
     std::this_thread::sleep_until(deadline);

@@ -8,7 +8,8 @@
 // the device did to `events`, one line each.
 //
 // `bus` holds key=value lines:
-//   device=firmware|silent|bootloader|absent  silent: a USB_HID sketch that never reads the channel
+//   device=firmware|silent|chatty|bootloader|absent  silent: a USB_HID sketch that never reads the
+//                                            channel; chatty: one that prints a text line every 10 ms
 //   serial=4810620                           the USB serial number
 //   access=ok|denied                         denied: the udev rule is missing (open fails, EACCES)
 //   restart_ms=300                           from a restart until the next device (HalfKay, firmware) is there
