@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "frictionfield/host/trace_csv.hpp"
+#include "support/file_contents.hpp"
 #include "support/models/sensor_model.hpp"
 #include "trace_writer.hpp"
 
@@ -122,13 +123,6 @@ TEST(WriteTruthTicks, EveryTickFromTheFirstReportToTheLast) {
   EXPECT_GT(lifted, 150000u / 500u - 12u);  // one lift of at least 0.15 s
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // test/traces/generate.sh's invocations, as options. The files were written
 // before the finger and sensor effects of issue 14 existed: with all of them
 // off (the default) the generator must still reproduce them exactly.
@@ -173,7 +167,7 @@ TEST(BundledTraces, GeneratorStillReproducesEveryGeneratedOneBitForBit) {
   for (const Bundled& b : bundled) {
     std::ostringstream csv;
     write_trace(csv, generate_trace(b.options), b.events);
-    std::istringstream made(csv.str()), stored(read_file(std::string(FF_TRACE_DIR) + "/" + b.file));
+    std::istringstream made(csv.str()), stored(support::file_contents(std::string(FF_TRACE_DIR) + "/" + b.file));
     std::string a, s;
     size_t line = 0;
     for (;;) {
@@ -196,7 +190,7 @@ TEST(BundledTraces, GeneratorStillReproducesEveryGeneratedOneBitForBit) {
 }
 
 TEST(BundledTraces, EveryTraceIsReadableAndDescribedInTheReadme) {
-  const std::string readme = read_file(std::string(FF_TRACE_DIR) + "/README.md");
+  const std::string readme = support::file_contents(std::string(FF_TRACE_DIR) + "/README.md");
   const char* kTraces[] = {
       "gen_along_low.csv", "gen_across_high_px.csv", "gen_mixed_zforce_rests.csv", "gen_all_faults.csv",
       "gen_clock_wrap.csv", "edge_header_only.csv", "edge_single_sample.csv", "edge_no_finger.csv",

@@ -28,6 +28,7 @@
 #include "emulated_firmware.hpp"
 #include "intel_hex.hpp"
 #include "udp_transport.hpp"
+#include "support/file_contents.hpp"
 #include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
@@ -145,13 +146,6 @@ struct CliRun {
   std::string out, err;
 };
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // ffctl with these arguments, as a shell runs it.
 CliRun ffctl(const std::string& args) {
   static int n = 0;
@@ -160,15 +154,15 @@ CliRun ffctl(const std::string& args) {
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(base + ".out");
-  r.err = slurp(base + ".err");
+  r.out = support::file_contents(base + ".out");
+  r.err = support::file_contents(base + ".err");
   return r;
 }
 
 std::string udp(const UdpDevice& d) { return "--udp 127.0.0.1:" + std::to_string(d.port()) + " "; }
 
 size_t lines_in(const std::string& path) {
-  const std::string text = slurp(path);
+  const std::string text = support::file_contents(path);
   return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
@@ -362,7 +356,7 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   EXPECT_NEAR(static_cast<double>(rec.ticks.size()), 4000.0, 100.0);
   EXPECT_GT(rec.samples.size(), 200u);
   // Metadata: readers skip it; the tool, the words, the firmware and the date are there.
-  const std::string trace = slurp(path);
+  const std::string trace = support::file_contents(path);
   EXPECT_EQ(trace.rfind("# ffctl ", 0), 0u);
   EXPECT_NE(trace.find("record -o " + path + " --seconds 2 --scene heightmap"), std::string::npos);
   EXPECT_NE(trace.find("# firmware 1."), std::string::npos);
@@ -380,7 +374,7 @@ TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
   EXPECT_NE(faults[1].str().find("touch_down "), std::string::npos) << r.out;
   EXPECT_NE(faults[1].str().find("lift_off "), std::string::npos) << r.out;
   // Force every 30 ms: ~66 in 2 s.
-  const std::string force = slurp(force_path_for(path));
+  const std::string force = support::file_contents(force_path_for(path));
   EXPECT_NE(force.find("t_us,force_mN,over_force\n"), std::string::npos);
   EXPECT_GT(std::count(force.begin(), force.end(), '\n'), 50);
 
@@ -475,7 +469,7 @@ TEST(FfctlCli, SensorProfileIsSentReadBackShownAndKeptByARecording) {
   const std::string path = support::scratch_path("udp_profile_rec.csv");
   r = ffctl(udp(device) + "record -o " + path + " --seconds 1 --scene heightmap --target top --strength 0.66");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(slurp(path).find("# sensor-profile " + flags + "\n"), std::string::npos);
+  EXPECT_NE(support::file_contents(path).find("# sensor-profile " + flags + "\n"), std::string::npos);
   Recording rec;
   std::string error;
   ASSERT_TRUE(read_recording(path, rec, error)) << error;
@@ -514,7 +508,7 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
   // Each line reaches the file as it comes (flushed), whole: not a buffer's worth at a time.
   std::string first_seen;
   const auto two_changes = [&] {
-    const std::string text = slurp(out);
+    const std::string text = support::file_contents(out);
     if (std::count(text.begin(), text.end(), '\n') < 3) return false;
     first_seen = text;
     return true;
@@ -525,7 +519,7 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
   ASSERT_FALSE(first_seen.empty());
   EXPECT_EQ(first_seen.back(), '\n') << first_seen;
   EXPECT_LE(std::count(first_seen.begin(), first_seen.end(), '\n'), 6) << first_seen;  // ~0.4 s apart, polled every 20 ms
-  const std::string text = slurp(out);
+  const std::string text = support::file_contents(out);
   const auto lines = std::count(text.begin(), text.end(), '\n');
   EXPECT_GE(lines, 3) << text;
   EXPECT_LT(lines, 30) << text;  // not every 50 ms query: only changes
@@ -562,7 +556,7 @@ TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
   ASSERT_TRUE(read_recording(path, rec, error)) << error;
   EXPECT_GT(rec.ticks.size(), 500u);
   EXPECT_FALSE(rec.has_condition);  // no scene words: none set, none claimed
-  EXPECT_NE(slurp(path).find("# condition not set by this recording"), std::string::npos);
+  EXPECT_NE(support::file_contents(path).find("# condition not set by this recording"), std::string::npos);
 }
 
 TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
@@ -573,7 +567,7 @@ TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
   EXPECT_TRUE(WIFSIGNALED(status));
   // Every line whole, every file readable: about the second before the kill is there.
   for (const std::string& p : {path, ticks_path_for(path), force_path_for(path)}) {
-    const std::string text = slurp(p);
+    const std::string text = support::file_contents(p);
     ASSERT_FALSE(text.empty()) << p;
     EXPECT_EQ(text.back(), '\n') << p;
   }

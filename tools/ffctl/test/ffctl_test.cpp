@@ -28,6 +28,7 @@
 #include "frictionfield/protocol/hid_channel.hpp"
 #include "emulated_firmware.hpp"
 #include "hid_transport.hpp"
+#include "support/file_contents.hpp"
 #include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
@@ -821,12 +822,6 @@ TEST(Ffctl, ARecordingsTakenTimesStayWithTheirRowsWhateverLinesAreBetween) {
   EXPECT_EQ(error.rfind(path + ":4:2: x is not a number", 0), 0u) << error;
 }
 
-std::string file_text(const std::string& path) {
-  std::stringstream text;
-  text << std::ifstream(path).rdbuf();
-  return text.str();
-}
-
 TEST(Ffctl, ATicksFileReadsLikeEveryTraceFile) {
   const std::string path = support::scratch_path("ffctl_ticks_shape.csv");
   std::ofstream(path) << "t_us,x,y,touch\n1000,10,10,1\n";
@@ -861,7 +856,7 @@ TEST(Ffctl, ARecordingsForcesAreWrittenBesideIt) {
   const std::string path = support::scratch_path("ffctl_forces.csv");
   std::string error;
   ASSERT_TRUE(write_recording(path, r, error, {"ffctl record"})) << error;
-  EXPECT_EQ(file_text(force_path_for(path)), "# ffctl record\nt_us,force_mN,over_force\n1000,250.5,0\n3000,4100,1\n");
+  EXPECT_EQ(support::file_contents(force_path_for(path)), "# ffctl record\nt_us,force_mN,over_force\n1000,250.5,0\n3000,4100,1\n");
 }
 
 TEST(Ffctl, AnOutputPathIsCheckedBeforeTheDeviceIsTouched) {
@@ -889,11 +884,11 @@ TEST(Ffctl, ARecordingReachesTheDiskInWholeRowsWhenFlushed) {
   std::string error;
   ASSERT_TRUE(w.open(path, {"ffctl record"}, Recording{}, error)) << error;
   const std::string header = "# ffctl record\nt_us,x,y,touch,taken_us\n";
-  EXPECT_EQ(file_text(path), header);
+  EXPECT_EQ(support::file_contents(path), header);
   for (uint64_t i = 0; i < 3000; ++i) w.sample(sample_at(i));  // ~80 kB, several stdio buffers' worth
-  EXPECT_EQ(file_text(path), header);
+  EXPECT_EQ(support::file_contents(path), header);
   ASSERT_TRUE(w.flush());
-  const std::string flushed = file_text(path);
+  const std::string flushed = support::file_contents(path);
   EXPECT_EQ(std::count(flushed.begin(), flushed.end(), '\n'), 3002);
   EXPECT_EQ(flushed.back(), '\n');
   EXPECT_TRUE(w.close(error)) << error;

@@ -12,6 +12,7 @@
 #include "halfkay.hpp"
 #include "hex_record.hpp"
 #include "intel_hex.hpp"
+#include "support/file_contents.hpp"
 
 namespace ff::ffctl {
 namespace {
@@ -121,19 +122,12 @@ TEST(HalfKay, SameBlocksAsTeensyLoaderCliWouldWrite) {
 }
 
 #ifdef FF_TOOLCHAIN_HEX
-std::string slurp(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 TEST(HalfKay, ImageFromTheCrossToolchainsObjcopy) {
   // objcopy put intel_hex.cpp's bytes at 0x10000 (extended linear address records).
-  const std::string data = slurp(FF_TOOLCHAIN_HEX_SOURCE);
+  const std::string data = support::file_contents(FF_TOOLCHAIN_HEX_SOURCE);
   FlashImage image;
   std::string error;
-  ASSERT_TRUE(parse_intel_hex(slurp(FF_TOOLCHAIN_HEX), image, error)) << error;
+  ASSERT_TRUE(parse_intel_hex(support::file_contents(FF_TOOLCHAIN_HEX), image, error)) << error;
   ASSERT_EQ(image.highest, 0x10000u + data.size());
   EXPECT_TRUE(std::equal(data.begin(), data.end(), image.bytes.begin() + 0x10000));
   const auto writes = halfkay_writes(image);

@@ -18,17 +18,11 @@
 
 #include "device_client.hpp"
 #include "hex_record.hpp"
+#include "support/file_contents.hpp"
 #include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
 namespace {
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 struct UsbRun {
   int exit_code = -1;
@@ -52,8 +46,8 @@ class Bus {
     const int status = std::system(cmd.c_str());
     UsbRun r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_all(base + ".out");
-    r.err = read_all(base + ".err");
+    r.out = support::file_contents(base + ".out");
+    r.err = support::file_contents(base + ".err");
     return r;
   }
   std::string value(const std::string& key) const {
@@ -251,7 +245,7 @@ TEST(FfctlUsb, FlashRestartsTheFirmwareWritesEveryBlockAndBoots) {
   expected.insert(expected.end(), kImageWrites.begin(), kImageWrites.end());
   expected.push_back("boot");
   EXPECT_EQ(halfkay_requests(bus.events()), expected);
-  EXPECT_TRUE(read_all(bus.folder + "/flash.bin") == image.flash) << "the flash is not the image";
+  EXPECT_TRUE(support::file_contents(bus.folder + "/flash.bin") == image.flash) << "the flash is not the image";
 
   // Straight from the bootloader: no restart first.
   bus.set("device", "bootloader");
@@ -279,7 +273,7 @@ TEST(FfctlUsb, FlashWithoutABoardWaitsOnlyWhenAsked) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_GE(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(10500));
   EXPECT_TRUE(has(r.err, "waiting for the Teensy bootloader (press the button; Ctrl-C gives up)")) << r.err;
-  EXPECT_TRUE(read_all(bus.folder + "/flash.bin") == image.flash);
+  EXPECT_TRUE(support::file_contents(bus.folder + "/flash.bin") == image.flash);
   EXPECT_LE(count_of(bus.events(), "enumerate"), 60u);
 }
 
