@@ -19,6 +19,7 @@
 #include "device_client.hpp"
 #include "hex_record.hpp"
 #include "support/file_contents.hpp"
+#include "test/emulated_usb/usb_bus.hpp"
 #include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
@@ -35,8 +36,9 @@ class Bus {
     folder = support::scratch_path("usb_" + name);
     std::filesystem::remove_all(folder);
     std::filesystem::create_directories(folder);
-    std::ofstream out(folder + "/bus");
-    for (const auto& [key, value] : values) out << key << '=' << value << '\n';
+    emulated_usb::UsbBus bus = emulated_usb::UsbBus::load_from(folder);
+    for (const auto& [key, value] : values) bus.set(key, value);
+    bus.save();
   }
   // ffctl_emulated_usb with these arguments on this bus, as a shell runs it.
   UsbRun ffctl(const std::string& args) const {
@@ -50,13 +52,7 @@ class Bus {
     r.err = support::file_contents(base + ".err");
     return r;
   }
-  std::string value(const std::string& key) const {
-    std::ifstream in(folder + "/bus");
-    for (std::string line; std::getline(in, line);) {
-      if (line.rfind(key + "=", 0) == 0) return line.substr(key.size() + 1);
-    }
-    return "";
-  }
+  std::string value(const std::string& key) const { return emulated_usb::UsbBus::load_from(folder).get(key); }
   // The device a user would see now (the models' appears_at_ms aside).
   std::string device() const { return value("device"); }
   std::vector<std::string> events() const {
@@ -66,17 +62,9 @@ class Bus {
     return out;
   }
   void set(const std::string& key, const std::string& v) const {
-    std::map<std::string, std::string> values;
-    std::ifstream in(folder + "/bus");
-    for (std::string line; std::getline(in, line);) {
-      const size_t eq = line.find('=');
-      if (eq != std::string::npos) values[line.substr(0, eq)] = line.substr(eq + 1);
-    }
-    values[key] = v;
-    std::ofstream out(folder + "/bus.new");
-    for (const auto& [k, x] : values) out << k << '=' << x << '\n';
-    out.close();
-    std::filesystem::rename(folder + "/bus.new", folder + "/bus");
+    emulated_usb::UsbBus bus = emulated_usb::UsbBus::load_from(folder);
+    bus.set(key, v);
+    bus.save();
   }
 
   std::string folder;

@@ -8,9 +8,12 @@
 namespace ff::ffctl::emulated_usb {
 
 UsbBus UsbBus::load() {
-  UsbBus bus;
   const char* folder = std::getenv("FF_EMULATED_USB");
-  if (!folder) return bus;
+  return folder ? load_from(folder) : UsbBus();
+}
+
+UsbBus UsbBus::load_from(const std::string& folder) {
+  UsbBus bus;
   bus.folder_ = folder;
   std::ifstream in(bus.folder_ + "/bus");
   for (std::string line; std::getline(in, line);) {

@@ -31,6 +31,7 @@ class UsbBus {
  public:
   // The folder from FF_EMULATED_USB; a missing variable or file is an empty bus.
   static UsbBus load();
+  static UsbBus load_from(const std::string& folder);  // the tests' side
   void save() const;  // whole, by rename
 
   std::string get(const std::string& key, const std::string& fallback = "") const;
