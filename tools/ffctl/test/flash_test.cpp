@@ -35,6 +35,31 @@ TEST(IntelHex, ParsesWithExtendedAddressesAndRejectsBadRecords) {
   EXPECT_NE(error.find("no end-of-file"), std::string::npos) << error;
 }
 
+TEST(IntelHex, DataIsRefusedPastTheFlashEvenWhereItsAddressWrapsAt4GiB) {
+  std::string error;
+  // The last two bytes of the flash: accepted.
+  FlashImage edge;
+  ASSERT_TRUE(parse_intel_hex(hex_record(0, 0x04, {0x00, 0x0F}) + hex_record(0xFFFE, 0x00, {0xAA, 0xBB}) +
+                                  hex_record(0, 0x01, {}),
+                              edge, error))
+      << error;
+  EXPECT_EQ(edge.bytes[kMk66FlashBytes - 1], 0xBB);
+  EXPECT_EQ(edge.highest, kMk66FlashBytes);
+  // One byte further: refused.
+  FlashImage past;
+  EXPECT_FALSE(parse_intel_hex(hex_record(0, 0x04, {0x00, 0x0F}) + hex_record(0xFFFF, 0x00, {0xAA, 0xBB}) +
+                                   hex_record(0, 0x01, {}),
+                               past, error));
+  EXPECT_NE(error.find("line 2: data beyond the 1 MiB flash"), std::string::npos) << error;
+  // 0xFFFF0000 + 0xFFFF + 2 would be 1 in 32-bit arithmetic: still beyond the flash.
+  FlashImage wrapped;
+  EXPECT_FALSE(parse_intel_hex(hex_record(0, 0x04, {0xFF, 0xFF}) + hex_record(0xFFFF, 0x00, {0xAA, 0xBB}) +
+                                   hex_record(0, 0x01, {}),
+                               wrapped, error));
+  EXPECT_NE(error.find("line 2: data beyond the 1 MiB flash"), std::string::npos) << error;
+  EXPECT_EQ(wrapped.highest, 0u);
+}
+
 TEST(HalfKay, BlocksHaveTheMk66LayoutSkipBlanksButTheFirstAndEndWithBoot) {
   FlashImage image;
   image.bytes[5] = 0xAB;         // block 0
