@@ -259,7 +259,7 @@ int main(int argc, char** argv) {
       "Permission denied? Install udev/49-frictionfield.rules (docs/ffctl.md).");
   std::string serial, udp;
   app.add_option("--serial", serial, "the USB device's serial number (default: the first device)");
-  app.add_option("--udp", udp, "talk over UDP to HOST[:PORT] (default port 8888) instead of USB");
+  app.add_option("--udp", udp, "talk over UDP to HOST[:PORT] (IPv4, default port 8888) instead of USB");
 
   auto* list = app.add_subcommand("list", "frictionfield devices on USB");
   auto* status = app.add_subcommand(

@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -18,6 +19,9 @@ namespace ff::ffctl {
 bool parse_udp_address(const std::string& text, std::string& host, uint16_t& port, std::string& error) {
   host = text;
   port = kDefaultUdpPort;
+  if (std::count(text.begin(), text.end(), ':') > 1 || text.find('[') != std::string::npos) {
+    return error = "--udp " + text + ": an IPv6 address; the device's WIZ820io and ff-sim speak IPv4 only", false;
+  }
   const size_t colon = text.rfind(':');
   if (colon != std::string::npos) {
     host = text.substr(0, colon);
@@ -35,7 +39,9 @@ bool parse_udp_address(const std::string& text, std::string& host, uint16_t& por
 
 UdpTransport::UdpTransport(const std::string& host, uint16_t port) {
   addrinfo hints{};
-  hints.ai_family = AF_UNSPEC;
+  // IPv4 only: the WIZ820io and ff-sim have no IPv6, and a name such as
+  // localhost that also resolves to ::1 would send there, to no one.
+  hints.ai_family = AF_INET;
   hints.ai_socktype = SOCK_DGRAM;
   addrinfo* found = nullptr;
   const int r = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found);

@@ -317,6 +317,24 @@ TEST(UdpAddress, HostAndPort) {
   EXPECT_FALSE(parse_udp_address(":9000", host, port, error));
   EXPECT_FALSE(parse_udp_address("h:0", host, port, error));
   EXPECT_FALSE(parse_udp_address("h:x", host, port, error));
+  // The device and ff-sim speak IPv4 only: an IPv6 address is refused as one,
+  // not read as a host "fe80:" on port 1.
+  EXPECT_FALSE(parse_udp_address("fe80::1", host, port, error));
+  EXPECT_NE(error.find("IPv4 only"), std::string::npos) << error;
+  EXPECT_FALSE(parse_udp_address("[::1]:8888", host, port, error));
+  EXPECT_NE(error.find("IPv4 only"), std::string::npos) << error;
+}
+
+TEST(UdpTransport, ResolvesIPv4AddressesOnly) {
+  // A name that resolves to ::1 as well as 127.0.0.1 (localhost, on most
+  // machines) must reach ff-sim's 127.0.0.1, so IPv6 is never asked for.
+  try {
+    UdpTransport to_v6("::1", kDefaultUdpPort);
+    ADD_FAILURE() << "an IPv6 address was opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("cannot resolve ::1: ", 0), 0u) << e.what();
+  }
+  EXPECT_NO_THROW(UdpTransport("127.0.0.1", kDefaultUdpPort));
 }
 
 TEST(FfctlCli, StatusSceneRecordVerifyOverUdp) {
