@@ -35,6 +35,39 @@ TEST(IntelHex, ParsesWithExtendedAddressesAndRejectsBadRecords) {
   EXPECT_NE(error.find("no end-of-file"), std::string::npos) << error;
 }
 
+TEST(IntelHex, LowerCaseDigitsBlankLinesAndCrLfAreRead) {
+  FlashImage image;
+  std::string error;
+  ASSERT_TRUE(parse_intel_hex("\r\n:02000000abcd86\r\n\n  \n:00000001ff\r\n\n", image, error)) << error;
+  EXPECT_EQ(image.bytes[0], 0xAB);
+  EXPECT_EQ(image.bytes[1], 0xCD);
+  EXPECT_EQ(image.highest, 2u);
+}
+
+TEST(IntelHex, EachMalformedRecordIsRefusedWithItsLineAndReason) {
+  const std::string data = hex_record(0, 0x00, {0x01, 0x02});
+  const std::string end = hex_record(0, 0x01, {});
+  const struct {
+    std::string text;
+    const char* error;
+  } cases[] = {
+      {data + end + data, "line 3: data after the end-of-file record"},
+      {data + "020000000102FB\n" + end, "line 2: not an Intel HEX record"},           // no colon
+      {":0000000\n" + end, "line 1: not an Intel HEX record"},                         // shorter than a record
+      {":020000000102FB0\n" + end, "line 1: not an Intel HEX record"},                 // an odd digit count
+      {":020000000102FG\n" + end, "line 1: not a hex digit"},
+      {":030000000102FA\n" + end, "line 1: byte count does not match the record length"},  // 3 said, 2 there
+      {hex_record(0, 0x02, {0x10}) + end, "line 1: extended segment address needs 2 bytes"},
+      {hex_record(0, 0x04, {0x00, 0x00, 0x00}) + end, "line 1: extended linear address needs 2 bytes"},
+  };
+  for (const auto& c : cases) {
+    FlashImage image;
+    std::string error;
+    EXPECT_FALSE(parse_intel_hex(c.text, image, error)) << c.text;
+    EXPECT_EQ(error, c.error) << c.text;
+  }
+}
+
 TEST(IntelHex, DataIsRefusedPastTheFlashEvenWhereItsAddressWrapsAt4GiB) {
   std::string error;
   // The last two bytes of the flash: accepted.
