@@ -295,14 +295,25 @@ TEST(Mk66Image, VectorTableChecksByHand) {
   };
   put(0x20030000u, 0x000001BDu, 0x4000);  // Teensyduino 3.6: stack at the top of SRAM_U, ResetHandler in flash
   EXPECT_TRUE(check_mk66_image(image, error)) << error;
+  put(0x20030000u, 0x000001BDu, kMk66FlashBytes);  // the whole flash
+  EXPECT_TRUE(check_mk66_image(image, error)) << error;
+  const auto refused = [&](const char* why) {
+    error.clear();
+    EXPECT_FALSE(check_mk66_image(image, error));
+    EXPECT_NE(error.find(why), std::string::npos) << error;
+  };
   put(0x1FFF0000u, 0x000001BDu, 0x4000);  // a stack with no room at all
-  EXPECT_FALSE(check_mk66_image(image, error));
+  refused("initial stack pointer 0x1FFF0000 is outside");
   put(0x20030004u, 0x000001BDu, 0x4000);  // one word past the RAM
-  EXPECT_FALSE(check_mk66_image(image, error));
+  refused("initial stack pointer 0x20030004 is outside");
   put(0x20030000u, 0x000041BDu, 0x4000);  // into flash nobody wrote
-  EXPECT_FALSE(check_mk66_image(image, error));
+  refused("reset vector 0x000041BD is not an odd (Thumb) address inside the image");
+  put(0x20030000u, 0x000001BCu, 0x4000);  // even: not Thumb code
+  refused("reset vector 0x000001BC is not an odd");
   put(0x20030000u, 0x000001BDu, 4);  // no whole vector table
-  EXPECT_FALSE(check_mk66_image(image, error));
+  refused("no vector table");
+  put(0x20030000u, 0x000001BDu, kMk66FlashBytes + 1);  // what no parsed file has, but a caller could
+  refused("larger than the MK66's 1 MiB flash");
 }
 
 TEST(UdpAddress, HostAndPort) {

@@ -59,6 +59,7 @@ TEST(IntelHex, EachMalformedRecordIsRefusedWithItsLineAndReason) {
       {":030000000102FA\n" + end, "line 1: byte count does not match the record length"},  // 3 said, 2 there
       {hex_record(0, 0x02, {0x10}) + end, "line 1: extended segment address needs 2 bytes"},
       {hex_record(0, 0x04, {0x00, 0x00, 0x00}) + end, "line 1: extended linear address needs 2 bytes"},
+      {hex_record(0, 0x04, {0x00, 0x01}) + end, "line 2: no data"},
   };
   for (const auto& c : cases) {
     FlashImage image;
