@@ -55,6 +55,11 @@ void expect_same_condition_as_ff_replay(const Parsed& p) {
   EXPECT_FLOAT_EQ(device.amplitude.strength, native.amplitude.strength);
   EXPECT_FLOAT_EQ(device.amplitude.idle_amplitude, native.amplitude.idle_amplitude);
   EXPECT_FLOAT_EQ(device.amplitude.s_curve, native.amplitude.s_curve);
+  ASSERT_EQ(device.amplitude.calibration.count, native.amplitude.calibration.count);
+  for (int i = 0; i < native.amplitude.calibration.count; ++i) {
+    EXPECT_FLOAT_EQ(device.amplitude.calibration.amplitude[i], native.amplitude.calibration.amplitude[i]) << i;
+    EXPECT_FLOAT_EQ(device.amplitude.calibration.code[i], native.amplitude.calibration.code[i]) << i;
+  }
 }
 
 TEST(SceneCommand, ThesisConditionsTravelAsKindTargetAndStrength) {
@@ -77,6 +82,15 @@ TEST(SceneCommand, ThesisConditionsTravelAsKindTargetAndStrength) {
   EXPECT_EQ(n.message.kind, protocol::ConditionKind::Neutral);
   EXPECT_FLOAT_EQ(n.message.idle_amplitude, 0.2f);
   expect_same_condition_as_ff_replay(n);
+}
+
+TEST(SceneCommand, AnInvertedDacTravelsWithTheCondition) {
+  // The FSADJUST wiring that gives less current for more DAC volts: amplitude 1 at code 0.
+  const Parsed p = parse({"--scene", "heightmap", "--inverted-dac"});
+  ASSERT_TRUE(p.ok) << p.error;
+  EXPECT_EQ(p.message.calibration.code_for(1.0f), 0);
+  EXPECT_EQ(p.message.calibration.code_for(0.0f), 4095);
+  expect_same_condition_as_ff_replay(p);
 }
 
 TEST(SceneCommand, EverythingElseTravelsWholeAsAGeneralScene) {
