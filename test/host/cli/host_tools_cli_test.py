@@ -6,6 +6,7 @@ counts), not from the tools.
 
 usage: host_tools_cli_test.py path/to/ff-replay path/to/ff-scene-render
 """
+import math
 import os
 import resource
 import signal
@@ -336,6 +337,36 @@ class SceneWords(Case):
                 res = run(*tool, *words)
                 self.assertEqual(res.returncode, 2, f"{tool[0]} {words}")
                 self.assertIn(says, res.stderr, f"{tool[0]} {words}")
+
+
+class SceneRender(SceneWords):
+    def test_a_texture_samples_its_closed_form(self):
+        # h sin(2 pi x / L) sin(2 pi y / L), L = 100, h = 3: max|G| = 2 pi h / L,
+        # reached across x = L/4 at y = 0 (all of it along y); (gx, gy) = G / (2 max|G|).
+        path = self.scene("rendering directional\nelement texture wavelength 100 100 height 3\n")
+        res = run(SCENE_RENDER, "--scene-file", path, "--step", "25")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        lines = res.stdout.splitlines()
+        meta = {l[1:].strip().partition(": ")[0]: l[1:].strip().partition(": ")[2] for l in lines if l.startswith("#")}
+        body = [l for l in lines if not l.startswith("#")]
+        self.assertEqual(body[0], "x,y,gx,gy,amplitude")
+        self.assertAlmostEqual(float(meta["max_gradient"]), 2 * math.pi * 3 / 100, places=5)
+        self.assertEqual(meta["needs"], "position+direction")
+        rows = {(float(r[0]), float(r[1])): [float(v) for v in r[2:]] for r in (l.split(",") for l in body[1:])}
+        self.assertEqual(len(rows), 32 * 20)  # x 0..775, y 0..475: the screen is 0..799 x 0..479 px
+        gx, gy, _ = rows[(25.0, 0.0)]
+        self.assertAlmostEqual(gx, 0.0, places=4)
+        self.assertAlmostEqual(abs(gy), 0.5, places=4)
+        self.assertEqual(rows[(0.0, 0.0)][:2], [0.0, 0.0])
+
+    def test_a_scene_the_core_refuses_exits_2_with_its_reason(self):
+        # A float gradient table at 1 px is 800 x 480 x 8 bytes: over the core's budget.
+        path = self.scene("rendering directional\nevaluation table 1 float gradient\n"
+                          "element texture wavelength 100 100 height 3\n")
+        res = run(SCENE_RENDER, "--scene-file", path)
+        self.assertEqual(res.returncode, 2)
+        self.assertEqual(res.stderr, "ff-scene-render: cannot prepare the scene: table larger than the RAM budget\n")
+        self.assertEqual(res.stdout, "")
 
 
 if __name__ == "__main__":
