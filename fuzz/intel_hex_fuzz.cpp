@@ -1,16 +1,19 @@
 // libFuzzer target: ffctl's Intel HEX reader (tools/ffctl/intel_hex), which
 // takes whatever file a user hands `ffctl flash`. Whatever the text: no crash;
 // a rejected file says which line; an accepted one holds data inside the
-// MK66's 1 MiB, and written out again as plain data records (by this file's
-// own writer) reads back to the same image; the model check never reads past
-// what was written.
+// MK66's 1 MiB, and written out again as plain data records (by the HEX
+// writer ffctl's tests use) reads back to the same image; the model check
+// never reads past what was written.
 //
 // Build: clang++ -fsanitize=fuzzer,address,undefined with intel_hex.cpp.
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
+#include "hex_record.hpp"  // tools/ffctl/test
 #include "intel_hex.hpp"
 
 namespace ff::fuzz {
@@ -24,35 +27,20 @@ void check(bool ok, const char* what) {
   }
 }
 
-void append_record(std::string& text, uint32_t address, uint8_t type, const uint8_t* data, size_t count) {
-  const uint32_t offset = address & 0xFFFFu;  // the upper half is the extended linear address record's
-  char buf[16];
-  uint8_t sum = static_cast<uint8_t>(count + (offset >> 8) + offset + type);
-  std::snprintf(buf, sizeof buf, ":%02X%04X%02X", static_cast<unsigned>(count), offset, type);
-  text += buf;
-  for (size_t i = 0; i < count; ++i) {
-    std::snprintf(buf, sizeof buf, "%02X", data[i]);
-    text += buf;
-    sum = static_cast<uint8_t>(sum + data[i]);
-  }
-  std::snprintf(buf, sizeof buf, "%02X\n", static_cast<uint8_t>(-sum));
-  text += buf;
-}
-
 // The image's bytes [0, highest) as 16-byte data records, an extended linear
 // address record at every 64 KiB, and the end record.
 std::string written_out(const ffctl::FlashImage& image) {
   std::string text;
   for (size_t at = 0; at < image.highest; at += 16) {
     if (at % 0x10000 == 0 && at != 0) {
-      const uint8_t upper[2] = {static_cast<uint8_t>(at >> 24), static_cast<uint8_t>(at >> 16)};
-      append_record(text, 0, 0x04, upper, 2);
+      text += ffctl::hex_record(0, 0x04, {static_cast<uint8_t>(at >> 24), static_cast<uint8_t>(at >> 16)});
     }
     const size_t count = image.highest - at < 16 ? image.highest - at : 16;
-    append_record(text, static_cast<uint32_t>(at), 0x00, &image.bytes[at], count);
+    const auto first = image.bytes.begin() + static_cast<std::ptrdiff_t>(at);
+    text += ffctl::hex_record(static_cast<uint16_t>(at), 0x00,
+                              std::vector<uint8_t>(first, first + static_cast<std::ptrdiff_t>(count)));
   }
-  append_record(text, 0, 0x01, nullptr, 0);
-  return text;
+  return text + ffctl::hex_record(0, 0x01, {});
 }
 
 }  // namespace

@@ -167,38 +167,32 @@ TEST(UdpTransport, ASignalWhileWaitingIsNotADisconnection) {
   ::close(device);
 }
 
-TEST(UdpTransport, ADatagramIsOneFrameOfItsOwnLength) {
+// What the transport receives when the device (a socket on 127.0.0.1)
+// answers its first datagram with `reply`, as the device answers its sender.
+std::vector<uint8_t> received_reply(const std::vector<uint8_t>& reply) {
   const int device = bound(SOCK_DGRAM, 0);
   UdpTransport transport("127.0.0.1", port_of(device));
   const uint8_t hello[] = {0};
-  ASSERT_TRUE(transport.send(hello, sizeof hello));
+  EXPECT_TRUE(transport.send(hello, sizeof hello));
   sockaddr_in from{};
   socklen_t n = sizeof from;
   uint8_t got[4];
-  ASSERT_EQ(::recvfrom(device, got, sizeof got, 0, reinterpret_cast<sockaddr*>(&from), &n), 1);
-  const uint8_t reply[] = {9, 8, 7, 6, 5};
-  ASSERT_EQ(::sendto(device, reply, sizeof reply, 0, reinterpret_cast<sockaddr*>(&from), n), 5);
+  EXPECT_EQ(::recvfrom(device, got, sizeof got, 0, reinterpret_cast<sockaddr*>(&from), &n), 1);
+  EXPECT_EQ(::sendto(device, reply.data(), reply.size(), 0, reinterpret_cast<sockaddr*>(&from), n),
+            static_cast<ssize_t>(reply.size()));
   std::vector<uint8_t> frame;
-  ASSERT_EQ(transport.receive(frame, 2000), ReceiveResult::Frame);
-  EXPECT_EQ(frame, std::vector<uint8_t>(reply, reply + 5));
+  EXPECT_EQ(transport.receive(frame, 2000), ReceiveResult::Frame);
   ::close(device);
+  return frame;
+}
+
+TEST(UdpTransport, ADatagramIsOneFrameOfItsOwnLength) {
+  EXPECT_EQ(received_reply({9, 8, 7, 6, 5}), std::vector<uint8_t>({9, 8, 7, 6, 5}));
 }
 
 TEST(UdpTransport, AnOversizedDatagramArrivesLongerThanAnyFrame) {
-  const int device = bound(SOCK_DGRAM, 0);
-  UdpTransport transport("127.0.0.1", port_of(device));
-  const uint8_t hello[] = {0};
-  ASSERT_TRUE(transport.send(hello, sizeof hello));
-  sockaddr_in from{};
-  socklen_t n = sizeof from;
-  uint8_t got[4];
-  ASSERT_EQ(::recvfrom(device, got, sizeof got, 0, reinterpret_cast<sockaddr*>(&from), &n), 1);
-  const std::vector<uint8_t> big(4000, 0x55);
-  ASSERT_EQ(::sendto(device, big.data(), big.size(), 0, reinterpret_cast<sockaddr*>(&from), n), 4000);
-  std::vector<uint8_t> frame;
-  ASSERT_EQ(transport.receive(frame, 2000), ReceiveResult::Frame);
-  EXPECT_GT(frame.size(), protocol::kMaxFrame);  // so the decoder refuses its length instead of a cut frame
-  ::close(device);
+  // Longer than any frame, so the decoder refuses its length instead of a cut frame.
+  EXPECT_GT(received_reply(std::vector<uint8_t>(4000, 0x55)).size(), protocol::kMaxFrame);
 }
 
 }  // namespace
