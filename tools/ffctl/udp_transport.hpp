@@ -10,12 +10,13 @@ namespace ff::ffctl {
 
 constexpr uint16_t kDefaultUdpPort = 8888;
 
-// "HOST" or "HOST:PORT" (port 1..65535; default kDefaultUdpPort). false with a readable `error`.
+// "HOST" or "HOST:PORT" (port 1..65535; default kDefaultUdpPort), IPv4 only:
+// an IPv6 address is refused. false with a readable `error`.
 bool parse_udp_address(const std::string& text, std::string& host, uint16_t& port, std::string& error);
 
 class UdpTransport final : public Transport {
  public:
-  // Resolves `host` and connects a datagram socket to it; throws
+  // Resolves `host` (IPv4) and connects a datagram socket to it; throws
   // std::runtime_error with a readable message (unknown host, no socket).
   UdpTransport(const std::string& host, uint16_t port);
   ~UdpTransport() override;
