@@ -16,7 +16,6 @@ class Participant:
     """One folder, read and measured."""
 
     def __init__(self, folder):
-        self.folder = folder
         self.session = logs.read_session(folder)
         self.number = self.session["participant"]
         self.order = self.session["order"]

@@ -27,6 +27,8 @@ def read_exclusions(folder):
         return {}
     out = {}
     for line, row, idx in logs._rows(path, EXCLUSION_COLUMNS):
+        if len(row) <= idx["trial"]:
+            raise logs.LogError(path, line, "no trial number")
         text = row[idx["trial"]].strip()
         if not text.isdigit() or not 1 <= int(text) <= 180:
             raise logs.LogError(path, line, f"'{text}' is not a trial number 1..180")

@@ -104,7 +104,6 @@ def reversals(values, gap=REVERSAL_GAP_PX):
             extreme = i  # further in the same direction
         elif abs(v[i] - v[extreme]) >= gap:
             out.append(extreme)
-            anchor = v[extreme]
             trend = -trend
             extreme = i
     return out

@@ -2,11 +2,12 @@
 readable errors on bad folders."""
 import json
 
+import numpy as np
 import pytest
+from scipy import stats as sps
 
-from ffexp import analysis, analyse_cli, design
+from ffexp import analysis, analyse_cli, design, logs, metrics, stats
 from exp_synthetic import write_participant
-
 
 
 def planted(r, s):
@@ -106,3 +107,134 @@ def test_bad_input_names_file_and_line(planted_folders, tmp_path, capsys, damage
 def test_not_a_participant_folder(tmp_path, capsys):
     assert analyse_cli.main([str(tmp_path), "-o", str(tmp_path / "r")]) == 2
     assert "session.json: missing" in capsys.readouterr().err
+
+
+def in_order(folder, rendering, key):
+    """One rendering's trials as read back from trials.csv, in trial order."""
+    return [t[key] for t in sorted(logs.read_trials(folder), key=lambda t: t["trial"]) if t["rendering"] == rendering]
+
+
+def test_block_hit_rates_and_learning_curves(planted_folders):
+    g = analysis.group_statistics([analysis.Participant(f) for f in planted_folders])
+    for r in logs.RENDERINGS:
+        hits = np.array([in_order(f, r, "hit") for f in planted_folders], float)  # 6 x 90
+        rates = np.stack([hits[:, :45].mean(axis=1), hits[:, 45:].mean(axis=1)], axis=1)
+        assert np.array_equal(g["blocks"][r]["rates"], rates)
+        assert g["blocks"][r]["test"]["p"] == pytest.approx(sps.wilcoxon(rates[:, 0], rates[:, 1]).pvalue, rel=1e-12)
+        # movement time in trial order, its running mean over 10 trials, averaged over participants
+        runs = np.array([np.convolve(in_order(f, r, "movement_time"), np.ones(10) / 10, "valid")
+                         for f in planted_folders])
+        curve = g["learning"][r]
+        assert list(curve["x"]) == list(range(1, 82))
+        assert curve["mean"] == pytest.approx(runs.mean(axis=0), abs=1e-12)
+        assert curve["sd"] == pytest.approx(runs.std(axis=0), abs=1e-12)
+        assert curve["fit"] == pytest.approx(metrics.fit_power_law(np.arange(1.0, 82.0), runs.mean(axis=0)))
+        a, b, c = curve["fit"]
+        assert a > 0 and b > 0  # the planted 4 s / trial index: faster with practice
+
+
+def test_excluded_trials_are_left_out(planted_folders, tmp_path):
+    f = copy_folder(planted_folders[0], tmp_path / "P01")
+    (f / "exclusions.csv").write_text("trial,reason\n1,jump\n95,device\n")
+    p = analysis.Participant(str(f))
+    assert p.excluded == {1: "jump", 95: "device"}
+    assert [t["trial"] for t in p.trials] == [n for n in range(1, 181) if n not in (1, 95)]
+
+
+def test_notes_say_what_the_anova_left_out(tmp_path):
+    def never_a_heightmap_hit_at_033(number):
+        return lambda r, s: 0.0 if (number == 1 and r == "heightmap" and s == 0.33) else 0.7
+    folders = [write_participant(str(tmp_path), n, never_a_heightmap_hit_at_033(n)) for n in (1, 2, 3)]
+    ps = [analysis.Participant(f) for f in folders]
+    g = analysis.group_statistics(ps)
+    # participant 1 has no correct trial in one cell: no movement time or direction changes there
+    assert g["notes"] == ["movement_time: 1 participant(s) with an empty cell left out of the ANOVA",
+                          "direction_changes: 1 participant(s) with an empty cell left out of the ANOVA"]
+    assert "group" in g["anova"]["hit_rate"]  # three participants, both orders
+    assert "group" not in g["anova"]["movement_time"]  # two left: no room for the order
+    one = analysis.group_statistics(ps[1:2])
+    assert one["anova"] == {} and one["notes"] == ["one participant: no group statistics"]
+
+
+def test_a_participant_without_finished_trials(tmp_path):
+    folder = str(tmp_path / "P01")
+    logs.ParticipantLog(folder).close()
+    logs.write_session(folder, dict(participant=1, seed=1, order="fm-hm"))
+    with pytest.raises(logs.LogError, match="trials.csv: no finished trials"):
+        analysis.Participant(folder)
+
+
+def cell_lines(folders):
+    """The summary's table, worked out from trials.csv alone."""
+    lines = []
+    trials = [logs.read_trials(f) for f in folders]
+    for measure in ("hit_rate", "movement_time", "direction_changes"):
+        for r in logs.RENDERINGS:
+            cells = []
+            for s in logs.STRENGTHS:
+                per = []
+                for tr in trials:
+                    cell = [t for t in tr if t["rendering"] == r and t["strength"] == s]
+                    if measure == "hit_rate":
+                        per.append(np.mean([t["hit"] for t in cell]))
+                    elif any(t["hit"] for t in cell):  # the others: over correct trials
+                        per.append(np.mean([t["movement_time"] for t in cell if t["hit"]])
+                                   if measure == "movement_time" else 0.0)  # straight strokes: no changes
+                cells.append(f"{np.mean(per):.2f} ± {np.std(per):.2f}" if per else "–")
+            lines.append(f"| {measure.replace('_', ' ')} | {r} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def test_the_summary_page(planted_folders, tmp_path):
+    folders = planted_folders[:3]
+    assert analyse_cli.main([*folders, "-o", str(tmp_path), "--no-participant-pages"]) == 0
+    text = (tmp_path / "summary.md").read_text().splitlines()
+    assert text[0] == "# frictionfield study: summary"
+    assert text[2].endswith("3 participant(s): 1 (fm-hm, 180 trials, 0 excluded), 2 (hm-fm, 180 trials, 0 excluded), "
+                            "3 (fm-hm, 180 trials, 0 excluded)")
+    assert text[4:6] == ["| measure | rendering | s=1.00 | s=0.66 | s=0.33 |", "|---|---|---|---|---|"]
+    assert text[6:12] == cell_lines(folders)
+    for m in ("hit rate", "movement time", "direction changes"):
+        head = text.index(f"**{m}**, RM-ANOVA rendering × strength with order between:")
+        effects = [line.split(":")[0] for line in text[head + 1:head + 8]]
+        assert effects == ["- rendering", "- rendering x group", "- strength", "- strength x group",
+                           "- rendering x strength", "- rendering x strength x group", "- group"]
+        assert text[head + 8].startswith("- strength, Bonferroni paired t: 1.0 vs 0.66: p")
+        assert text[head + 8].count(" vs ") == 3
+        assert text[head + 9].startswith("- heightmap vs frictionmap, Wilcoxon per strength: s=1.0: p")
+    for r in logs.RENDERINGS:
+        hits = np.array([in_order(f, r, "hit") for f in folders], float)
+        p = sps.wilcoxon(hits[:, :45].mean(axis=1), hits[:, 45:].mean(axis=1)).pvalue
+        assert f"- {r}: hit rate block 1 vs 2 (45 trials each), Wilcoxon {stats.format_p(p)}" in text
+        a, b, c = metrics.fit_power_law(np.arange(1.0, 82.0), np.mean(
+            [np.convolve(in_order(f, r, "movement_time"), np.ones(10) / 10, "valid") for f in folders], axis=0))
+        assert (f"- {r}: movement time learning curve y = a·x^-b + c: a = {a:.2f}, b = {b:.3f}, c = {c:.2f} "
+                f"(start a+c = {a + c:.2f} s)") in text
+    assert text[-1] == ("Figures: [fig11_hit_rates.png](fig11_hit_rates.png), [fig12_movement_times.png]"
+                        "(fig12_movement_times.png), [fig13_direction_changes.png](fig13_direction_changes.png), "
+                        "[fig14_movement_angles.png](fig14_movement_angles.png), [fig15_learning.png](fig15_learning.png)")
+    assert not (tmp_path / "participant_1.png").exists()
+
+
+def test_the_summary_of_empty_cells_and_no_learning(tmp_path, capsys):
+    # nobody ever hits a heightmap target at s = 0.33; every movement takes 2 s
+    folders = [write_participant(str(tmp_path), n, lambda r, s: 0.0 if (r, s) == ("heightmap", 0.33) else 0.7)
+               for n in (1, 2)]
+    assert analyse_cli.main([*folders, "-o", str(tmp_path / "r"), "--no-participant-pages"]) == 0
+    assert capsys.readouterr().out == f"ff-analyse: 2 participant(s) -> {tmp_path / 'r' / 'summary.md'}\n"
+    text = (tmp_path / "r" / "summary.md").read_text().splitlines()
+    assert text[6:12] == cell_lines(folders)
+    assert text[8].endswith("| – |") and text[10].endswith("| – |")
+    assert "**hit rate**, RM-ANOVA rendering × strength:" in text  # two participants: no room for the order
+    assert not any(line.startswith("**movement time**") for line in text)
+    assert "- note: movement_time: 2 participant(s) with an empty cell left out of the ANOVA" in text
+    for r in logs.RENDERINGS:
+        assert any(line.startswith(f"- {r}: movement time shows no power-law learning trend") for line in text)
+
+
+def test_the_same_participant_twice_is_refused(planted_folders, tmp_path, capsys):
+    f = copy_folder(planted_folders[0], tmp_path / "again")
+    assert analyse_cli.main([planted_folders[0], str(f), "-o", str(tmp_path / "r")]) == 2
+    assert f"participant 1 is also {planted_folders[0]}" in capsys.readouterr().err
+    assert analyse_cli.main([str(tmp_path / "nowhere"), "-o", str(tmp_path / "r")]) == 2
+    assert "nowhere: not a folder" in capsys.readouterr().err

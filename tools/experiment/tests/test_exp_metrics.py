@@ -126,3 +126,51 @@ def test_movement_samples_take_the_trial_interval_only():
                   x=np.arange(5.0), y=np.arange(5.0), touch=np.array([1, 1, 0, 1, 1.0]))
     t, x, y = metrics.movement_samples(frames, dict(trial=1, t_leave_start=1, t_cross=3))
     assert list(t) == [1, 3]
+
+
+def test_resample_sorts_the_samples_and_drops_repeated_stamps():
+    # a log's rows out of order, one stamp twice (the first row of it kept)
+    g, x, y = metrics.resample_uniform([0.025, 0.0, 0.0125, 0.0125], [30.0, 0.0, 10.0, 99.0], [3.0, 0.0, 1.0, 99.0])
+    assert list(g) == [0.0, 0.0125, 0.025]
+    assert list(x) == [0.0, 10.0, 30.0] and list(y) == [0.0, 1.0, 3.0]
+
+
+def test_too_short_inputs_come_back_as_they_are():
+    g, x, y = metrics.resample_uniform([0.5], [7], [8])
+    assert (list(g), list(x), list(y)) == ([0.5], [7.0], [8.0])
+    short = metrics.lowpass([1, 2, 3])  # a filtfilt needs more than its padding
+    assert isinstance(short, np.ndarray) and list(short) == [1.0, 2.0, 3.0]
+    assert metrics.direction_changes_filtered(np.array([1.0, 2.0]), np.array([3.0, 4.0]))[0] == 0
+    assert metrics.direction_changes_filtered(np.array([1.0, 2.0]), np.array([3.0, 4.0]))[3] == []
+    assert len(metrics.angles_of_filtered(np.array([1.0, 2.0]), np.array([3.0, 4.0]))) == 0
+    assert len(metrics.moving_average(np.arange(9.0))) == 0
+    assert metrics.path_length_excess([0.0], [0.0], [5.0]) == (0.0, 0.0)
+
+
+def test_a_flat_top_is_one_stationary_point_at_its_first_sample():
+    assert metrics.stationary_points([0, 1, 2, 2, 2, 1, 0]) == [2]
+    assert metrics.stationary_points([0, 1, 1, 2, 3]) == []  # a pause on the way up turns nothing
+
+
+def test_a_reversal_is_at_the_furthest_point_of_its_run():
+    # up past the gap to 20, a 1 px wiggle, on up to 40, back 15: one reversal, at the 40
+    v = [0, 10, 20, 19, 30, 40, 32, 25]
+    assert metrics.reversals(v) == [5]
+
+
+def test_each_y_reversal_pairs_with_one_x_reversal_only():
+    # along x: x reversals at 0 and 6, y reversals at 5 and -10 (all at y = 0)
+    x = np.array([0.0, 6.0, 5.0, -10.0]); y = np.zeros(4)
+    # x0 takes y2 (5 px; y3 is 10); y2 is then gone and y3 is 16 px from x1
+    assert metrics.merge_reversals(x, y, [0, 1], [2, 3]) == [(0, 2)]
+    x[3] = 18.0  # y3 18 px from x0, 12 from x1: x1 takes it
+    assert metrics.merge_reversals(x, y, [0, 1], [2, 3]) == [(0, 2), (1, 3)]
+
+
+def test_power_law_fit_skips_non_finite_and_non_positive_points():
+    x = np.arange(0, 30, dtype=float)  # x = 0 has no power law
+    y = metrics.power_law(np.maximum(x, 1), 10.0, 0.5, 2.0)
+    y[5] = math.nan
+    fa, fb, fc = metrics.fit_power_law(x, y)
+    assert (fa, fb, fc) == pytest.approx((10.0, 0.5, 2.0), rel=1e-4)
+    assert all(math.isnan(v) for v in metrics.fit_power_law([1, 2, 3, math.nan, 0], [5, 4, 3, 2, 1]))

@@ -100,9 +100,48 @@ def test_bonferroni_multiplies_by_pairs():
     rng = np.random.default_rng(0)
     lv = {s: rng.normal(i, 1, 10) for i, s in enumerate((0.33, 0.66, 1.0))}
     out = stats.bonferroni_pairwise(lv)
+    assert list(out) == [(0.33, 0.66), (0.33, 1.0), (0.66, 1.0)]
     for (a, b), r in out.items():
-        assert r["p_bonferroni"] == pytest.approx(min(1.0, 3 * sps.ttest_rel(lv[a], lv[b]).pvalue))
+        ref = sps.ttest_rel(lv[a], lv[b])
+        assert r["t"] == pytest.approx(ref.statistic, rel=1e-12)
+        assert r["p"] == pytest.approx(ref.pvalue, rel=1e-12)
+        assert r["p_bonferroni"] == pytest.approx(min(1.0, 3 * ref.pvalue))
+    # a pair far apart is capped at 1, not 3 p
+    assert stats.bonferroni_pairwise({1: [1.0, 2.0, 3.0], 2: [1.1, 1.9, 3.05]})[(1, 2)]["p_bonferroni"] < 1
+    same = stats.bonferroni_pairwise({1: [1.0, 2.0, 3.0], 2: [1.1, 1.9, 3.05], 3: [1.0, 2.1, 2.95]})
+    assert max(r["p_bonferroni"] for r in same.values()) == 1.0
 
 
 def test_wilcoxon_all_equal_is_nan_not_error():
     assert np.isnan(stats.wilcoxon_paired([1, 2, 3], [1, 2, 3])["p"])
+
+
+def test_wilcoxon_drops_pairs_with_a_missing_value():
+    a = [1.0, 2.0, 3.0, float("nan"), 5.0, 6.5]
+    b = [2.0, 4.5, 1.0, 7.0, 9.0, float("inf")]
+    ours = stats.wilcoxon_paired(a, b)
+    ref = sps.wilcoxon([1.0, 2.0, 3.0, 5.0], [2.0, 4.5, 1.0, 9.0])
+    assert ours == dict(statistic=float(ref.statistic), p=float(ref.pvalue), n=4)
+    assert np.isnan(stats.wilcoxon_paired([1.0, float("nan")], [2.0, 3.0])["p"])  # one pair left
+
+
+def test_anova_refuses_what_it_cannot_test():
+    y = random_design(n=6)
+    assert stats.rm_anova(y.tolist())["B"]["F"] == stats.rm_anova(y)["B"]["F"]  # nested lists are fine
+    with pytest.raises(ValueError, match="complete"):
+        stats.rm_anova(y[:, :, 0])
+    y[2, 1, 1] = np.nan
+    with pytest.raises(ValueError, match="complete"):
+        stats.rm_anova(y)
+    with pytest.raises(ValueError, match="two groups"):
+        stats.rm_anova(random_design(n=6), groups=["fh"] * 6)
+
+
+def test_the_summary_prints_p_and_f_as_papers_do():
+    assert stats.format_p(float("nan")) == "p = n/a"
+    assert stats.format_p(0.0009) == "p < 0.001"
+    assert stats.format_p(0.001) == "p = 0.001"
+    assert stats.format_p(0.04449) == "p = 0.044"
+    r = dict(F=5.4321, df1=2, df2=20, p=0.0123, df1_gg=1.234, df2_gg=12.34, p_gg=0.0346, epsilon=0.617)
+    assert stats.format_f(r) == "F(2, 20) = 5.43, p = 0.012"
+    assert stats.format_f(r, corrected=True) == "F(1.2, 12.3) = 5.43, p = 0.035, GG eps = 0.62"

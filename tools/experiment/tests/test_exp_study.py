@@ -1,5 +1,5 @@
 """ff-experiment with the in-Python fake device and the simulated participant:
-trial logic, logs, resume after a kill, device loss, exclusions, bad usage."""
+trial logic, logs, resume after a kill, device loss, bad usage."""
 import json
 import os
 import signal
@@ -10,7 +10,7 @@ import time
 import numpy as np
 import pytest
 
-from ffexp import design, device, exclusions, experiment, geometry, logs
+from ffexp import design, device, experiment, geometry, logs
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.join(HERE, "..", "ff-experiment")
@@ -125,31 +125,6 @@ def test_device_loss_pauses_and_restarts_the_trial(tmp_path, capsys):
     during = (frames["t"] > lost[0] + device.LOST_AFTER_S + 0.05) & (frames["t"] < lost[1] - 0.05)
     assert not np.any(during)  # nothing logged while the device was away
     assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2]
-
-
-def test_propose_exclusions(tmp_path):
-    folder = str(tmp_path / "P01")
-    log = logs.ParticipantLog(folder)
-    logs.write_session(folder, dict(participant=1, seed=1, order="fm-hm"))
-    def stroke(n, t0, jump=None, back=False):
-        for k in range(40):
-            x, y = 60 + 17 * k, 240.0
-            if jump is not None and k >= jump and (not back or k < jump + 3):
-                y += 200
-            log.frame(n, t0 + k / 80, x, y, 1, 0.3, 0)
-        log.trial(dict(trial=n, rendering="frictionmap", strength=1.0, target="middle", choice="middle", hit=1,
-                       t_enter_start=t0, t_leave_start=t0, t_cross=t0 + 39 / 80, movement_time=39 / 80,
-                       crossing_y=240, late_frames=0, ack="ok"))
-    stroke(1, 0.0)
-    stroke(2, 1.0, jump=10)
-    stroke(3, 2.0, jump=10, back=True)
-    log.event(3.1, 4, "device-lost", "test")
-    stroke(4, 3.0)
-    log.close()
-    got = {n: r for n, r, _ in exclusions.propose(folder)}
-    assert got == {2: "jump", 3: "two-finger", 4: "device"}
-    exclusions.write_proposal(folder, exclusions.propose(folder))
-    assert "two-finger" in (tmp_path / "P01" / "exclusions.proposed.csv").read_text()
 
 
 def test_bad_usage_is_one_line(tmp_path):
