@@ -170,14 +170,22 @@ def _rows(path, columns):
             yield reader.line_num, row, index
 
 
-def _number(path, line, name, text, allow_empty=False):
-    if text == "" and allow_empty:
-        return math.nan
+def _number(path, line, name, text):
+    """A finite number: a trial's fields are never empty, nan or inf."""
     try:
         v = float(text)
     except ValueError:
-        raise LogError(path, line, f"column '{name}': '{text}' is not a number") from None
+        v = math.nan
+    if not math.isfinite(v):
+        raise LogError(path, line, f"column '{name}': '{text}' is not a number")
     return v
+
+
+def _whole(path, line, name, text):
+    v = _number(path, line, name, text)
+    if v != int(v):
+        raise LogError(path, line, f"column '{name}': '{text}' is not a whole number")
+    return int(v)
 
 
 def read_trials(folder):
@@ -185,11 +193,11 @@ def read_trials(folder):
     path = os.path.join(folder, "trials.csv")
     out = []
     for line, row, idx in _rows(path, TRIAL_COLUMNS):
-        if len(row) < len(idx):
-            raise LogError(path, line, f"truncated row ({len(row)} of {len(TRIAL_COLUMNS)} fields)")
+        if len(row) <= max(idx.values()):
+            raise LogError(path, line, f"truncated row ({len(row)} of {max(idx.values()) + 1} fields)")
         get = {c: row[i] for c, i in idx.items()}
         t = {}
-        t["trial"] = int(_number(path, line, "trial", get["trial"]))
+        t["trial"] = _whole(path, line, "trial", get["trial"])
         for c in ("rendering", "target", "choice", "ack"):
             t[c] = get[c]
         if t["rendering"] not in RENDERINGS:
@@ -198,10 +206,12 @@ def read_trials(folder):
             if t[c] not in TARGETS:
                 raise LogError(path, line, f"column '{c}': unknown target '{t[c]}'")
         t["strength"] = _number(path, line, "strength", get["strength"])
-        t["hit"] = bool(int(_number(path, line, "hit", get["hit"])))
+        if not any(math.isclose(t["strength"], s) for s in STRENGTHS):
+            raise LogError(path, line, f"column 'strength': {get['strength']} is not one of the study's strengths")
+        t["hit"] = bool(_whole(path, line, "hit", get["hit"]))
         for c in ("t_enter_start", "t_leave_start", "t_cross", "movement_time", "crossing_y"):
             t[c] = _number(path, line, c, get[c])
-        t["late_frames"] = int(_number(path, line, "late_frames", get["late_frames"]))
+        t["late_frames"] = _whole(path, line, "late_frames", get["late_frames"])
         t["line"] = line
         out.append(t)
     seen = set()
@@ -219,7 +229,7 @@ def read_frames(folder):
     path = os.path.join(folder, "frames.csv")
     cols = {c: [] for c in FRAME_COLUMNS}
     for line, row, idx in _rows(path, FRAME_COLUMNS):
-        if len(row) < len(idx):
+        if len(row) <= max(idx.values()):
             continue
         values = []
         for c, i in idx.items():
@@ -238,7 +248,7 @@ def read_events(folder):
         return []
     out = []
     for line, row, idx in _rows(path, EVENT_COLUMNS):
-        if len(row) < len(idx):
+        if len(row) <= max(idx.values()):
             continue
         out.append({c: row[i] for c, i in idx.items()})
     return out
