@@ -46,7 +46,6 @@ class CsvAppender:
     """Appends rows to a CSV file, flushing each; fsync() on demand."""
 
     def __init__(self, path, columns):
-        self.path = path
         if os.path.exists(path):
             _drop_torn_tail(path)
         fresh = not os.path.exists(path) or os.path.getsize(path) == 0
@@ -104,7 +103,6 @@ class ParticipantLog:
 
     def __init__(self, folder):
         os.makedirs(folder, exist_ok=True)
-        self.folder = folder
         self.frames = CsvAppender(os.path.join(folder, "frames.csv"), FRAME_COLUMNS)
         self.trials = CsvAppender(os.path.join(folder, "trials.csv"), TRIAL_COLUMNS)
         self.events = CsvAppender(os.path.join(folder, "events.csv"), EVENT_COLUMNS)
