@@ -131,3 +131,14 @@ def test_a_short_row_under_a_wider_header(tmp_path):
     assert list(logs.read_frames(folder)["t"]) == [0.0]  # the torn row is skipped, not an IndexError
     (tmp_path / "events.csv").write_text("note,t,trial,event,detail\nx,1,2,device-lost,a\nx,2,2,device-back\n")
     assert [e["event"] for e in logs.read_events(folder)] == ["device-lost"]
+
+
+def test_a_missing_or_empty_file(tmp_path):
+    with pytest.raises(logs.LogError) as e:
+        logs.read_trials(str(tmp_path))
+    assert str(e.value) == f"{tmp_path / 'trials.csv'}: missing"
+    (tmp_path / "frames.csv").write_text("")
+    with pytest.raises(logs.LogError) as e:
+        logs.read_frames(str(tmp_path))
+    assert (e.value.line, e.value.message) == (1, "empty file (no column header)")
+    assert logs.read_events(str(tmp_path)) == []  # no events file: nothing happened
