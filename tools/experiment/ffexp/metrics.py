@@ -59,9 +59,7 @@ def _butter(rate_hz, cutoff_hz):
 def filtered_path(t, x, y):
     """The movement as the analysis sees it: uniform 80 Hz, low-passed."""
     _, xs, ys = resample_uniform(t, x, y)
-    if len(xs) < 3:
-        return xs, ys
-    return lowpass(xs), lowpass(ys)
+    return lowpass(xs), lowpass(ys)  # a path too short to filter comes back as it is
 
 
 def stationary_points(values):
@@ -138,8 +136,6 @@ def direction_changes(t, x, y):
 
 def direction_changes_filtered(xf, yf):
     """direction_changes() of an already filtered 80 Hz path."""
-    if len(xf) < 3:
-        return 0, xf, yf, []
     ix, iy = reversals(xf), reversals(yf)
     pairs = merge_reversals(xf, yf, ix, iy)
     merged_y = {j for _, j in pairs}

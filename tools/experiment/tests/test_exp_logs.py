@@ -91,6 +91,9 @@ def test_trials_read_back_as_written(tmp_path):
     assert [(t["trial"], t["hit"], t["strength"], t["late_frames"], t["line"]) for t in got] == \
         [(1, False, 0.66, 0, 2), (2, True, 0.66, 0, 3)]
     assert {k: got[0][k] for k in TRIAL} == TRIAL
+    with open(tmp_path / "trials.csv", "a") as f:
+        f.write("\n")  # a blank line, as an editor may leave: no row
+    assert len(logs.read_trials(str(tmp_path))) == 2
     # columns in another order, one more of a newer writer: read by name
     moved = trials_file(tmp_path / "moved", head=lambda line: ",".join(["note" if line.startswith("trial") else "x"]
                                                              + line.split(",")[::-1]))

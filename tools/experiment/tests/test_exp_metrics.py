@@ -138,10 +138,12 @@ def test_resample_sorts_the_samples_and_drops_repeated_stamps():
 def test_too_short_inputs_come_back_as_they_are():
     g, x, y = metrics.resample_uniform([0.5], [7], [8])
     assert (list(g), list(x), list(y)) == ([0.5], [7.0], [8.0])
+    assert all(len(a) == 0 for a in metrics.resample_uniform([], [], []))  # a trial without a touching frame
     short = metrics.lowpass([1, 2, 3])  # a filtfilt needs more than its padding
     assert isinstance(short, np.ndarray) and list(short) == [1.0, 2.0, 3.0]
     assert metrics.direction_changes_filtered(np.array([1.0, 2.0]), np.array([3.0, 4.0]))[0] == 0
     assert metrics.direction_changes_filtered(np.array([1.0, 2.0]), np.array([3.0, 4.0]))[3] == []
+    assert metrics.direction_changes([], [], [])[0] == 0 and metrics.reversals([]) == []
     assert len(metrics.angles_of_filtered(np.array([1.0, 2.0]), np.array([3.0, 4.0]))) == 0
     assert len(metrics.moving_average(np.arange(9.0))) == 0
     assert metrics.path_length_excess([0.0], [0.0], [5.0]) == (0.0, 0.0)
