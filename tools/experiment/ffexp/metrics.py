@@ -185,10 +185,9 @@ def block_hit_rates(trials, rendering, block=BLOCK_TRIALS):
 
 
 def moving_average(values, window=MOVING_AVERAGE_WINDOW):
-    """Mean of each run of `window` consecutive values (len - window + 1 values)."""
+    """Mean of each run of `window` consecutive values (len - window + 1 values;
+    none for fewer than `window`)."""
     v = np.asarray(values, float)
-    if len(v) < window:
-        return np.array([])
     c = np.cumsum(np.concatenate([[0.0], v]))
     return (c[window:] - c[:-window]) / window
 
@@ -217,7 +216,6 @@ def fit_power_law(x, y):
 def path_length_excess(t, x, y, required_px=610.0):
     """Total |dx| travelled minus the least needed (start circle edge x = 90
     to the end zone x = 700), and total |dy| (appendix L panel I)."""
-    x, y = np.asarray(x, float), np.asarray(y, float)
     if len(x) < 2:
         return 0.0, 0.0
     return float(np.sum(np.abs(np.diff(x))) - required_px), float(np.sum(np.abs(np.diff(y))))

@@ -176,3 +176,9 @@ def test_power_law_fit_skips_non_finite_and_non_positive_points():
     fa, fb, fc = metrics.fit_power_law(x, y)
     assert (fa, fb, fc) == pytest.approx((10.0, 0.5, 2.0), rel=1e-4)
     assert all(math.isnan(v) for v in metrics.fit_power_law([1, 2, 3, math.nan, 0], [5, 4, 3, 2, 1]))
+
+
+def test_path_length_beyond_the_least_needed():
+    # from the start circle's edge (x = 90) to the end zone (x = 700) is 610 px; 5 px back and forth more
+    x, y = [90.0, 100.0, 95.0, 700.0], [0.0, 3.0, -1.0, -1.0]
+    assert metrics.path_length_excess(None, x, y) == (10.0, 7.0)
