@@ -56,8 +56,6 @@ def propose(folder):
             continue
         ok = touch > 0
         t, x, y = t[ok], x[ok], y[ok]
-        if len(t) < 2:
-            continue
         dt = np.maximum(np.diff(t), 1e-3)
         step = np.hypot(np.diff(x), np.diff(y))
         jumps = np.nonzero(step / dt > JUMP_PX_PER_S)[0]

@@ -35,7 +35,7 @@ def test_each_kind_of_candidate(tmp_path):
     stroke(log, 3, 2.0, jump=10, back=True)
     log.event(3.1, 4, "device-lost", "test")
     stroke(log, 4, 3.0, jump=10)  # lost and a jump: the device is the reason
-    stroke(log, 5, 4.0, gap_after=20)  # 0.61 s without a frame
+    stroke(log, 5, 4.0, gap_after=20, jump=30)  # 0.61 s without a frame, and a jump: the device again
     stroke(log, 6, 6.0, jump=10, touch=lambda k: 0 if 10 <= k < 13 else 1)  # lifted and back where it was
     stroke(log, 7, 7.0, jump=10, touch=lambda k: 0 if k else 1)  # one touching frame
     log.close()
