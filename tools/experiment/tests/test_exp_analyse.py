@@ -35,6 +35,9 @@ def test_design_is_balanced_seeded_and_ordered():
     from collections import Counter
     c = Counter((t["strength"], t["target"]) for t in p3[90:])
     assert set(c.values()) == {10} and len(c) == 9
+    for bad in (0, -1, "3", 2.0):  # a seed from a typo would still give a plan: refused instead
+        with pytest.raises(ValueError, match="positive integer"):
+            design.plan(bad)
 
 
 def test_planted_rendering_effect_found(planted_folders):

@@ -132,6 +132,10 @@ def test_a_short_row_under_a_wider_header(tmp_path):
     assert (e.value.line, e.value.message) == (3, "truncated row (13 of 14 fields)")
     (tmp_path / "frames.csv").write_text("note,trial,t,x,y,touch,force_n,late_ms\nx,1,0,1,2,1,0.3,0\nx,1,0.1,1,2,1,0.3\n")
     assert list(logs.read_frames(folder)["t"]) == [0.0]  # the torn row is skipped, not an IndexError
+    (tmp_path / "frames.csv").write_text("trial,t,x,y,touch,force_n,late_ms\n1,0,1,2,1,0.3,0\n1,0.1,1,2e,1,0.3,0\n")
+    with pytest.raises(logs.LogError) as e:
+        logs.read_frames(folder)
+    assert (e.value.line, e.value.message) == (3, "column 'y': '2e' is not a number")
     (tmp_path / "events.csv").write_text("note,t,trial,event,detail\nx,1,2,device-lost,a\nx,2,2,device-back\n")
     assert [e["event"] for e in logs.read_events(folder)] == ["device-lost"]
 
