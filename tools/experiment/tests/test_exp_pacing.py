@@ -45,3 +45,13 @@ def test_time_scale_runs_faster_and_reports_study_time():
     for _ in range(81):
         p.wait()
     assert c.t == pytest.approx(0.1)  # 80 frames of 1/800 s
+
+
+def test_a_sleep_that_overshoots_is_lateness():
+    c = FakeClock()
+    p = Pacer(time_scale=2, wall=c.wall, sleep=lambda s: setattr(c, "t", c.t + s + 0.005))  # the OS wakes 5 ms late
+    p.wait()
+    # 5 ms of wall time at 2x is 10 ms of study time; the period is 6.25 ms wall, its quarter 1.5625 ms
+    assert p.wait() == pytest.approx(0.010)
+    assert (p.frames, p.late_frames) == (2, 1)
+    assert p.is_late(0.0032) and not p.is_late(0.0031)  # a quarter of 12.5 ms of study time: 3.125 ms
