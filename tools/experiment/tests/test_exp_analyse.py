@@ -197,14 +197,19 @@ def test_the_summary_page(planted_folders, tmp_path):
                             "3 (fm-hm, 180 trials, 0 excluded)")
     assert text[4:6] == ["| measure | rendering | s=1.00 | s=0.66 | s=0.33 |", "|---|---|---|---|---|"]
     assert text[6:12] == cell_lines(folders)
+    assert text[12:14] == ["", "Hit rate over all trials of a cell (30 per participant, chance 1/3); movement time "
+                               "and direction changes over correct trials. Mean ± SD over participants."]
     for m in ("hit rate", "movement time", "direction changes"):
         head = text.index(f"**{m}**, RM-ANOVA rendering × strength with order between:")
+        assert text[head - 1] == ""  # markdown: a paragraph of its own
         effects = [line.split(":")[0] for line in text[head + 1:head + 8]]
         assert effects == ["- rendering", "- rendering x group", "- strength", "- strength x group",
                            "- rendering x strength", "- rendering x strength x group", "- group"]
         assert text[head + 8].startswith("- strength, Bonferroni paired t: 1.0 vs 0.66: p")
         assert text[head + 8].count(" vs ") == 3
         assert text[head + 9].startswith("- heightmap vs frictionmap, Wilcoxon per strength: s=1.0: p")
+    assert text[text.index("**direction changes**, RM-ANOVA rendering × strength with order between:") + 10] == ""
+    assert text[-2] == ""
     for r in logs.RENDERINGS:
         hits = np.array([in_order(f, r, "hit") for f in folders], float)
         p = sps.wilcoxon(hits[:, :45].mean(axis=1), hits[:, 45:].mean(axis=1)).pvalue
@@ -232,6 +237,7 @@ def test_the_summary_of_empty_cells_and_no_learning(tmp_path, capsys):
     assert not any(line.startswith("**movement time**") for line in text)
     assert "- note: movement_time: 2 participant(s) with an empty cell left out of the ANOVA" in text
     for r in logs.RENDERINGS:
+        assert sum(line.startswith(f"- {r}: movement time") for line in text) == 1
         assert any(line.startswith(f"- {r}: movement time shows no power-law learning trend") for line in text)
 
 
