@@ -4,7 +4,6 @@ import datetime
 import math
 import os
 import sys
-import warnings
 
 import ff_files
 
@@ -95,7 +94,6 @@ def run(argv):
                                 f"participant {p.number} is also {seen[p.number]}")
         seen[p.number] = folder
         participants.append(p)
-    os.makedirs(args.output, exist_ok=True)
     group = analysis.group_statistics(participants)
     names = figures.group_figures(participants, group, args.output)
     if not args.no_participant_pages:
@@ -110,7 +108,6 @@ def run(argv):
 
 
 def main(argv=None):
-    warnings.simplefilter("ignore", RuntimeWarning)  # empty cells are reported as such, not as numpy warnings
     try:
         return run(sys.argv[1:] if argv is None else argv)
     except logs.LogError as e:

@@ -1,6 +1,7 @@
 """ff-analyse on synthetic participants: planted effects found, null ones not,
 readable errors on bad folders."""
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -68,6 +69,7 @@ def test_cli_writes_figures_and_summary(planted_folders, tmp_path):
         assert (out / name).stat().st_size > 1000 or name == "summary.md"
     text = (out / "summary.md").read_text()
     assert "RM-ANOVA" in text and "Bonferroni" in text and "Wilcoxon" in text
+    assert text.endswith(", [participant_1.png](participant_1.png), [participant_2.png](participant_2.png)\n")
 
 
 def copy_folder(src, dst):
@@ -228,7 +230,10 @@ def test_the_summary_of_empty_cells_and_no_learning(tmp_path, capsys):
     # nobody ever hits a heightmap target at s = 0.33; every movement takes 2 s
     folders = [write_participant(str(tmp_path), n, lambda r, s: 0.0 if (r, s) == ("heightmap", 0.33) else 0.7)
                for n in (1, 2)]
-    assert analyse_cli.main([*folders, "-o", str(tmp_path / "r"), "--no-participant-pages"]) == 0
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert analyse_cli.main([*folders, "-o", str(tmp_path / "r"), "--no-participant-pages"]) == 0
+    assert [w for w in caught if issubclass(w.category, RuntimeWarning)] == []  # the notes say it instead
     assert capsys.readouterr().out == f"ff-analyse: 2 participant(s) -> {tmp_path / 'r' / 'summary.md'}\n"
     text = (tmp_path / "r" / "summary.md").read_text().splitlines()
     assert text[6:12] == cell_lines(folders)
@@ -247,3 +252,10 @@ def test_the_same_participant_twice_is_refused(planted_folders, tmp_path, capsys
     assert f"participant 1 is also {planted_folders[0]}" in capsys.readouterr().err
     assert analyse_cli.main([str(tmp_path / "nowhere"), "-o", str(tmp_path / "r")]) == 2
     assert "nowhere: not a folder" in capsys.readouterr().err
+
+
+def test_a_report_folder_that_cannot_be_made(planted_folders, tmp_path, capsys):
+    (tmp_path / "report").write_text("a file, not a folder")
+    assert analyse_cli.main([planted_folders[0], "-o", str(tmp_path / "report" / "deeper")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ff-analyse: ") and "Not a directory" in err and err.count("\n") == 1
