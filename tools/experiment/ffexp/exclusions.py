@@ -26,7 +26,7 @@ def read_exclusions(folder):
     if not os.path.isfile(path):
         return {}
     out = {}
-    for line, row, idx in logs._rows(path, EXCLUSION_COLUMNS):
+    for line, row, idx, _ in logs._rows(path, EXCLUSION_COLUMNS):  # the reason may be left out
         if len(row) <= idx["trial"]:
             raise logs.LogError(path, line, "no trial number")
         text = row[idx["trial"]].strip()

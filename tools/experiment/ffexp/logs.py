@@ -149,7 +149,8 @@ def read_session(folder):
 
 
 def _rows(path, columns):
-    """Yields (line number, dict) for each row; checks the column header."""
+    """Yields (line number, row, column index, complete) for each row, complete
+    when it reaches the last column read; checks the column header."""
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing")
     with open(path, newline="", encoding="utf-8") as f:
@@ -162,10 +163,11 @@ def _rows(path, columns):
         if missing:
             raise LogError(path, 1, f"missing column(s): {', '.join(missing)}")
         index = {c: head.index(c) for c in columns}
+        last = max(index.values())
         for row in reader:
             if not row:
                 continue
-            yield reader.line_num, row, index
+            yield reader.line_num, row, index, len(row) > last
 
 
 def _number(path, line, name, text):
@@ -190,8 +192,8 @@ def read_trials(folder):
     """Finished trials as a list of dicts, in trial order. Checks every field."""
     path = os.path.join(folder, "trials.csv")
     out = []
-    for line, row, idx in _rows(path, TRIAL_COLUMNS):
-        if len(row) <= max(idx.values()):
+    for line, row, idx, complete in _rows(path, TRIAL_COLUMNS):
+        if not complete:
             raise LogError(path, line, f"truncated row ({len(row)} of {max(idx.values()) + 1} fields)")
         get = {c: row[i] for c, i in idx.items()}
         t = {}
@@ -226,8 +228,8 @@ def read_frames(folder):
     import numpy as np
     path = os.path.join(folder, "frames.csv")
     cols = {c: [] for c in FRAME_COLUMNS}
-    for line, row, idx in _rows(path, FRAME_COLUMNS):
-        if len(row) <= max(idx.values()):
+    for line, row, idx, complete in _rows(path, FRAME_COLUMNS):
+        if not complete:
             continue
         values = []
         for c, i in idx.items():
@@ -245,8 +247,8 @@ def read_events(folder):
     if not os.path.isfile(path):
         return []
     out = []
-    for line, row, idx in _rows(path, EVENT_COLUMNS):
-        if len(row) <= max(idx.values()):
+    for line, row, idx, complete in _rows(path, EVENT_COLUMNS):
+        if not complete:
             continue
         out.append({c: row[i] for c, i in idx.items()})
     return out

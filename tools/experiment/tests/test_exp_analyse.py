@@ -119,16 +119,25 @@ def in_order(folder, rendering, key):
     return [t[key] for t in sorted(logs.read_trials(folder), key=lambda t: t["trial"]) if t["rendering"] == rendering]
 
 
+def block_rates(folders, rendering):
+    """participants x 2: the hit rate of the first and the last 45 trials."""
+    hits = np.array([in_order(f, rendering, "hit") for f in folders], float)
+    return np.stack([hits[:, :45].mean(axis=1), hits[:, 45:].mean(axis=1)], axis=1)
+
+
+def running_movement_times(folders, rendering):
+    """participants x 81: movement time in trial order, its running mean over 10 trials."""
+    return np.array([np.convolve(in_order(f, rendering, "movement_time"), np.ones(10) / 10, "valid")
+                     for f in folders])
+
+
 def test_block_hit_rates_and_learning_curves(planted_folders):
     g = analysis.group_statistics([analysis.Participant(f) for f in planted_folders])
     for r in logs.RENDERINGS:
-        hits = np.array([in_order(f, r, "hit") for f in planted_folders], float)  # 6 x 90
-        rates = np.stack([hits[:, :45].mean(axis=1), hits[:, 45:].mean(axis=1)], axis=1)
+        rates = block_rates(planted_folders, r)
         assert np.array_equal(g["blocks"][r]["rates"], rates)
         assert g["blocks"][r]["test"]["p"] == pytest.approx(sps.wilcoxon(rates[:, 0], rates[:, 1]).pvalue, rel=1e-12)
-        # movement time in trial order, its running mean over 10 trials, averaged over participants
-        runs = np.array([np.convolve(in_order(f, r, "movement_time"), np.ones(10) / 10, "valid")
-                         for f in planted_folders])
+        runs = running_movement_times(planted_folders, r)
         curve = g["learning"][r]
         assert list(curve["x"]) == list(range(1, 82))
         assert curve["mean"] == pytest.approx(runs.mean(axis=0), abs=1e-12)
@@ -213,11 +222,10 @@ def test_the_summary_page(planted_folders, tmp_path):
     assert text[text.index("**direction changes**, RM-ANOVA rendering × strength with order between:") + 10] == ""
     assert text[-2] == ""
     for r in logs.RENDERINGS:
-        hits = np.array([in_order(f, r, "hit") for f in folders], float)
-        p = sps.wilcoxon(hits[:, :45].mean(axis=1), hits[:, 45:].mean(axis=1)).pvalue
+        rates = block_rates(folders, r)
+        p = sps.wilcoxon(rates[:, 0], rates[:, 1]).pvalue
         assert f"- {r}: hit rate block 1 vs 2 (45 trials each), Wilcoxon {stats.format_p(p)}" in text
-        a, b, c = metrics.fit_power_law(np.arange(1.0, 82.0), np.mean(
-            [np.convolve(in_order(f, r, "movement_time"), np.ones(10) / 10, "valid") for f in folders], axis=0))
+        a, b, c = metrics.fit_power_law(np.arange(1.0, 82.0), running_movement_times(folders, r).mean(axis=0))
         assert (f"- {r}: movement time learning curve y = a·x^-b + c: a = {a:.2f}, b = {b:.3f}, c = {c:.2f} "
                 f"(start a+c = {a + c:.2f} s)") in text
     assert text[-1] == ("Figures: [fig11_hit_rates.png](fig11_hit_rates.png), [fig12_movement_times.png]"
