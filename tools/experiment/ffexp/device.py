@@ -47,6 +47,7 @@ class Device:
         self.counters = {}
         self.status = None
         self.sensor_profile = None  # what the device's tracker knows of its touch sensor
+        self.errors = []            # datagrams refused and device Errors no request awaited
 
     # -- what the study calls
     def open(self):
@@ -84,6 +85,14 @@ class Device:
         a, self.amplitudes = self.amplitudes, []
         return a
 
+    def take_errors(self):
+        """{text: how often} since the last call, in the order first seen."""
+        counts = {}
+        for text in self.errors:
+            counts[text] = counts.get(text, 0) + 1
+        self.errors = []
+        return counts
+
     def _changed_counters(self, status):
         new = status.counters()
         changed = {k: v for k, v in new.items() if self.counters.get(k) != v}
@@ -102,7 +111,6 @@ class UdpDevice(Device):
         self.sequence = 0
         self.replies = {}
         self.pending = {}   # sequence -> the reply type awaited
-        self.errors = []
         self.status_every_s = 1.0
         self._next_status = 0.0
 
@@ -134,7 +142,7 @@ class UdpDevice(Device):
             try:
                 seq, msg = protocol.decode(data)
             except protocol.ProtocolError as e:
-                self.errors.append(str(e))
+                self.errors.append(f"datagram refused: {e}")
                 continue
             self.last_heard = self.wall()
             if isinstance(msg, protocol.Force):

@@ -140,6 +140,8 @@ class Study:
             return None  # stale force, no device: log nothing
         if changed:
             self.log.event(now, trial_number, "counters", " ".join(f"{k}={v}" for k, v in sorted(changed.items())))
+        for text, count in self.dev.take_errors().items():
+            self.log.event(now, trial_number, "device-error", text if count == 1 else f"{text} ({count} times)")
         if self.participant is not None:
             self.participant.feel(x, y, self.dev.amplitude)
         self.log.frame(trial_number, now, x, y, touch, self.dev.force_n, lateness * 1000.0)

@@ -12,7 +12,7 @@ MAGIC = b"FF"
 HEADER = 7
 MAX_PAYLOAD = 1400
 
-SET_CONDITION, QUERY_STATUS, START_STREAM, STOP_STREAM = 0x01, 0x02, 0x03, 0x04
+SET_CONDITION, QUERY_STATUS, START_STREAM = 0x01, 0x02, 0x03
 QUERY_CONDITION = 0x08
 SET_SENSOR_PROFILE, QUERY_SENSOR_PROFILE = 0x09, 0x0A
 ACK, STATUS, FORCE, SAMPLES, TICKS, CONDITION, SENSOR_PROFILE, ERROR = 0x81, 0x82, 0x83, 0x84, 0x85, 0x86, 0x87, 0xE0
@@ -167,10 +167,6 @@ def query_status(seq):
 
 def start_stream(seq, decimation):
     return frame(START_STREAM, seq, struct.pack("<B", decimation))
-
-
-def stop_stream(seq):
-    return frame(STOP_STREAM, seq)
 
 
 @dataclass

@@ -67,6 +67,8 @@ def test_logs_hold_the_whole_design(study):
     assert np.nanmax(frames["force_n"]) > 0.1  # the participant's press came back from the load-cell path
     events = logs.read_events(folder)
     assert [int(float(e["trial"])) for e in events if e["event"] == "pause"] == [45, 90, 135]
+    # everything ff-sim sent was understood (its Samples stream too) and nothing refused
+    assert [e["detail"] for e in events if e["event"] == "device-error"] == []
     # the participant chooses by the amplitude ff-sim rendered: the frictionmap
     # at full strength must be found far above chance
     fm = [t["hit"] for t in trials if t["rendering"] == "frictionmap" and t["strength"] == 1.0]

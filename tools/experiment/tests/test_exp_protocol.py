@@ -152,3 +152,93 @@ def test_device_sensor_and_zforce_names_are_the_firmwares_in_its_order():
     source = (root / "src/drivers/zforce_sensor.cpp").read_text()
     names = dict(re.findall(r'case ZforceCount::(\w+): return "([\w ]+)";', source))
     assert protocol.ZFORCE_COUNT_NAMES == [names[m].replace(" ", "_") for m in _enum_members(header, "ZforceCount")]
+
+
+def test_a_payload_is_at_most_1400_bytes():
+    assert len(protocol.frame(protocol.SET_CONDITION, 1, bytes(1400))) == 7 + 1400 + 2
+    with pytest.raises(protocol.ProtocolError, match="payload too long"):
+        protocol.frame(protocol.SET_CONDITION, 1, bytes(1401))
+
+
+def test_an_unknown_type_with_a_good_crc_is_refused_by_name():
+    body = bytes([2, 0x7F, 1, 0, 0])
+    with pytest.raises(protocol.ProtocolError, match="unknown type 0x7F"):
+        protocol.unframe(b"FF" + body + struct.pack("<H", protocol.crc16(body)))
+
+
+@pytest.mark.parametrize("strength", [0.0, -0.25, 1.0000001, float("inf")])
+def test_a_strength_outside_0_to_1_is_not_sent(strength):
+    with pytest.raises(protocol.ProtocolError, match=r"strength outside \(0, 1\]"):
+        protocol.Condition("heightmap", "top", strength).payload()
+
+
+def _condition_payload(kind=0, target=0, n=2, tail=b""):
+    """A condition by hand (docs/protocol.md Condition): kind, target, three
+    floats, n calibration pairs, then what follows."""
+    pairs = b"".join(struct.pack("<ff", i / max(n - 1, 1), 4095.0 * i) for i in range(n))
+    return bytes([kind, target]) + struct.pack("<fff", 0.5, 0.0, 0.0) + bytes([n]) + pairs + tail
+
+
+def test_a_hand_made_condition_decodes():
+    c = protocol.decode_condition(_condition_payload(kind=1, target=2))
+    assert (c.kind, c.target, c.strength, c.calibration, c.scene) == ("frictionmap", "bottom", 0.5,
+                                                                       [(0.0, 0.0), (1.0, 4095.0)], b"")
+    c = protocol.decode_condition(_condition_payload(kind=3, target=1, tail=b"scene"))
+    assert (c.kind, c.target, c.scene) == ("general", "middle", b"scene")
+
+
+@pytest.mark.parametrize("payload", [
+    _condition_payload()[:14],          # ends before the calibration's count
+    _condition_payload()[:-1],          # a calibration pair cut short
+    _condition_payload(tail=b"\x00"),   # a byte after the calibration of a kind without a scene
+    _condition_payload(kind=4),         # no such kind
+    _condition_payload(target=3),       # no such target
+], ids=["no-count", "short-pair", "trailing-byte", "kind-4", "target-3"])
+def test_a_malformed_condition_is_refused(payload):
+    with pytest.raises(protocol.ProtocolError, match="malformed condition"):
+        protocol.decode_condition(payload)
+    # the device's echo of it is malformed too, not a condition to trust
+    with pytest.raises(protocol.ProtocolError, match="malformed"):
+        protocol.decode(protocol.frame(protocol.CONDITION, 3, payload))
+
+
+def test_the_condition_echo_is_the_payload_sent():
+    payload = protocol.Condition("heightmap", "top", 0.33).payload()
+    seq, m = protocol.decode(protocol.frame(protocol.CONDITION, 6, payload))
+    assert seq == 6 and m == protocol.ConditionEcho(payload)
+
+
+def test_error_names_are_the_docs_codes():
+    import re
+    from pathlib import Path
+    table = (Path(__file__).resolve().parents[3] / "docs/protocol.md").read_text()
+    row = re.search(r"\| 0xE0 \| Error \|.*?code u8 \(([^)]*)\)", table).group(1)
+    assert protocol.ERROR_NAMES == {int(n): name for n, name in re.findall(r"(\d+) ([^,]+)", row)}
+
+
+def test_a_device_error_decodes_and_says_what_it_refused():
+    seq, m = protocol.decode(protocol.frame(protocol.ERROR, 4, bytes([5, 0x01])))
+    assert seq == 4 and m == protocol.Error(5, 0x01)
+    assert m.text() == "device error: CRC (message type 0x01)"
+    assert protocol.Error(42, 0x0A).text() == "device error: 42 (message type 0x0A)"
+    with pytest.raises(protocol.ProtocolError, match="malformed message type 0xE0"):
+        protocol.decode(protocol.frame(protocol.ERROR, 4, bytes([5])))
+
+
+def test_a_status_with_bytes_after_its_zforce_counts_is_malformed():
+    _, _, p = protocol.unframe(protocol.status(2, device=[1], sensor_state=2, sensor_counts=[7]))
+    with pytest.raises(protocol.ProtocolError, match="malformed Status"):
+        protocol.decode(protocol.frame(protocol.STATUS, 2, p + b"\x00"))
+
+
+def test_samples_decode_to_nothing_the_experiment_uses():
+    # docs/protocol.md Samples: one report without taken times
+    p = bytes([1, 0]) + struct.pack("<IffB", 1000, 10.0, 20.0, 1)
+    assert protocol.decode(protocol.frame(protocol.SAMPLES, 8, p)) == (8, None)
+
+
+def test_the_device_side_sensor_profile_reply_is_the_set_payload():
+    p = protocol.SensorProfile(1.5, 0.5, 250.0, 0.25, 200.0, 150.0, 3000, 9.5)
+    _, _, payload = protocol.unframe(protocol.set_sensor_profile(3, p))
+    assert protocol.sensor_profile(3, p) == protocol.frame(protocol.SENSOR_PROFILE, 3, payload)
+    assert protocol.decode(protocol.sensor_profile(3, p))[1] == protocol.SensorProfile(*struct.unpack("<6fIf", payload))

@@ -171,3 +171,26 @@ def test_the_devices_sensor_profile_is_in_the_session_and_a_change_is_logged(tmp
     assert len(changed) == 1 and "latency_us=2000" in changed[0]["detail"] and "white_noise_px=1.5" in changed[0]["detail"]
     # the session's header keeps what the study started with
     assert json.loads((tmp_path / "P04" / "session.json").read_text())["sensor_profile"]["latency_us"] == 0
+
+
+class NoisyLinkDevice(device.FakeDevice):
+    """Refuses three datagrams and hears one unasked device Error on its tenth poll."""
+
+    polls = 0
+
+    def poll(self):
+        self.polls += 1
+        if self.polls == 10:
+            self.errors += ["datagram refused: bad CRC"] * 3 + ["device error: busy (message type 0x02)"]
+        return super().poll()
+
+
+def test_refused_datagrams_and_device_errors_are_logged_once_a_frame(tmp_path):
+    made = []
+
+    def factory(spec, root, speed, clock):
+        made.append(NoisyLinkDevice(clock))
+        return made[0]
+    assert run_fake(tmp_path, "--trials", "1", "--skip-familiarisation", factory=factory) == 0
+    errors = [(e["trial"], e["detail"]) for e in logs.read_events(str(tmp_path / "P04")) if e["event"] == "device-error"]
+    assert errors == [("1", "datagram refused: bad CRC (3 times)"), ("1", "device error: busy (message type 0x02)")]
