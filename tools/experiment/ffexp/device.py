@@ -35,8 +35,6 @@ class DeviceRefused(Exception):
 class Device:
     """Common state: the latest force, amplitude and fault counters."""
 
-    name = "device"
-
     def __init__(self, clock):
         self.clock = clock          # seconds of (simulated) monotonic time
         self.force_n = float("nan")
@@ -61,7 +59,7 @@ class Device:
 
     def poll(self):
         """Reads what arrived; returns counters that changed ({} if none)."""
-        return {}
+        raise NotImplementedError
 
     def lost(self):
         return self.wall() - self.last_heard > LOST_AFTER_S
@@ -132,12 +130,10 @@ class UdpDevice(Device):
         deadline = time.monotonic() + timeout_wall
         while True:
             wait = max(0.0, deadline - time.monotonic())
-            ready, _, _ = select.select([self.sock], [], [], wait)
-            if not ready:
-                return changed
+            select.select([self.sock], [], [], wait)
             try:
                 data, _ = self.sock.recvfrom(2048)
-            except (BlockingIOError, ConnectionRefusedError):
+            except (BlockingIOError, ConnectionRefusedError):  # nothing (more) within the wait
                 return changed
             try:
                 seq, msg = protocol.decode(data)
