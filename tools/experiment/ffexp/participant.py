@@ -26,8 +26,6 @@ class SimParticipant:
         self.noise = decision_noise
         self.speed = speed_scale
         self.legs = []
-        self.t0 = 0.0
-        self.touch = False
         self.felt = []
         self.decided = None
         self.key_at = None

@@ -214,8 +214,18 @@ def test_open_reads_status_counters_and_sensor_profile_and_replies_are_returned(
     dev.close()
 
 
-def test_the_simulator_runs_reports_the_finger_and_stops(tmp_path):
+@pytest.fixture
+def closing():
+    """Devices to close whatever the test's outcome (no stand-in outlives its test)."""
+    opened = []
+    yield opened.append
+    for dev in opened:
+        dev.close()
+
+
+def test_the_simulator_runs_reports_the_finger_and_stops(tmp_path, closing):
     dev = device.SimDevice(STANDIN, speed=2.0, trace=str(tmp_path / "trace.csv"))
+    closing(dev)
     assert dev.ready.startswith("ff-sim ready") and dev.name == "sim:standin_ff_sim.py speed 2"
     assert dev.proc.args[-2:] == ["--trace", str(tmp_path / "trace.csv")] and dev.time_scale == 2.0
     dev.open()
@@ -254,8 +264,9 @@ def test_a_simulator_that_is_missing_or_does_not_start_says_why(tmp_path):
         device.SimDevice(_script(tmp_path, "echo hello; sleep 1"))
 
 
-def test_a_simulator_that_ignores_sigterm_is_killed(tmp_path, monkeypatch):
+def test_a_simulator_that_ignores_sigterm_is_killed(tmp_path, monkeypatch, closing):
     dev = device.SimDevice(_script(tmp_path, "trap '' TERM; echo 'ff-sim ready'; while true; do sleep 0.05; done"))
+    closing(dev)
     real_wait = dev.proc.wait
 
     def short_wait(timeout=None):
@@ -279,7 +290,7 @@ def test_find_ff_sim_and_free_ports(tmp_path):
     s.close()
 
 
-def test_open_device_reads_the_spec(tmp_path, monkeypatch):
+def test_open_device_reads_the_spec(tmp_path, monkeypatch, closing):
     fake = device.open_device("fake", str(tmp_path), 1.0, time.monotonic)
     assert isinstance(fake, device.FakeDevice) and fake.name == "fake"
     udp = device.open_device("udp:10.0.0.7:9000", str(tmp_path), 1.0, time.monotonic)
@@ -295,6 +306,7 @@ def test_open_device_reads_the_spec(tmp_path, monkeypatch):
         device.open_device("usb", str(tmp_path), 1.0, time.monotonic)
     monkeypatch.setenv("FF_SIM", STANDIN)
     sim = device.open_device("sim", str(tmp_path), 3.0, time.monotonic, trace=str(tmp_path / "t.csv"))
+    closing(sim)
     assert sim.name == "sim:standin_ff_sim.py speed 3" and "--trace" in sim.proc.args
     sim.close()
     monkeypatch.delenv("FF_SIM")
