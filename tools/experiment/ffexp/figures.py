@@ -14,7 +14,7 @@ from . import VERSION, analysis, geometry, metrics  # noqa: E402
 SOFTWARE = "ff-analyse " + VERSION
 
 COLOURS = {"heightmap": "tab:blue", "frictionmap": "tab:red"}
-STRENGTH_LABELS = ["1.00", "0.66", "0.33"]
+STRENGTH_LABELS = [f"{s:.2f}" for s in analysis.STRENGTHS]
 
 
 def _strength_axis(ax):
@@ -77,10 +77,9 @@ def blocks(ax, participants):
     ax.set_ylim(0, 1.02)
 
 
-def learning(ax, participants, learning_stats=None):
-    """Fig. 15 bottom: 10-trial moving average of movement time, mean +- SD, power-law fit."""
-    if learning_stats is None:
-        learning_stats = analysis.group_statistics(participants)["learning"]
+def learning(ax, learning_stats):
+    """Fig. 15 bottom: 10-trial moving average of movement time, mean +- SD, power-law fit
+    (analysis.group_statistics' "learning")."""
     for r, d in learning_stats.items():
         ax.plot(d["x"], d["mean"], color=COLOURS[r], label=r)
         ax.fill_between(d["x"], d["mean"] - d["sd"], d["mean"] + d["sd"], color=COLOURS[r], alpha=0.2)
@@ -155,7 +154,7 @@ def group_figures(participants, group, folder):
         names.append(name)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(5, 6))
     blocks(a1, participants)
-    learning(a2, participants, group["learning"])
+    learning(a2, group["learning"])
     fig.tight_layout()
     ff_files.save_figure(fig, os.path.join(folder, "fig15_learning.png"), SOFTWARE, dpi=100)
     plt.close(fig)
