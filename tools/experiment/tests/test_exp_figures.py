@@ -174,10 +174,11 @@ def _clear_of_each_other(fig):
 def test_the_group_figures_hold_their_panels_readably(two, tmp_path, monkeypatch):
     ps, _ = two
     saved = _saved(monkeypatch)
+    open_before = plt.get_fignums()
     names = figures.group_figures(ps, analysis.group_statistics(ps), str(tmp_path))
     assert names == ["fig11_hit_rates.png", "fig12_movement_times.png", "fig13_direction_changes.png",
                      "fig14_movement_angles.png", "fig15_learning.png"] == list(saved)
-    assert plt.get_fignums() == []  # each closed once written
+    assert plt.get_fignums() == open_before  # each closed once written
     ylabels = {n: [ax.get_ylabel() for ax in f.axes] for n, f in saved.items()}
     assert ylabels == {"fig11_hit_rates.png": ["hit rate"], "fig12_movement_times.png": ["movement time (s)"],
                        "fig13_direction_changes.png": ["direction changes"], "fig14_movement_angles.png": ["fraction"],
@@ -195,8 +196,9 @@ def test_the_group_figures_hold_their_panels_readably(two, tmp_path, monkeypatch
 def test_the_participant_page_has_panels_a_to_j(two, tmp_path, monkeypatch):
     ps, trials = two
     saved = _saved(monkeypatch)
+    open_before = plt.get_fignums()
     figures.participant_page(ps[0], str(tmp_path / "participant_1.png"))
-    assert plt.get_fignums() == []
+    assert plt.get_fignums() == open_before
     fig = saved["participant_1.png"]
     axes = fig.axes
     assert len(axes) == 10 and fig._suptitle.get_text() == "participant 1 (order fm-hm)"
