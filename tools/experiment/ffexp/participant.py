@@ -86,10 +86,7 @@ class SimParticipant:
             end = geometry.target_end(self.decided)
             goal = (geometry.END_ZONE_X + 25.0, end[1] + self.rng.normal(0, 8))
             self.legs.append((self.probe_end, (PROBE_X, SWEEP[1]), goal, self.rng.uniform(0.6, 0.9) / self.speed))
-        leg = self.legs[0]
-        for candidate in self.legs:
-            if t >= candidate[0]:
-                leg = candidate
+        leg = [candidate for candidate in self.legs if t >= candidate[0]][-1]  # legs are in time order
         x, y = min_jerk(leg[1], leg[2], leg[3], t - leg[0])
         return x + self.rng.normal(0, 0.5), y + self.rng.normal(0, 0.5), FORCE_N + self.rng.normal(0, 0.02), True
 

@@ -25,11 +25,9 @@ class Screen:
         self.font = pygame.font.Font(None, 30)
         self.big = pygame.font.Font(None, 44)
         self.background = self._background()
-        self.fields = {}
 
     def _background(self):
-        s = pygame.Surface((geometry.WIDTH, geometry.HEIGHT))
-        s.fill(BLACK)
+        s = pygame.Surface((geometry.WIDTH, geometry.HEIGHT))  # black
         pygame.draw.rect(s, LIGHT_GREY, pygame.Rect(int(geometry.END_ZONE_X) + 1, 0,
                                                     geometry.WIDTH - int(geometry.END_ZONE_X) - 1, geometry.HEIGHT))
         pygame.draw.circle(s, LIGHT_GREY, (int(geometry.START_CENTRE[0]), int(geometry.START_CENTRE[1])),

@@ -62,6 +62,14 @@ def test_it_feels_only_on_the_probe_line_and_chooses_where_it_was_most_slippery(
     assert not p.stuck(leg[0] + leg[3] + 0.4) and p.stuck(leg[0] + leg[3] + 0.6)
     p.end_trial()
     assert p.finger(leg[0] + leg[3])[3] is False and not p.stuck(1e9)
+    # the next trial feels afresh: what the last one felt at the bottom is forgotten
+    end = _trial(p, 30.0)
+    assert p.decided is None and p.finger(30.25)[3] and p.decided is None  # no choice before the probe line
+    top = float(geometry.path_y(PROBE_X, "top"))
+    for y in range(int(SWEEP[0]), int(SWEEP[1]), 5):
+        p.feel(PROBE_X, y, 0.6 if abs(y - top) < 10 else 0.4)
+    p.finger(end)
+    assert p.decided == "top"
 
 
 def test_nothing_felt_is_a_guess_among_the_three():
@@ -75,7 +83,7 @@ def test_nothing_felt_is_a_guess_among_the_three():
 
 def test_a_key_is_pressed_0_3_s_after_the_screen_asks():
     p = participant.SimParticipant(seed=3)
-    assert not p.presses_key(5.0) and not p.presses_key(5.29)
-    assert p.presses_key(5.3)
-    assert not p.presses_key(6.0)  # the next screen waits again
-    assert p.presses_key(6.3)
+    assert p.presses_key(5.0) is False and p.presses_key(5.29) is False
+    assert p.presses_key(5.3) is True
+    assert p.presses_key(6.0) is False  # the next screen waits again
+    assert p.presses_key(6.3) is True

@@ -65,6 +65,7 @@ def test_the_amplitude_bar_shows_the_simulators_amplitude_and_nothing_without_on
 
 def test_the_trial_screen_draws_the_amplitude_bar_only_when_given(scr):
     y = geometry.HEIGHT - 26 + 6
+    scr.surface.fill(screen.WHITE)  # the last screen: all of it drawn over
     scr.trial(3, 180, 2, 0.3)
     assert rgb(scr.surface, BAR_X + 10, y) == screen.BLACK and rgb(scr.surface, 400, 60) == screen.BLACK
     assert rgb(scr.surface, BAR_X + 10, BAR_Y + 8) == screen.GREEN
@@ -82,6 +83,8 @@ def test_feedback_shows_hit_or_miss_the_cookie_and_the_field(scr):
     ex, ey = geometry.target_end("top")
     assert rgb(scr.surface, ex + 40, ey) == (240, 190, 90)
     assert rgb(scr.surface, 205, 405) == (0, 0, 255)
+    assert rgb(scr.surface, BAR_X + 10, BAR_Y + 8) == screen.GREEN  # the force
+    assert any(rgb(scr.surface, x, 20) == screen.WHITE for x in range(300, 500))  # the trial and score line
     scr.feedback(5, 180, 4, 0.3, False, "bottom")
     assert rgb(scr.surface, bar_x, 400) == screen.RED and rgb(scr.surface, 205, 405) == screen.BLACK
     assert rgb(scr.surface, ex + 40, ey) == screen.RED
