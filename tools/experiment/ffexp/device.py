@@ -8,6 +8,7 @@ the Ack. A device that has sent nothing for LOST_AFTER_S (Force arrives
 every 30 ms) is lost: the study pauses until it answers again. That
 timeout is wall-clock time even when the simulator runs faster, so a busy
 computer that delays ff-sim for a few ms is not taken for a lost device."""
+import abc
 import os
 import select
 import signal
@@ -32,7 +33,7 @@ class DeviceRefused(Exception):
     pass
 
 
-class Device:
+class Device(abc.ABC):
     """Common state: the latest force, amplitude and fault counters."""
 
     def __init__(self, clock):
@@ -57,21 +58,24 @@ class Device:
     def close(self):
         pass
 
+    @abc.abstractmethod
     def poll(self):
         """Reads what arrived; returns counters that changed ({} if none)."""
-        raise NotImplementedError
 
     def lost(self):
         return self.wall() - self.last_heard > LOST_AFTER_S
 
+    @abc.abstractmethod
     def set_condition(self, condition):
-        raise NotImplementedError
+        """Waits for the Ack; DeviceRefused if the device refuses, DeviceLost if it does not answer."""
 
+    @abc.abstractmethod
     def query_status(self):
-        raise NotImplementedError
+        """The device's Status (protocol.Status)."""
 
+    @abc.abstractmethod
     def query_sensor_profile(self):
-        raise NotImplementedError
+        """What the device's tracker knows of its sensor (protocol.SensorProfile)."""
 
     def finger(self, x, y, force_n):
         """Where the finger is (simulator only: a real device senses it)."""
@@ -231,11 +235,9 @@ def find_ff_sim(repo_root):
 
 
 def _free_udp_port():
-    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
 
 
 class SimDevice(UdpDevice):

@@ -75,6 +75,16 @@ def test_refused_datagrams_and_unasked_errors_are_kept_and_counted(peer):
     dev.close()
 
 
+def test_a_receive_waits_up_to_its_timeout_for_the_first_datagram(peer):
+    dev, address = _client(peer)
+    late = threading.Timer(0.2, lambda: peer.sendto(protocol.force(1, 1000, 100.0), address))
+    late.start()
+    dev._receive(2.0)
+    late.join()
+    assert dev.force_n == pytest.approx(0.1)
+    dev.close()
+
+
 def test_a_receive_returns_once_the_first_datagrams_are_handled(peer):
     dev, address = _client(peer)
     peer.sendto(protocol.force(1, 1000, 100.0), address)
@@ -94,6 +104,10 @@ def test_poll_keeps_ticks_status_and_silence_and_asks_status_once_a_second(peer)
     assert protocol.unframe(peer.recvfrom(2048)[0])[0] == protocol.QUERY_STATUS  # the first poll asks
     clock.now = 0.5
     dev.poll()  # within the second: does not ask again
+    peer.settimeout(0.1)
+    with pytest.raises(socket.timeout):
+        peer.recvfrom(2048)
+    peer.settimeout(2.0)
     peer.sendto(protocol.ticks(5, [(10, 0.25, 1023, True), (510, 0.75, 3071, True)]), address)
     peer.sendto(protocol.status(6, faults=[0, 3]), address)
     time.sleep(0.05)
@@ -185,7 +199,7 @@ def test_an_error_or_a_refusal_in_reply_is_device_refused(peer, call, reply):
 
 
 def test_open_reads_status_counters_and_sensor_profile_and_replies_are_returned(peer):
-    dev, _ = _client(peer)
+    dev, address = _client(peer)
     profile = protocol.SensorProfile(2.0, 0.5, 30.0, 0.0, 100.0, 150.0, 2000, 0.0)
     replies = iter([lambda t, seq: protocol.status(seq, faults=[0, 1]),
                     lambda t, seq: protocol.sensor_profile(seq, profile)])
@@ -200,6 +214,8 @@ def test_open_reads_status_counters_and_sensor_profile_and_replies_are_returned(
     status = dev.open()
     answering.join()
     assert status.faults == [0, 1] and dev.status is status and dev.counters["off_screen"] == 1
+    peer.sendto(protocol.status(9, faults=[0, 1]), address)
+    assert dev._receive(1.0) == {}  # the counters it opened with are not news
     assert dev.sensor_profile == profile
     payload = protocol.Condition("frictionmap", "bottom", 0.66).payload()
     answering = _answer(peer, lambda t, seq: protocol.frame(protocol.CONDITION, seq, payload))
@@ -260,8 +276,10 @@ def test_a_simulator_that_is_missing_or_does_not_start_says_why(tmp_path):
         device.SimDevice(None)
     with pytest.raises(device.DeviceLost, match="ff-sim did not start: cannot bind port"):
         device.SimDevice(_script(tmp_path, "echo 'cannot bind port' >&2"))
+    start = time.monotonic()
     with pytest.raises(device.DeviceLost, match="ff-sim did not start: hello"):
-        device.SimDevice(_script(tmp_path, "echo hello; sleep 1"))
+        device.SimDevice(_script(tmp_path, "echo hello; exec sleep 30"))
+    assert time.monotonic() - start < 10  # killed, not waited for
 
 
 def test_a_simulator_that_ignores_sigterm_is_killed(tmp_path, monkeypatch, closing):
@@ -315,6 +333,9 @@ def test_open_device_reads_the_spec(tmp_path, monkeypatch, closing):
 
 
 def test_the_fake_device_acks_refuses_falls_silent_and_renders_the_band():
+    opened = device.FakeDevice()
+    opened.open()
+    assert opened.poll() == {}  # the counters it opened with are not news
     fake = device.FakeDevice(force_n=0.2)
     assert fake.query_status().force_mn == pytest.approx(200.0) and fake.finger_at is None
     assert fake.poll() == {"protocol_errors": 0, "watchdog_trips": 0, "stream_overruns": 0,
