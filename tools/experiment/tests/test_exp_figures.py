@@ -227,7 +227,7 @@ def test_figures_are_drawn_without_a_display_whatever_the_environment_asks():
     # a lab computer may set another backend: the report is still written to files, headless
     code = "import matplotlib; import ffexp.figures; print(matplotlib.get_backend())"
     here = os.path.dirname(os.path.abspath(__file__))
-    env = dict(os.environ, MPLBACKEND="svg", PYTHONPATH=os.pathsep.join(
-        [os.path.join(here, ".."), os.path.join(here, "..", "..", "common")]))
+    paths = [os.path.join(here, ".."), os.path.join(here, "..", "..", "common"), os.environ.get("PYTHONPATH")]
+    env = dict(os.environ, MPLBACKEND="svg", PYTHONPATH=os.pathsep.join(p for p in paths if p))
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True).stdout
     assert out.strip().lower() == "agg"
