@@ -326,8 +326,7 @@ class FakeDevice(Device):
     def poll(self):
         if self.silent:
             return {}
-        self.last_heard = self.wall()
-        return self._changed_counters(self.query_status())
+        return self._changed_counters(self.query_status())  # heard from: query_status
 
     def finger(self, x, y, force_n):
         self.finger_at = (x, y)

@@ -336,6 +336,11 @@ def test_the_fake_device_acks_refuses_falls_silent_and_renders_the_band():
     opened = device.FakeDevice()
     opened.open()
     assert opened.poll() == {}  # the counters it opened with are not news
+    wall = [51.0]
+    opened.wall, opened.last_heard = (lambda: wall[0]), 50.0
+    assert opened.lost()
+    opened.poll()
+    assert not opened.lost()  # a poll hears from it
     fake = device.FakeDevice(force_n=0.2)
     assert fake.query_status().force_mn == pytest.approx(200.0) and fake.finger_at is None
     assert fake.poll() == {"protocol_errors": 0, "watchdog_trips": 0, "stream_overruns": 0,
