@@ -41,15 +41,18 @@ def propose(folder):
     trials = logs.read_trials(folder)
     frames = logs.read_frames(folder)
     events = logs.read_events(folder)
-    lost = {int(float(e["trial"])) for e in events if e["event"] in ("device-lost", "device-error")
-            and e["trial"] not in ("", None)}
+    device = {}  # trial -> the first thing the device did wrong in it
+    for e in events:
+        if e["event"] in ("device-lost", "device-error") and e["trial"] not in ("", None):
+            device.setdefault(int(float(e["trial"])), "device lost during the trial" if e["event"] == "device-lost"
+                              else f"device error during the trial: {e['detail']}")
     out = []
     for tr in trials:
         n = tr["trial"]
         sel = (frames["trial"] == n) & (frames["t"] >= tr["t_enter_start"]) & (frames["t"] <= tr["t_cross"])
         t, x, y, touch = frames["t"][sel], frames["x"][sel], frames["y"][sel], frames["touch"][sel]
-        if n in lost:
-            out.append((n, "device", "device lost during the trial"))
+        if n in device:
+            out.append((n, "device", device[n]))
             continue
         if len(t) > 1 and np.max(np.diff(t)) > FRAME_GAP_S:
             out.append((n, "device", f"no frames for {np.max(np.diff(t)):.2f} s"))

@@ -38,12 +38,16 @@ def test_each_kind_of_candidate(tmp_path):
     stroke(log, 5, 4.0, gap_after=20, jump=30)  # 0.61 s without a frame, and a jump: the device again
     stroke(log, 6, 6.0, jump=10, touch=lambda k: 0 if 10 <= k < 13 else 1)  # lifted and back where it was
     stroke(log, 7, 7.0, jump=10, touch=lambda k: 0 if k else 1)  # one touching frame
+    log.event(8.1, 8, "device-error", "datagram refused: bad CRC (3 times)")
+    log.event(8.2, 8, "device-lost", "test")
+    stroke(log, 8, 8.0)
     log.close()
     got = {n: (r, d) for n, r, d in exclusions.propose(folder)}
     assert got == {2: ("jump", "jump of 201 px in 12 ms at t=1.125 s"),
                    3: ("two-finger", "jump of 201 px at t=2.125 s and back"),
                    4: ("device", "device lost during the trial"),
-                   5: ("device", "no frames for 0.61 s")}
+                   5: ("device", "no frames for 0.61 s"),
+                   8: ("device", "device error during the trial: datagram refused: bad CRC (3 times)")}
 
 
 def test_the_proposal_is_a_file_to_review_and_rename(tmp_path):

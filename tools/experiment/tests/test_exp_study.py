@@ -194,3 +194,63 @@ def test_refused_datagrams_and_device_errors_are_logged_once_a_frame(tmp_path):
     assert run_fake(tmp_path, "--trials", "1", "--skip-familiarisation", factory=factory) == 0
     errors = [(e["trial"], e["detail"]) for e in logs.read_events(str(tmp_path / "P04")) if e["event"] == "device-error"]
     assert errors == [("1", "datagram refused: bad CRC (3 times)"), ("1", "device error: busy (message type 0x02)")]
+
+
+def test_propose_exclusions_needs_no_participant_number(tmp_path, capsys):
+    from exp_synthetic import write_participant
+    folder = write_participant(str(tmp_path), 3, lambda r, s: 0.5)
+    with open(os.path.join(folder, "events.csv"), "a") as f:
+        f.write("10.0,7,device-lost,test\n")
+    assert experiment.main(["--propose-exclusions", folder]) == 0
+    path = os.path.join(folder, "exclusions.proposed.csv")
+    assert capsys.readouterr().out == (f"ff-experiment: 1 candidate(s) in {path}; review them and copy the ones "
+                                       "to drop into exclusions.csv\n")
+    assert open(path).read().splitlines()[1] == "7,device,device lost during the trial"
+
+
+@pytest.mark.parametrize("argv, why", [
+    (["--device", "udp:10.0.0.7", "--speed", "2"], "--speed is for --device sim"),
+    (["--speed", "0"], "--speed is for --device sim"),
+    (["--trials", "0"], "--trials must be in 1..180"),
+    (["--trials", "181"], "--trials must be in 1..180"),
+], ids=["speed-udp", "speed-zero", "no-trials", "too-many-trials"])
+def test_bad_options_are_refused_before_anything_starts(tmp_path, capsys, argv, why):
+    with pytest.raises(SystemExit) as stop:
+        experiment.main(argv + ["--participant-number", "1", "-o", str(tmp_path)])
+    assert stop.value.code == 2 and why in capsys.readouterr().err and not os.listdir(tmp_path)
+
+
+class SteppingPacer:
+    """Each frame 0.1 s of study time later, none late."""
+
+    late_frames = frames = 0
+
+    def __init__(self, now):
+        self.now = now
+
+    def wait(self):
+        self.now[0] += 0.1
+        return 0.0
+
+    def is_late(self, lateness):
+        return False
+
+
+def test_a_person_sees_the_feedback_for_1_5_s(tmp_path, monkeypatch):
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    import pygame
+    pygame.display.init()
+    pygame.font.init()
+    now = [0.0]
+    args = experiment.parse(["--device", "fake", "--participant-number", "4", "-o", str(tmp_path)])
+    dev = device.FakeDevice(lambda: now[0])
+    dev.open()
+    folder = str(tmp_path / "P04")
+    study = experiment.Study(args, dev, folder, design.plan(4), 1, 0, lambda: now[0], SteppingPacer(now))
+    try:
+        assert study.feedback(design.plan(4)[0], True)
+    finally:
+        study.close()
+        pygame.quit()
+    t = logs.read_frames(folder)["t"]
+    assert len(t) == 15 and t[0] == pytest.approx(0.1) and t[-1] == pytest.approx(1.5)  # a frame each 0.1 s to 1.5 s
