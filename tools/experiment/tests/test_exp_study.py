@@ -236,7 +236,10 @@ class SteppingPacer:
         return False
 
 
-def test_a_person_sees_the_feedback_for_1_5_s(tmp_path, monkeypatch):
+@pytest.fixture
+def person_study(tmp_path, monkeypatch):
+    """A Study for a person (no simulated participant) on the fake device,
+    headless, its study time stepped by the pacer: (study, folder)."""
     monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
     import pygame
     pygame.display.init()
@@ -247,10 +250,33 @@ def test_a_person_sees_the_feedback_for_1_5_s(tmp_path, monkeypatch):
     dev.open()
     folder = str(tmp_path / "P04")
     study = experiment.Study(args, dev, folder, design.plan(4), 1, 0, lambda: now[0], SteppingPacer(now))
-    try:
-        assert study.feedback(design.plan(4)[0], True)
-    finally:
-        study.close()
-        pygame.quit()
+    yield study, folder
+    study.close()
+    pygame.quit()
+
+
+def test_a_person_sees_the_feedback_for_1_5_s(person_study):
+    study, folder = person_study
+    assert study.feedback(design.plan(4)[0], True)
+    study.close()
     t = logs.read_frames(folder)["t"]
     assert len(t) == 15 and t[0] == pytest.approx(0.1) and t[-1] == pytest.approx(1.5)  # a frame each 0.1 s to 1.5 s
+
+
+def test_the_window_and_keys_a_person_uses(person_study):
+    import pygame
+    study, _ = person_study
+    assert pygame.display.get_caption()[0] == "frictionfield study"
+    assert not pygame.mouse.get_visible()  # the finger is the pointer
+    assert study.keys() is False
+    for key in (pygame.K_SPACE, pygame.K_RETURN):
+        pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=key))
+        assert study.keys() is True and not study.stop
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_a))
+    assert study.keys() is False and not study.stop
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
+    assert study.keys() is False and study.stop
+    study.stop = False
+    pygame.event.post(pygame.event.Event(pygame.QUIT))
+    study.keys()
+    assert study.stop  # the window closed
