@@ -328,6 +328,9 @@ class FakeDevice(Device):
             return {}
         return self._changed_counters(self.query_status())  # heard from: query_status
 
+    def finger_up(self):
+        self.finger_at = None
+
     def finger(self, x, y, force_n):
         self.finger_at = (x, y)
         if self.conditions and self.conditions[-1].kind == "frictionmap":

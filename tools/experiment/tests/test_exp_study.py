@@ -280,3 +280,39 @@ def test_the_window_and_keys_a_person_uses(person_study):
     pygame.event.post(pygame.event.Event(pygame.QUIT))
     study.keys()
     assert study.stop  # the window closed
+
+
+class Mouse:
+    """pygame.mouse as the device's USB mouse (or a person's) leaves it."""
+
+    def __init__(self, pos, pressed):
+        self.pos, self.pressed = pos, pressed
+
+    def get_pos(self):
+        return self.pos
+
+    def get_pressed(self):
+        return (self.pressed, False, False)
+
+
+def test_a_persons_finger_is_the_pointer(person_study):
+    import types
+    study, _ = person_study
+    study.pg = types.SimpleNamespace(mouse=Mouse((123, 45), True))
+    assert study.read_finger(0.0) == (123.0, 45.0, True) and study.dev.finger_at == (123, 45)  # sent to ff-sim
+    study.pg.mouse.pressed = False
+    assert study.read_finger(0.0) == (123.0, 45.0, False) and study.dev.finger_at is None     # lifted
+    study.sim = False  # the device senses the finger itself; its mouse moves only while touched
+    study.pg.mouse.pos = (300, 200)
+    assert study.read_finger(0.0) == (300.0, 200.0, True) and study.dev.finger_at is None
+
+
+def test_a_counter_that_changes_is_logged_with_its_new_value(person_study):
+    study, folder = person_study
+    study.frame(3)
+    study.dev.fault_counts[1] = 5
+    study.frame(3)
+    study.frame(3)  # unchanged: not again
+    study.close()
+    events = [(e["trial"], e["event"], e["detail"]) for e in logs.read_events(folder)]
+    assert events == [("3", "counters", "off_screen=5")]
