@@ -221,15 +221,18 @@ def test_bad_options_are_refused_before_anything_starts(tmp_path, capsys, argv, 
 
 
 class SteppingPacer:
-    """Each frame 0.1 s of study time later, none late."""
+    """Each frame 0.1 s of study time later, none late; a loop that never
+    ends fails after 100 s instead of hanging the suite."""
 
     late_frames = frames = 0
 
-    def __init__(self, now):
-        self.now = now
+    def __init__(self, now, step=0.1):
+        self.now, self.step = now, step
 
     def wait(self):
-        self.now[0] += 0.1
+        self.now[0] += self.step
+        if self.now[0] > 100.0:
+            raise AssertionError("still looping after 100 s of study time")
         return 0.0
 
     def is_late(self, lateness):
@@ -316,3 +319,31 @@ def test_a_counter_that_changes_is_logged_with_its_new_value(person_study):
     study.close()
     events = [(e["trial"], e["event"], e["detail"]) for e in logs.read_events(folder)]
     assert events == [("3", "counters", "off_screen=5")]
+
+
+def test_while_the_device_is_away_a_person_sees_why_and_esc_stops(person_study, tmp_path, monkeypatch):
+    import pygame
+    study, folder = person_study
+    study.pacer.step = 0.125  # exact in binary: the retry times below are exact too
+    study.args.screenshots = str(tmp_path / "shots")
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    tries, answers_from = [], [3]
+    answer = study.dev.query_status
+
+    def query_status():
+        tries.append(study.clock())
+        study.dev.silent = len(tries) < answers_from[0]
+        return answer()
+    study.dev.query_status = query_status
+    assert study.wait_for_device(2, "test: unplugged") is True
+    assert tries == [0.125, 0.625, 1.125]  # every 0.5 s, not every frame
+    assert flips == [0.125 * k for k in range(1, 10)]  # the message redrawn each frame
+    shot = pygame.image.load(str(tmp_path / "shots" / "device_lost.png"))
+    assert any(shot.get_at((x, 160))[:3] != (0, 0, 0) for x in range(250, 550))  # its title
+    answers_from[0] = 10 ** 9  # never answers again
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
+    assert study.wait_for_device(2, "test: again") is False and study.stop
+    study.close()
+    assert [(e["event"], e["detail"]) for e in logs.read_events(folder)] == [
+        ("device-lost", "test: unplugged"), ("device-back", ""), ("device-lost", "test: again")]
