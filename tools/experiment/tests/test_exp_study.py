@@ -336,7 +336,10 @@ def test_while_the_device_is_away_a_person_sees_why_and_esc_stops(person_study, 
         study.dev.silent = len(tries) < answers_from[0]
         return answer()
     study.dev.query_status = query_status
+    syncs = []
+    monkeypatch.setattr(study.log, "sync", lambda: syncs.append(len(tries)))
     assert study.wait_for_device(2, "test: unplugged") is True
+    assert syncs == [0]  # on disk before waiting: a power cut while it waits loses nothing
     assert tries == [0.125, 0.625, 1.125]  # every 0.5 s, not every frame
     assert flips == [0.125 * k for k in range(1, 10)]  # the message redrawn each frame
     shot = pygame.image.load(str(tmp_path / "shots" / "device_lost.png"))
