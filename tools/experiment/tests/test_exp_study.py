@@ -350,3 +350,59 @@ def test_while_the_device_is_away_a_person_sees_why_and_esc_stops(person_study, 
     study.close()
     assert [(e["event"], e["detail"]) for e in logs.read_events(folder)] == [
         ("device-lost", "test: unplugged"), ("device-back", ""), ("device-lost", "test: again")]
+
+
+def _answers_on_try(study, n, then=None):
+    """The fake device answers its n-th status query after going silent (then calls `then`)."""
+    tries = []
+    answer = type(study.dev).query_status.__get__(study.dev)  # the device's own, not an earlier wrapper
+
+    def query_status():
+        if study.dev.silent:
+            tries.append(study.clock())
+            study.dev.silent = len(tries) < n
+            if not study.dev.silent and then:
+                then()
+        return answer()
+    study.dev.query_status = query_status
+    return tries
+
+
+def test_a_condition_refused_by_silence_is_sent_once_the_device_answers(person_study):
+    from ffexp import protocol
+    study, folder = person_study
+    study.dev.silent = True
+    tries = _answers_on_try(study, 2)
+    ack = study.send(protocol.Condition("heightmap", "top", 0.5), 7)
+    assert ack.ok and [c.kind for c in study.dev.conditions] == ["heightmap"] and len(tries) == 2
+    study.dev.silent = True
+    _answers_on_try(study, 10 ** 9)
+    import pygame
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
+    assert study.send(protocol.Condition("frictionmap", "top", 0.5), 8) is None  # Esc while it waits
+    study.close()
+    assert [(e["trial"], e["event"]) for e in logs.read_events(folder)] == [
+        ("7", "device-lost"), ("7", "device-back"), ("8", "device-lost")]
+
+
+def test_a_key_screen_sends_its_scene_again_after_a_loss(person_study):
+    import pygame
+    from ffexp import protocol
+    study, folder = person_study
+    study.pacer.step = 0.125
+    study.dev.wall, study.dev.last_heard = study.clock, 0.0  # silence measured in study time
+    polls = []
+    poll = study.dev.poll
+
+    def poll_then_fall_silent():
+        polls.append(1)
+        study.dev.silent = study.dev.silent or len(polls) == 3
+        return poll()
+    study.dev.poll = poll_then_fall_silent
+    _answers_on_try(study, 2, then=lambda: pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_SPACE)))
+    scene = protocol.FAMILIARISATION["bump-map"]
+    assert study.key_screen("Bumps", ["Press space."], scene) is True
+    assert study.dev.conditions == [scene, scene]  # the device may have restarted: told again
+    study.close()
+    assert [(e["event"], e["detail"]) for e in logs.read_events(folder)] == [
+        ("device-lost", "fake sent nothing for 0.5 s"), ("device-back", "")]  # seen as silence, then sent again
