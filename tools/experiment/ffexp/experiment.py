@@ -216,8 +216,6 @@ class Study:
         for i, (title, lines, scene) in enumerate(screens):
             if not self.key_screen(title, lines, protocol.FAMILIARISATION[scene], f"familiarisation_{i + 1}"):
                 return False
-        if self.participant is not None:
-            self.participant.end_trial()
         return True
 
     def field(self, trial):
@@ -230,9 +228,7 @@ class Study:
     # ---------------------------------------------------------------- one trial
     def run_trial(self, trial):
         n, total = trial["trial"], design.TRIALS
-        ack = self.send(condition_for(trial), n)
-        if ack is None:
-            return False
+        ack = self.send(condition_for(trial), n)  # None only when stopped: the loop below does not run
         state = "wait-start"
         t_enter = t_leave = None
         late = 0

@@ -406,3 +406,82 @@ def test_a_key_screen_sends_its_scene_again_after_a_loss(person_study):
     study.close()
     assert [(e["event"], e["detail"]) for e in logs.read_events(folder)] == [
         ("device-lost", "fake sent nothing for 0.5 s"), ("device-back", "")]  # seen as silence, then sent again
+
+
+class StrokingMouse(Mouse):
+    """A person's finger: in the start circle until 0.5 s, then right at 800 px/s along y = 240."""
+
+    def __init__(self, clock):
+        super().__init__((60, 240), True)
+        self.clock = clock
+
+    def get_pos(self):
+        return (60 + max(0.0, self.clock() - 0.5) * 800, 240)
+
+
+def test_a_persons_trial_from_start_circle_to_end_zone(person_study, monkeypatch):
+    import types
+    study, folder = person_study
+    study.pacer.step = 0.125
+    monkeypatch.setattr(study.pacer, "is_late", lambda lateness: True, raising=False)
+    study.pg = types.SimpleNamespace(mouse=StrokingMouse(study.clock), event=study.pg.event, display=study.pg.display,
+                                     image=study.pg.image, QUIT=study.pg.QUIT, KEYDOWN=study.pg.KEYDOWN,
+                                     K_ESCAPE=study.pg.K_ESCAPE, K_SPACE=study.pg.K_SPACE, K_RETURN=study.pg.K_RETURN)
+    trial = design.plan(4)[0]
+    assert study.run_trial(trial)
+    study.close()
+    (row,) = logs.read_trials(folder)
+    # frames every 0.125 s: in the circle at 0.125, out of it (x > 90) at 0.625, x = 660 at 1.25 and 760 at 1.375
+    assert (row["t_enter_start"], row["t_leave_start"], row["t_cross"]) == (0.125, 0.625, 1.375)
+    assert row["crossing_y"] == 240.0 and row["choice"] == "middle" and row["hit"] == int(trial["target"] == "middle")
+    assert row["late_frames"] == 11 and row["movement_time"] == 0.75 and row["ack"] == "ok"
+
+
+def test_a_trial_whose_condition_cannot_be_sent_ends_the_run(person_study):
+    import pygame
+    study, folder = person_study
+    study.dev.silent = True
+    _answers_on_try(study, 10 ** 9)
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
+    assert study.run_trial(design.plan(4)[0]) is False
+    study.close()
+    assert logs.read_trials(folder) == []
+
+
+def test_the_feedback_field_is_rendered_once_per_condition(person_study):
+    study, _ = person_study
+    trial = design.plan(4)[0]
+    field = study.field(trial)
+    assert field is not None and study.field(dict(trial)) is field
+
+
+def test_a_key_screen_shows_its_message_and_the_amplitude(person_study, tmp_path, monkeypatch):
+    import pygame
+    from ffexp import protocol, screen
+    study, _ = person_study
+    study.args.screenshots = str(tmp_path / "shots")
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(1))
+    study.dev.amplitude = 1.0
+    answered = []
+
+    def keys():
+        answered.append(1)
+        return len(answered) > 3
+    study.keys = keys
+    assert study.key_screen("Pause", ["Take a break."], protocol.Condition("neutral"), "pause") is True
+    assert len(flips) == 3
+    shot = pygame.image.load(str(tmp_path / "shots" / "pause.png"))
+    assert any(shot.get_at((x, 160))[:3] != (0, 0, 0) for x in range(250, 550))  # the title
+    assert tuple(shot.get_at((int(screen.geometry.END_ZONE_X) - 100, screen.geometry.HEIGHT - 20)))[:3] == (80, 140, 255)
+
+
+def test_esc_on_a_familiarisation_screen_stops_the_study(person_study):
+    study, _ = person_study
+
+    def escape():
+        study.stop = True
+        return False
+    study.keys = escape
+    assert study.familiarisation() is False
+    assert [c.kind for c in study.dev.conditions] == ["general"]  # the first screen's scene, not the second's
