@@ -298,10 +298,9 @@ class Mouse:
         return (self.pressed, False, False)
 
 
-def test_a_persons_finger_is_the_pointer(person_study):
-    import types
+def test_a_persons_finger_is_the_pointer(person_study, monkeypatch):
     study, _ = person_study
-    study.pg = types.SimpleNamespace(mouse=Mouse((123, 45), True))
+    monkeypatch.setattr(study.pg, "mouse", Mouse((123, 45), True))
     assert study.read_finger(0.0) == (123.0, 45.0, True) and study.dev.finger_at == (123, 45)  # sent to ff-sim
     study.pg.mouse.pressed = False
     assert study.read_finger(0.0) == (123.0, 45.0, False) and study.dev.finger_at is None     # lifted
@@ -321,37 +320,6 @@ def test_a_counter_that_changes_is_logged_with_its_new_value(person_study):
     assert events == [("3", "counters", "off_screen=5")]
 
 
-def test_while_the_device_is_away_a_person_sees_why_and_esc_stops(person_study, tmp_path, monkeypatch):
-    import pygame
-    study, folder = person_study
-    study.pacer.step = 0.125  # exact in binary: the retry times below are exact too
-    study.args.screenshots = str(tmp_path / "shots")
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
-    tries, answers_from = [], [3]
-    answer = study.dev.query_status
-
-    def query_status():
-        tries.append(study.clock())
-        study.dev.silent = len(tries) < answers_from[0]
-        return answer()
-    study.dev.query_status = query_status
-    syncs = []
-    monkeypatch.setattr(study.log, "sync", lambda: syncs.append(len(tries)))
-    assert study.wait_for_device(2, "test: unplugged") is True
-    assert syncs == [0]  # on disk before waiting: a power cut while it waits loses nothing
-    assert tries == [0.125, 0.625, 1.125]  # every 0.5 s, not every frame
-    assert flips == [0.125 * k for k in range(1, 10)]  # the message redrawn each frame
-    shot = pygame.image.load(str(tmp_path / "shots" / "device_lost.png"))
-    assert any(shot.get_at((x, 160))[:3] != (0, 0, 0) for x in range(250, 550))  # its title
-    answers_from[0] = 10 ** 9  # never answers again
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
-    assert study.wait_for_device(2, "test: again") is False and study.stop
-    study.close()
-    assert [(e["event"], e["detail"]) for e in logs.read_events(folder)] == [
-        ("device-lost", "test: unplugged"), ("device-back", ""), ("device-lost", "test: again")]
-
-
 def _answers_on_try(study, n, then=None):
     """The fake device answers its n-th status query after going silent (then calls `then`)."""
     tries = []
@@ -366,6 +334,32 @@ def _answers_on_try(study, n, then=None):
         return answer()
     study.dev.query_status = query_status
     return tries
+
+
+def test_while_the_device_is_away_a_person_sees_why_and_esc_stops(person_study, tmp_path, monkeypatch):
+    import pygame
+    study, folder = person_study
+    study.pacer.step = 0.125  # exact in binary: the retry times below are exact too
+    study.args.screenshots = str(tmp_path / "shots")
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    study.dev.silent = True
+    tries = _answers_on_try(study, 3)
+    syncs = []
+    monkeypatch.setattr(study.log, "sync", lambda: syncs.append(len(tries)))
+    assert study.wait_for_device(2, "test: unplugged") is True
+    assert syncs == [0]  # on disk before waiting: a power cut while it waits loses nothing
+    assert tries == [0.125, 0.625, 1.125]  # every 0.5 s, not every frame
+    assert flips == [0.125 * k for k in range(1, 10)]  # the message redrawn each frame
+    shot = pygame.image.load(str(tmp_path / "shots" / "device_lost.png"))
+    assert any(shot.get_at((x, 160))[:3] != (0, 0, 0) for x in range(250, 550))  # its title
+    study.dev.silent = True
+    _answers_on_try(study, 10 ** 9)  # never answers again
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
+    assert study.wait_for_device(2, "test: again") is False and study.stop
+    study.close()
+    assert [(e["event"], e["detail"]) for e in logs.read_events(folder)] == [
+        ("device-lost", "test: unplugged"), ("device-back", ""), ("device-lost", "test: again")]
 
 
 def test_a_condition_refused_by_silence_is_sent_once_the_device_answers(person_study):
@@ -420,13 +414,10 @@ class StrokingMouse(Mouse):
 
 
 def test_a_persons_trial_from_start_circle_to_end_zone(person_study, monkeypatch):
-    import types
     study, folder = person_study
     study.pacer.step = 0.125
     monkeypatch.setattr(study.pacer, "is_late", lambda lateness: True, raising=False)
-    study.pg = types.SimpleNamespace(mouse=StrokingMouse(study.clock), event=study.pg.event, display=study.pg.display,
-                                     image=study.pg.image, QUIT=study.pg.QUIT, KEYDOWN=study.pg.KEYDOWN,
-                                     K_ESCAPE=study.pg.K_ESCAPE, K_SPACE=study.pg.K_SPACE, K_RETURN=study.pg.K_RETURN)
+    monkeypatch.setattr(study.pg, "mouse", StrokingMouse(study.clock))
     trial = design.plan(4)[0]
     assert study.run_trial(trial)
     study.close()
