@@ -189,14 +189,13 @@ class Study:
 
     # ---------------------------------------------------------------- screens
     def key_screen(self, title, lines, condition=None, shot=None):
-        if condition is not None and self.send(condition, 0) is None:
-            return False
+        if condition is not None:
+            self.send(condition, 0)  # None only when stopped: the loop below does not run
         while not self.stop:
             if self.frame(0) is None:
-                if not self.device_lost(0):
-                    return False
-                if condition is not None and self.send(condition, 0) is None:
-                    return False
+                if self.device_lost(0) and condition is not None:
+                    self.send(condition, 0)  # the device may have restarted
+                continue  # no frame to draw; Esc while it was away ends the loop
             if self.keys():
                 return True
             self.screen.message(title, lines, self.dev.force_n)
@@ -229,8 +228,7 @@ class Study:
     def run_trial(self, trial):
         n, total = trial["trial"], design.TRIALS
         ack = self.send(condition_for(trial), n)  # None only when stopped: the loop below does not run
-        state = "wait-start"
-        t_enter = t_leave = None
+        state = "wait-start"  # t_enter and t_leave are set as it moves on
         late = 0
         prev = None
         if self.participant is not None:
@@ -279,8 +277,9 @@ class Study:
         end = self.clock() + (SIM_FEEDBACK_S if self.participant is not None else FEEDBACK_S)
         field = self.field(trial)
         while not self.stop and self.clock() < end:
-            if self.frame(trial["trial"]) is None and not self.device_lost(trial["trial"]):
-                return False
+            if self.frame(trial["trial"]) is None:
+                self.device_lost(trial["trial"])  # the feedback goes on when it is back; Esc ends the loop
+                continue
             self.keys()
             self.screen.feedback(trial["trial"], design.TRIALS, self.score, self.dev.force_n, hit, trial["target"], field)
             self.screenshot("feedback")
@@ -343,15 +342,14 @@ def run(argv, device_factory=None):
         return 0
     folder, plan, first, score, session = prepare_folder(args)
     if first > args.trials:
-        print(f"ff-experiment: {folder} is complete ({design.TRIALS} trials)")
+        print(f"ff-experiment: {folder}: trials 1-{first - 1} of {design.TRIALS} are done; nothing to run"
+              + (f" up to --trials {args.trials}" if first <= design.TRIALS else ""))
         return 0
     headless = args.participant == "sim" and not args.show
     if headless:
         os.environ["SDL_VIDEODRIVER"] = "dummy"
         os.environ["SDL_AUDIODRIVER"] = "dummy"
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    import pygame
-    from .pacing import Pacer
     speed = args.speed
     origin = time.monotonic()
     def clock():
@@ -361,13 +359,24 @@ def run(argv, device_factory=None):
     except ValueError as e:
         print(f"ff-experiment: {e}", file=sys.stderr)
         return 2
+    except devices.DeviceLost as e:  # ff-sim did not start
+        print(f"ff-experiment: {e}", file=sys.stderr)
+        return 1
+    try:
+        return run_on(dev, args, folder, plan, first, score, session, clock)
+    finally:
+        dev.close()  # whatever happened after it was made: ff-sim must not outlive the study
+
+
+def run_on(dev, args, folder, plan, first, score, session, clock):
+    """The study on an opened device: session header, window, trials, summary."""
+    import pygame
+    from .pacing import Pacer
     try:
         status = dev.open()
     except (devices.DeviceLost, devices.DeviceRefused) as e:
-        dev.close()
         print(f"ff-experiment: {e}", file=sys.stderr)
         return 1
-    os.makedirs(folder, exist_ok=True)
     profile = dataclasses.asdict(dev.sensor_profile)
     if dev.sensor_profile == protocol.SensorProfile():
         print("ff-experiment: the device's tracker uses the default sensor profile, not one measured on this "
@@ -377,38 +386,42 @@ def run(argv, device_factory=None):
             participant=args.participant_number, age=args.age, gender=args.gender, handedness=args.handedness,
             seed=args.participant_number, order=design.order_name(args.participant_number),
             program_version=VERSION, firmware_version=status.firmware, protocol_version=protocol.VERSION,
-            device=dev.name, participant_kind=args.participant, speed=speed,
+            device=dev.name, participant_kind=args.participant, speed=args.speed,
             started=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             scene_hashes=scene_hashes(), plan=[[t["rendering"], t["strength"], t["target"]] for t in plan],
             sensor_profile=profile))
-    pygame.display.init()
-    pygame.font.init()
     participant = None
     if args.participant == "sim":
         from .participant import SimParticipant
         participant = SimParticipant(seed=args.participant_number)
-    study = Study(args, dev, folder, plan, first, score, clock, Pacer(time_scale=speed), participant)
-    if args.resume:
-        study.log.event(clock(), first, "resume", f"firmware {status.firmware}")
-        if session is not None and session.get("sensor_profile") not in (None, profile):
-            # The device was told another sensor (or restarted with the default): the trials from here differ.
-            detail = " ".join(f"{k}={v:g}" for k, v in profile.items())
-            study.log.event(clock(), first, "sensor-profile-changed", detail)
-            print(f"ff-experiment: the device's sensor profile differs from the session's; logged: {detail}",
-                  file=sys.stderr)
+    pygame.font.init()  # the display starts with the window; fonts do not
     try:
-        code = study.run()
-    except devices.DeviceRefused as e:
-        print(f"ff-experiment: {e}", file=sys.stderr)
-        code = 1
+        try:
+            study = Study(args, dev, folder, plan, first, score, clock, Pacer(time_scale=args.speed), participant)
+        except pygame.error as e:  # no display to open the window on
+            print(f"ff-experiment: cannot open the study window: {e} (--participant sim runs without one)",
+                  file=sys.stderr)
+            return 2
+        try:
+            if args.resume:
+                study.log.event(clock(), first, "resume", f"firmware {status.firmware}")
+                if session.get("sensor_profile") not in (None, profile):
+                    # The device was told another sensor (or restarted with the default): the trials from here differ.
+                    detail = " ".join(f"{k}={v:g}" for k, v in profile.items())
+                    study.log.event(clock(), first, "sensor-profile-changed", detail)
+                    print(f"ff-experiment: the device's sensor profile differs from the session's; logged: {detail}",
+                          file=sys.stderr)
+            code = study.run()
+        except devices.DeviceRefused as e:
+            print(f"ff-experiment: {e}", file=sys.stderr)
+            code = 1
+        finally:
+            study.close()
     finally:
-        study.close()
-        dev.close()
         pygame.quit()
-    done = study.index
-    late = study.pacer.late_frames
-    print(f"ff-experiment: {folder}: {done} of {design.TRIALS} trials, score {study.score}, "
-          f"{late} late frames of {study.pacer.frames}" + ("" if code == 0 else "; continue with --resume"))
+    print(f"ff-experiment: {folder}: {study.index} of {design.TRIALS} trials, score {study.score}, "
+          f"{study.pacer.late_frames} late frames of {study.pacer.frames}"
+          + ("" if code == 0 else "; continue with --resume"))
     return code
 
 

@@ -149,3 +149,18 @@ def test_a_missing_or_empty_file(tmp_path):
         logs.read_frames(str(tmp_path))
     assert (e.value.line, e.value.message) == (1, "empty file (no column header)")
     assert logs.read_events(str(tmp_path)) == []  # no events file: nothing happened
+
+
+def test_torn_rows_are_cut_before_appending(tmp_path):
+    folder = str(tmp_path / "P01")
+    log = logs.ParticipantLog(folder)
+    log.frame(1, 0.5, 10, 20, 1, 0.3, 0)
+    log.close()
+    with open(os.path.join(folder, "frames.csv"), "a") as f:
+        f.write("1,0.51,11")  # killed mid-row
+    assert len(logs.read_frames(folder)["t"]) == 1  # the reader skips the torn row
+    log = logs.ParticipantLog(folder)
+    log.frame(2, 0.6, 12, 22, 1, 0.3, 0)
+    log.close()
+    lines = open(os.path.join(folder, "frames.csv")).read().splitlines()
+    assert lines[1:] == ["1,0.5,10,20,1,0.3,0", "2,0.6,12,22,1,0.3,0"]

@@ -1,223 +1,9 @@
-"""ff-experiment with the in-Python fake device and the simulated participant:
-trial logic, logs, resume after a kill, device loss, bad usage."""
-import json
-import os
-import signal
-import subprocess
-import sys
-import time
-
-import numpy as np
+"""The study's frame loop (experiment.Study) step by step, on the fake
+device with study time stepped by the test: a person's or a scripted
+participant's trial, the key screens, the feedback, device loss, Esc."""
 import pytest
 
-from ffexp import design, device, experiment, geometry, logs
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-TOOL = os.path.join(HERE, "..", "ff-experiment")
-STANDIN = os.path.join(HERE, "standin_ff_sim.py")
-
-
-def run_fake(tmp_path, *extra, factory=None, speed=8):
-    argv = ["--device", "fake", "--participant", "sim", "--speed", str(speed), "--participant-number", "4",
-            "-o", str(tmp_path), *extra]
-    return experiment.main(argv, factory)
-
-
-def test_trials_follow_the_plan_and_the_rules(tmp_path):
-    assert run_fake(tmp_path, "--trials", "6", "--screenshots", str(tmp_path / "shots")) == 0
-    folder = tmp_path / "P04"
-    trials = logs.read_trials(str(folder))
-    plan = design.plan(4)
-    assert [t["trial"] for t in trials] == [1, 2, 3, 4, 5, 6]
-    frames = logs.read_frames(str(folder))
-    for t, p in zip(trials, plan):
-        assert (t["rendering"], t["strength"], t["target"]) == (p["rendering"], p["strength"], p["target"])
-        assert t["choice"] == geometry.choice(t["crossing_y"])
-        assert t["hit"] == (t["choice"] == t["target"])
-        assert t["movement_time"] == pytest.approx(t["t_cross"] - t["t_leave_start"], abs=1e-5)
-        assert t["t_enter_start"] <= t["t_leave_start"] < t["t_cross"]
-        mine = frames["trial"] == t["trial"]
-        # the finger was in the start circle at t_enter and past x = 700 at t_cross
-        at_cross = mine & (frames["t"] == pytest.approx(t["t_cross"], abs=5e-6))
-        assert np.all(frames["x"][at_cross] > geometry.END_ZONE_X)
-    session = json.loads((folder / "session.json").read_text())
-    assert session["order"] == "hm-fm" and session["protocol_version"] == 2 and len(session["scene_hashes"]) == 20
-    for name in ("familiarisation_1", "familiarisation_2", "trial", "feedback"):
-        assert (tmp_path / "shots" / f"{name}.png").exists()
-
-
-def test_refuses_to_overwrite_and_resumes(tmp_path, capsys):
-    assert run_fake(tmp_path, "--trials", "2") == 0
-    assert run_fake(tmp_path, "--trials", "3") == 2
-    assert "--resume" in capsys.readouterr().err
-    assert run_fake(tmp_path, "--trials", "4", "--resume") == 0
-    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4]
-
-
-def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
-    env = dict(os.environ, FF_SIM=STANDIN)
-    cmd = [sys.executable, TOOL, "--device", "sim", "--participant", "sim", "--speed", "8",
-           "--participant-number", "5", "-o", str(tmp_path)]
-    # Its own process group, killed whole: the ff-sim stand-in it started must not outlive the test.
-    p = subprocess.Popen(cmd + ["--trials", "20"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                         start_new_session=True)
-    trials = tmp_path / "P05" / "trials.csv"
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline:
-        if trials.exists() and len(trials.read_text().splitlines()) >= 4:  # header + 3 trials
-            break
-        time.sleep(0.05)
-    time.sleep(0.15)  # into the next trial
-    os.killpg(p.pid, signal.SIGKILL)
-    p.wait()
-    done = [t["trial"] for t in logs.read_trials(str(tmp_path / "P05"))]
-    assert 3 <= len(done) < 20
-    r = subprocess.run(cmd + ["--trials", str(len(done) + 2), "--resume"], env=env, capture_output=True, text=True, timeout=60)
-    assert r.returncode == 0, r.stderr
-    after = logs.read_trials(str(tmp_path / "P05"))
-    assert [t["trial"] for t in after] == list(range(1, len(done) + 3))
-    plan = design.plan(5)
-    assert all(t["target"] == plan[t["trial"] - 1]["target"] for t in after)
-    events = logs.read_events(str(tmp_path / "P05"))
-    assert any(e["event"] == "resume" and int(float(e["trial"])) == len(done) + 1 for e in events)
-
-
-class FlakyDevice(device.FakeDevice):
-    """Falls silent for one wall-clock second during trial 2."""
-
-    def __init__(self, clock):
-        super().__init__(clock)
-        self.silence = None      # wall clock
-        self.silence_study = None  # the same in study time
-
-    def set_condition(self, condition):
-        ack = super().set_condition(condition)
-        if len([c for c in self.conditions if c.kind != "general" and c.kind != "neutral"]) == 2 and self.silence is None:
-            self.silence = (self.wall() + 0.1, self.wall() + 1.1)
-            speed = 1
-            self.silence_study = (self.clock() + 0.1 * speed, self.clock() + 1.1 * speed)
-        return ack
-
-    def _silent_now(self):
-        return self.silence is not None and self.silence[0] <= self.wall() < self.silence[1]
-
-    def poll(self):
-        self.silent = self._silent_now()
-        return super().poll()
-
-    def query_status(self):
-        self.silent = self._silent_now()
-        return super().query_status()
-
-
-def test_device_loss_pauses_and_restarts_the_trial(tmp_path, capsys):
-    made = []
-    def factory(spec, root, speed, clock):
-        made.append(FlakyDevice(clock))
-        return made[0]
-    # real time: the loss (0.5 s of wall-clock silence) falls inside trial 2
-    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation", factory=factory, speed=1) == 0
-    assert "study paused (trial 2)" in capsys.readouterr().err
-    ev = [e["event"] for e in logs.read_events(str(tmp_path / "P04"))]
-    assert ev.index("device-lost") < ev.index("device-back") < ev.index("trial-restart")
-    frames = logs.read_frames(str(tmp_path / "P04"))
-    lost = made[0].silence_study
-    during = (frames["t"] > lost[0] + device.LOST_AFTER_S + 0.05) & (frames["t"] < lost[1] - 0.05)
-    assert not np.any(during)  # nothing logged while the device was away
-    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2]
-
-
-def test_bad_usage_is_one_line(tmp_path):
-    r = subprocess.run([sys.executable, TOOL, "-o", str(tmp_path)], capture_output=True, text=True)
-    assert r.returncode == 2 and "--participant-number" in r.stderr and "Traceback" not in r.stderr
-    r = subprocess.run([sys.executable, TOOL, "--device", "udp:", "--participant-number", "1", "-o", str(tmp_path)],
-                       capture_output=True, text=True)
-    assert r.returncode == 2 and "udp:HOST" in r.stderr and "Traceback" not in r.stderr
-
-
-def test_torn_rows_are_cut_before_appending(tmp_path):
-    folder = str(tmp_path / "P01")
-    log = logs.ParticipantLog(folder)
-    log.frame(1, 0.5, 10, 20, 1, 0.3, 0)
-    log.close()
-    with open(os.path.join(folder, "frames.csv"), "a") as f:
-        f.write("1,0.51,11")  # killed mid-row
-    assert len(logs.read_frames(folder)["t"]) == 1  # the reader skips the torn row
-    log = logs.ParticipantLog(folder)
-    log.frame(2, 0.6, 12, 22, 1, 0.3, 0)
-    log.close()
-    lines = open(os.path.join(folder, "frames.csv")).read().splitlines()
-    assert lines[1:] == ["1,0.5,10,20,1,0.3,0", "2,0.6,12,22,1,0.3,0"]
-
-
-def test_the_devices_sensor_profile_is_in_the_session_and_a_change_is_logged(tmp_path, capsys):
-    from ffexp import protocol
-    assert run_fake(tmp_path, "--trials", "1", "--skip-familiarisation") == 0
-    assert "default sensor profile" in capsys.readouterr().out
-    session = json.loads((tmp_path / "P04" / "session.json").read_text())
-    assert session["sensor_profile"] == {"white_noise_px": 1.0, "correlated_noise_px": 0.0,
-                                         "correlation_time_ms": 0.0, "tremor_px": 0.0, "report_rate_hz": 200.0,
-                                         "jitter_us": 150.0, "latency_us": 0,
-                                         "tremor_hz": 0.0}
-    # resumed on a device told another sensor: logged, and said
-    def calibrated(spec, root, speed, clock):
-        d = device.FakeDevice(clock)
-        d.profile = protocol.SensorProfile(1.5, 1.0, 30.0, 1.0, 100.0, 200.0, 2000)
-        return d
-    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation", "--resume", factory=calibrated) == 0
-    out = capsys.readouterr()
-    assert "default sensor profile" not in out.out and "sensor profile differs" in out.err
-    changed = [e for e in logs.read_events(str(tmp_path / "P04")) if e["event"] == "sensor-profile-changed"]
-    assert len(changed) == 1 and "latency_us=2000" in changed[0]["detail"] and "white_noise_px=1.5" in changed[0]["detail"]
-    # the session's header keeps what the study started with
-    assert json.loads((tmp_path / "P04" / "session.json").read_text())["sensor_profile"]["latency_us"] == 0
-
-
-class NoisyLinkDevice(device.FakeDevice):
-    """Refuses three datagrams and hears one unasked device Error on its tenth poll."""
-
-    polls = 0
-
-    def poll(self):
-        self.polls += 1
-        if self.polls == 10:
-            self.errors += ["datagram refused: bad CRC"] * 3 + ["device error: busy (message type 0x02)"]
-        return super().poll()
-
-
-def test_refused_datagrams_and_device_errors_are_logged_once_a_frame(tmp_path):
-    made = []
-
-    def factory(spec, root, speed, clock):
-        made.append(NoisyLinkDevice(clock))
-        return made[0]
-    assert run_fake(tmp_path, "--trials", "1", "--skip-familiarisation", factory=factory) == 0
-    errors = [(e["trial"], e["detail"]) for e in logs.read_events(str(tmp_path / "P04")) if e["event"] == "device-error"]
-    assert errors == [("1", "datagram refused: bad CRC (3 times)"), ("1", "device error: busy (message type 0x02)")]
-
-
-def test_propose_exclusions_needs_no_participant_number(tmp_path, capsys):
-    from exp_synthetic import write_participant
-    folder = write_participant(str(tmp_path), 3, lambda r, s: 0.5)
-    with open(os.path.join(folder, "events.csv"), "a") as f:
-        f.write("10.0,7,device-lost,test\n")
-    assert experiment.main(["--propose-exclusions", folder]) == 0
-    path = os.path.join(folder, "exclusions.proposed.csv")
-    assert capsys.readouterr().out == (f"ff-experiment: 1 candidate(s) in {path}; review them and copy the ones "
-                                       "to drop into exclusions.csv\n")
-    assert open(path).read().splitlines()[1] == "7,device,device lost during the trial"
-
-
-@pytest.mark.parametrize("argv, why", [
-    (["--device", "udp:10.0.0.7", "--speed", "2"], "--speed is for --device sim"),
-    (["--speed", "0"], "--speed is for --device sim"),
-    (["--trials", "0"], "--trials must be in 1..180"),
-    (["--trials", "181"], "--trials must be in 1..180"),
-], ids=["speed-udp", "speed-zero", "no-trials", "too-many-trials"])
-def test_bad_options_are_refused_before_anything_starts(tmp_path, capsys, argv, why):
-    with pytest.raises(SystemExit) as stop:
-        experiment.main(argv + ["--participant-number", "1", "-o", str(tmp_path)])
-    assert stop.value.code == 2 and why in capsys.readouterr().err and not os.listdir(tmp_path)
+from ffexp import design, device, experiment, logs
 
 
 class SteppingPacer:
@@ -379,7 +165,7 @@ def test_a_condition_refused_by_silence_is_sent_once_the_device_answers(person_s
         ("7", "device-lost"), ("7", "device-back"), ("8", "device-lost")]
 
 
-def test_a_key_screen_sends_its_scene_again_after_a_loss(person_study):
+def test_a_key_screen_sends_its_scene_again_after_a_loss(person_study, monkeypatch):
     import pygame
     from ffexp import protocol
     study, folder = person_study
@@ -394,8 +180,11 @@ def test_a_key_screen_sends_its_scene_again_after_a_loss(person_study):
         return poll()
     study.dev.poll = poll_then_fall_silent
     _answers_on_try(study, 2, then=lambda: pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_SPACE)))
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
     scene = protocol.FAMILIARISATION["bump-map"]
     assert study.key_screen("Bumps", ["Press space."], scene) is True
+    assert len(set(flips)) == len(flips)  # one screen a frame: none drawn for the frame the device missed
     assert study.dev.conditions == [scene, scene]  # the device may have restarted: told again
     study.close()
     assert [(e["event"], e["detail"]) for e in logs.read_events(folder)] == [
@@ -467,6 +256,25 @@ def test_a_key_screen_shows_its_message_and_the_amplitude(person_study, tmp_path
     assert tuple(shot.get_at((int(screen.geometry.END_ZONE_X) - 100, screen.geometry.HEIGHT - 20)))[:3] == (80, 140, 255)
 
 
+def test_esc_on_a_key_screen_while_the_device_is_away_stops_it(person_study, monkeypatch):
+    import pygame
+    study, folder = person_study
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    study.dev.wall, study.dev.last_heard = study.clock, 0.0  # silence measured in study time
+    study.dev.silent = True
+    _answers_on_try(study, 10 ** 9)
+
+    def keys():  # Esc once the study has noticed
+        study.stop = study.stop or study.dev.lost()
+        return False
+    study.keys = keys
+    assert study.key_screen("Pause", ["Take a break."]) is False
+    study.close()
+    assert [e["event"] for e in logs.read_events(folder)] == ["device-lost"]
+    assert flips == pytest.approx([0.1, 0.2, 0.3, 0.4, 0.5, 0.7])  # no pause screen after the waiting one
+
+
 def test_esc_on_a_familiarisation_screen_stops_the_study(person_study):
     study, _ = person_study
 
@@ -476,3 +284,227 @@ def test_esc_on_a_familiarisation_screen_stops_the_study(person_study):
     study.keys = escape
     assert study.familiarisation() is False
     assert [c.kind for c in study.dev.conditions] == ["general"]  # the first screen's scene, not the second's
+
+
+class ScriptedParticipant:
+    """A simulated participant whose finger follows path(t) -> (x, y, touching)
+    and who finds itself stuck once, at stuck_at: what the Study asks of one."""
+
+    def __init__(self, path, stuck_at=None):
+        self.path, self.stuck_at = path, stuck_at
+        self.calls = []
+
+    def begin_trial(self, t):
+        self.calls.append(("begin", t))
+
+    def started(self, t):
+        self.calls.append(("started", t))
+
+    def stuck(self, t):
+        if self.stuck_at is not None and t >= self.stuck_at:
+            self.stuck_at = None
+            return True
+        return False
+
+    def feel(self, x, y, amplitude):
+        pass
+
+    def finger(self, t):
+        x, y, touching = self.path(t)
+        return x, y, 0.3, touching
+
+    def end_trial(self):
+        self.calls.append(("end", None))
+
+    def presses_key(self, t):
+        return False
+
+
+def test_a_stuck_participant_starts_over_and_the_crossing_is_interpolated_at_x_700(person_study, monkeypatch,
+                                                                                   tmp_path):
+    import pygame
+    study, folder = person_study
+    study.pacer.step = 0.125
+    study.args.screenshots = str(tmp_path / "shots")
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+
+    def path(t):  # in the circle, then right at 800 px/s and up at 200 px/s
+        x = 60 + max(0.0, t - 0.5) * 800
+        return x, 240 - (x - 60) / 4, True
+    study.participant = ScriptedParticipant(path, stuck_at=0.3)
+    trial = dict(design.plan(4)[0], target="top")
+    assert study.run_trial(trial)
+    study.close()
+    # entered at 0.125, stuck at 0.375 (begun again), entered again at 0.5
+    assert study.participant.calls == [("begin", 0.0), ("started", 0.125), ("begin", 0.375), ("started", 0.5),
+                                       ("end", None)]
+    (row,) = logs.read_trials(folder)
+    assert (row["t_enter_start"], row["t_leave_start"], row["t_cross"]) == (0.5, 0.625, 1.375)
+    # frames at x = 660 (y 90) and 760 (y 65): at x = 700, 2/5 of the way, y = 80
+    assert row["crossing_y"] == 80.0 and row["choice"] == "top" and row["hit"] == 1 and study.score == 1
+    # a flip each trial frame but the crossing's, then the simulated participant's 0.4 s of feedback
+    assert flips == [0.125 * k for k in range(1, 11)] + [1.5, 1.625, 1.75, 1.875]
+    trial_shot = pygame.surfarray.array3d(pygame.image.load(str(tmp_path / "shots" / "trial.png")))
+    feedback_shot = pygame.surfarray.array3d(pygame.image.load(str(tmp_path / "shots" / "feedback.png")))
+    assert (trial_shot != feedback_shot).any()  # the feedback screen, not the trial's left over
+
+
+def test_a_finger_that_enters_the_end_zone_without_moving_right_is_taken_where_it_is(person_study):
+    study, folder = person_study
+    points = {1: (60, 240), 2: (760, 100), 3: (760, 300)}  # frame -> finger: a jump out of the circle, then down
+
+    def path(t):
+        x, y = points[min(3, round(t / 0.1))]
+        return x, y, True
+    study.participant = ScriptedParticipant(path)
+    assert study.run_trial(dict(design.plan(4)[0], target="middle"))
+    study.close()
+    (row,) = logs.read_trials(folder)
+    assert row["crossing_y"] == 300.0 and row["choice"] == "middle" and study.score == 1
+
+
+def test_the_last_touching_frame_is_the_one_interpolated_from(person_study):
+    study, folder = person_study
+    # frame 5 lifted far away: not a point of the stroke
+    points = {1: (60, 240), 2: (160, 240), 3: (460, 200), 4: (660, 100), 5: (400, 460), 6: (760, 70)}
+
+    def path(t):
+        k = min(6, round(t / 0.1))
+        return (*points[k], k != 5)
+    study.participant = ScriptedParticipant(path)
+    assert study.run_trial(design.plan(4)[0])
+    study.close()
+    assert logs.read_trials(folder)[0]["crossing_y"] == 88.0  # 100 + (70 - 100) * 40 / 100, not from (400, 460)
+
+
+def test_esc_during_the_feedback_stops_it(person_study):
+    import pygame
+    study, folder = person_study
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
+    assert study.feedback(design.plan(4)[0], False) is False
+    study.close()
+    assert len(logs.read_frames(folder)["t"]) == 1
+
+
+def _scripted_run(study, monkeypatch, *, familiarisation=True, trial_ok=lambda n: True, pause_ok=True):
+    """run() with its screens and trials replaced by recorders: what it called, in order."""
+    calls = []
+
+    def run_trial(trial):
+        calls.append(("trial", trial["trial"]))
+        return trial_ok(trial["trial"])
+
+    def key_screen(title, lines, condition=None, shot=None):
+        calls.append(("key-screen", title, condition.kind, shot))
+        return pause_ok
+    monkeypatch.setattr(study, "familiarisation", lambda: calls.append(("familiarisation",)) or familiarisation)
+    monkeypatch.setattr(study, "run_trial", run_trial)
+    monkeypatch.setattr(study, "key_screen", key_screen)
+    return calls
+
+
+def test_a_run_pauses_after_trial_45_and_ends_on_a_neutral_plate_and_thanks(person_study, monkeypatch, tmp_path):
+    import pygame
+    study, folder = person_study
+    study.args.trials = 90
+    study.args.screenshots = str(tmp_path / "shots")
+    calls = _scripted_run(study, monkeypatch)
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(1))
+    assert study.run() == 0
+    assert len(flips) == 1  # the thank-you screen shown
+    trials = [c[1] for c in calls if c[0] == "trial"]
+    assert calls[0] == ("familiarisation",) and trials == list(range(1, 91)) and study.index == 90
+    # a pause after 45 only: after 90 the run ends
+    assert calls[46] == ("key-screen", "Pause", "neutral", "pause") and len(calls) == 92
+    assert [c.kind for c in study.dev.conditions] == ["neutral"]  # at rest once the study is over
+    study.close()
+    assert [(e["trial"], e["event"]) for e in logs.read_events(folder)] == [("45", "pause")]
+    shot = pygame.image.load(str(tmp_path / "shots" / "done.png"))
+    assert any(shot.get_at((x, 160))[:3] != (0, 0, 0) for x in range(250, 550))  # "Thank you!"
+
+
+@pytest.mark.parametrize("kwargs, trials_run, index", [
+    (dict(familiarisation=False), [], 0),
+    (dict(trial_ok=lambda n: n != 3), [1, 2, 3], 2),
+    (dict(pause_ok=False), list(range(1, 46)), 45),
+], ids=["esc-in-familiarisation", "esc-in-trial-3", "esc-in-the-pause"])
+def test_a_run_stopped_anywhere_returns_1_and_sends_nothing_more(person_study, monkeypatch, kwargs, trials_run, index):
+    study, _ = person_study
+    study.args.trials = 60
+    calls = _scripted_run(study, monkeypatch, **kwargs)
+    assert study.run() == 1
+    assert [c[1] for c in calls if c[0] == "trial"] == trials_run and study.index == index
+    assert study.dev.conditions == []
+
+
+def test_a_resumed_run_skips_the_familiarisation(person_study, monkeypatch):
+    study, _ = person_study
+    study.args.trials, study.args.resume = 2, True
+    calls = _scripted_run(study, monkeypatch)
+    assert study.run() == 0 and calls == [("trial", 1), ("trial", 2)]
+
+
+def _falls_silent_and_esc_follows(study):
+    """The fake device falls silent at the study's first frame (silence in
+    study time) and never answers again; Esc once the study notices."""
+    study.dev.wall, study.dev.last_heard = study.clock, 0.0
+    poll = study.dev.poll
+
+    def silent_from_the_first_poll():
+        study.dev.silent = True
+        return poll()
+    study.dev.poll = silent_from_the_first_poll
+    _answers_on_try(study, 10 ** 9)
+
+    def keys():
+        study.stop = study.stop or study.dev.lost()
+        return False
+    study.keys = keys
+
+
+def test_esc_while_the_device_is_away_during_a_trial_ends_it_without_a_restart(person_study):
+    study, folder = person_study
+    _falls_silent_and_esc_follows(study)
+    assert study.run_trial(design.plan(4)[0]) is False
+    study.close()
+    assert [e["event"] for e in logs.read_events(folder)] == ["device-lost"] and logs.read_trials(folder) == []
+
+
+def test_esc_while_the_device_is_away_during_the_feedback_ends_it(person_study, monkeypatch):
+    import pygame
+    study, folder = person_study
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    _falls_silent_and_esc_follows(study)
+    assert study.feedback(design.plan(4)[0], True) is False
+    study.close()
+    assert [e["event"] for e in logs.read_events(folder)] == ["device-lost"]
+    # feedback frames to 0.5 s, lost at 0.6 s, the waiting screen at 0.7 s, and no feedback drawn after it
+    assert flips == pytest.approx([0.1, 0.2, 0.3, 0.4, 0.5, 0.7])
+
+
+def test_a_device_back_during_the_feedback_lets_it_finish(person_study, monkeypatch):
+    import pygame
+    study, folder = person_study
+    study.dev.wall, study.dev.last_heard = study.clock, 0.0
+    poll = study.dev.poll
+    study.dev.poll = lambda: setattr(study.dev, "silent", study.dev.silent or study.clock() < 0.25) or poll()
+    tries = _answers_on_try(study, 1)
+    flips = []
+    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    assert study.feedback(design.plan(4)[0], True) is True
+    study.close()
+    assert [e["event"] for e in logs.read_events(folder)] == ["device-lost", "device-back"] and len(tries) == 1
+    assert len(set(flips)) == len(flips) and flips[-1] >= 1.5
+
+
+def test_esc_during_a_trial_ends_it(person_study, monkeypatch):
+    import pygame
+    study, folder = person_study
+    monkeypatch.setattr(study.pg, "mouse", StrokingMouse(study.clock))
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE))
+    assert study.run_trial(design.plan(4)[0]) is False
+    study.close()
+    assert logs.read_trials(folder) == [] and len(logs.read_frames(folder)["t"]) == 1
