@@ -26,6 +26,7 @@ import csv
 import os
 import shlex
 import sys
+import warnings
 
 import matplotlib
 matplotlib.use("Agg")
@@ -64,7 +65,8 @@ def read_replay(path):
     if missing:
         raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
     cols = [names.index(c) for c in REPLAY_COLUMNS]
-    with open(path, encoding="utf-8-sig") as f:
+    with open(path, encoding="utf-8-sig") as f, warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # "input contained no data": said below, in one line
         try:
             data = np.loadtxt(f, delimiter=",", comments="#", skiprows=skip, usecols=cols, ndmin=2)
         except ValueError as e:
