@@ -61,10 +61,7 @@ def _split_mnemonic(mnemonic):
     if re.fullmatch(r"it[te]{0,3}", head):
         return "it", False
     for cond in _CONDITIONS:
-        if head.endswith(cond) and len(head) > len(cond) + 1:
-            stem = head[: -len(cond)]
-            if stem in ("b",):
-                return "b", True
+        if head.endswith(cond) and len(head) > len(cond) + 1:  # b<cond> was found above
             return "alu", True
     return "alu", False
 

@@ -11,9 +11,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from disassembly import classify, parse_objdump  # noqa: E402
+from disassembly import classify, disassemble, parse_objdump, symbols  # noqa: E402
 from exec_log import executed_addresses, measure_calls  # noqa: E402
-from model import BEST, WORST, CodeMap, cycles_of  # noqa: E402
+from model import BEST, WORST, CallCost, CodeMap, cycles_of  # noqa: E402
 
 RAM_EVERYWHERE = CodeMap(0, 1 << 32)  # zero-wait code: only the core's own timing
 FLASH_EVERYWHERE = CodeMap(0, 0)
@@ -91,6 +91,48 @@ class HandCountedBlocks(unittest.TestCase):
         # Nine: a second line.
         self.assertEqual(self.cycles(block + "\nadds r0, #1", WORST, FLASH_EVERYWHERE), 9 + 2 * 13)
 
+    def test_table_branches_it_and_a_load_into_pc(self):
+        # tbb 2 + P: best 3, worst 5
+        self.assertEqual((self.cycles("tbb [pc, r0]", BEST), self.cycles("tbb [pc, r0]", WORST)), (3, 5))
+        # it 0 (folded) or 1; addeq 1
+        self.assertEqual((self.cycles("it eq\naddeq r0, #1", BEST), self.cycles("it eq\naddeq r0, #1", WORST)),
+                         (1, 2))
+        # ldr pc, [r0]: 2 + P; worst also 1 of SRAM_L contention (a data access from RAM code)
+        self.assertEqual((self.cycles("ldr pc, [r0]", BEST, end=0x100), self.cycles("ldr pc, [r0]", WORST, end=0x100)),
+                         (3, 6))
+
+    def test_doubles_multiply_accumulate_division_and_barriers(self):
+        # ldrd 3 (worst + 1 SRAM_L contention); mla 1..2; sdiv, udiv 2..12; dmb, dsb 1..2; isb 1 + P
+        block = "ldrd r2, r3, [r0]\nmla r0, r1, r2, r3\nsdiv r0, r1, r2\nudiv r0, r1, r2\ndmb\ndsb\nisb"
+        self.assertEqual(self.cycles(block, BEST), 3 + 1 + 2 + 2 + 1 + 1 + 2)
+        self.assertEqual(self.cycles(block, WORST), 4 + 2 + 12 + 12 + 2 + 2 + 4)
+
+    def test_a_literal_in_another_flash_line_misses_too(self):
+        # ldr r0, [pc, #12] at 0 reads 0x10: code in line 0, its literal in line 1. Worst: ldr 2 + 1
+        # literal contention, two nops, two misses of 13.
+        block = "ldr r0, [pc, #12]\nnop\nnop"
+        self.assertEqual(self.cycles(block, WORST, FLASH_EVERYWHERE), 3 + 2 + 2 * 13)
+        self.assertEqual(self.cycles(block, BEST, FLASH_EVERYWHERE), 2 + 2)
+
+    def test_loads_of_a_flash_table_miss_every_time_in_the_worst_case(self):
+        # two loads through r0 by a table function in flash: 2 + 1 cycles; worst: the line once, each load once
+        libm = CodeMap(0, 0, table_functions=("block",))
+        ins = assemble("ldr r1, [r0]\nldr r2, [r0, #4]")
+        worst = cycles_of(straight(ins), ins, libm, WORST)
+        self.assertEqual((worst.table_loads, worst.total()), (2, 3 + 3 * 13))
+        self.assertEqual(cycles_of(straight(ins), ins, libm, BEST).total(), 3)
+        self.assertEqual(cycles_of(straight(ins), ins, FLASH_EVERYWHERE, WORST).table_loads, 0)  # not a table
+
+    def test_the_worst_case_split_by_function_adds_up(self):
+        # nine 16-bit adds over two lines, worst, flash: 9 cycles and 2 misses, all in "block"
+        ins = assemble("\n".join(["adds r0, #1"] * 9))
+        cost = CallCost(WORST, FLASH_EVERYWHERE, by_function=True)
+        sequence = straight(ins)
+        for i, address in enumerate(sequence):
+            cost.add(ins[address], sequence[i + 1] if i + 1 < len(sequence) else address + 2)
+        self.assertEqual(cost.functions, {"block": [9, 9 + 2 * 13, 2]})
+        self.assertEqual(cost.total(), 9 + 2 * 13)
+
 
 class Disassembly(unittest.TestCase):
     def test_conditions_are_not_mistaken_for_other_mnemonics(self):
@@ -109,6 +151,33 @@ class Disassembly(unittest.TestCase):
         vpush = classify(0, 4, "vpush", "{d8-d9}", "f")
         self.assertEqual(vpush.registers, 4)
 
+    def test_flag_setting_conditional_and_pc_writing_forms(self):
+        self.assertEqual(_split(classify(0, 4, "muls", "r0, r1, r0", "f")), ("mul", False))
+        self.assertEqual(_split(classify(0, 4, "mulseq", "r0, r1, r0", "f")), ("mul", True))
+        self.assertEqual(_split(classify(0, 2, "addeq", "r0, #1", "f")), ("alu", True))
+        self.assertTrue(classify(0, 2, "mov", "pc, lr", "f").writes_pc)
+        self.assertFalse(classify(0, 2, "mov", "r0, lr", "f").writes_pc)
+        self.assertTrue(classify(0, 4, "ldr.w", "pc, [sp], #4", "f").writes_pc)
+        self.assertEqual(classify(0, 2, "pop", "", "f").registers, 0)  # no list: nothing counted, no error
+
+    def test_an_object_file_and_its_symbols(self):
+        source = (".syntax unified\n.thumb\n.text\n.global sized\n.thumb_func\nsized:\nldr r0, =0x12345678\n"
+                  "bx lr\n.ltorg\n.size sized, .-sized\n.global bare\n.thumb_func\nbare:\nnop\nbx lr\n")
+        with tempfile.TemporaryDirectory() as tmp:
+            s, o = os.path.join(tmp, "f.s"), os.path.join(tmp, "f.o")
+            Path(s).write_text(source)
+            subprocess.run(["arm-none-eabi-as", "-mcpu=cortex-m4", "-mthumb", s, "-o", o], check=True)
+            ins, table = disassemble(o), symbols(o)
+        # ldr (0), bx (2), the literal .word (4) skipped; bare: nop (8), bx (10)
+        self.assertEqual(sorted(ins), [0, 2, 8, 10])
+        self.assertEqual((ins[0].function, ins[8].function), ("sized", "bare"))
+        self.assertEqual(table["sized"], (0, 8))   # nm -S: address and size
+        self.assertEqual(table["bare"], (8, 0))    # no .size: its address only
+
+
+def _split(ins):
+    return ins.base, ins.conditional
+
 
 class ExecLog(unittest.TestCase):
     def test_a_call_runs_from_entry_to_the_return_address_even_through_a_tail_call(self):
@@ -121,6 +190,16 @@ class ExecLog(unittest.TestCase):
         self.assertEqual(len(calls), 1)
         self.assertEqual(calls[0].instructions, 2)      # adds, bx lr
         self.assertEqual(calls[0].best, 1 + 1 + 1)      # adds 1, bx 1 + P
+
+    def test_other_lines_are_skipped_and_a_foreign_address_is_an_error(self):
+        log = ["qemu: some warning\n", "Trace 0: no bracket here\n",
+               "Trace 0: 0x7f0000000000 [00000000/00000004/00000110/ff020201] f\n"]
+        self.assertEqual(list(executed_addresses(log)), [4])
+        ins = assemble("nop\nnop\nadds r0, #1\nbx lr")
+        with self.assertRaisesRegex(ValueError, "executed address 0x40 is not an instruction"):
+            list(measure_calls([0, 0x40], ins, {}, RAM_EVERYWHERE))
+        with self.assertRaisesRegex(ValueError, "target entered without a call"):
+            list(measure_calls([4], ins, {4: "target"}, RAM_EVERYWHERE))
 
 
 if __name__ == "__main__":

@@ -80,6 +80,8 @@ def test_the_path_its_colours_the_reports_and_the_start(tmp_path, drawn, capsys)
     assert legend_labels(bottom) == ["rendered (finger down)", "no finger (idle)"]
     assert bottom.get_xlim() == pytest.approx((0, 0.025)) and bottom.get_ylim() == (-0.02, 1.02)
     assert bottom.get_xlabel() == "time since the first report [s]" and bottom.get_ylabel() == "amplitude A"
+    assert bottom.xaxis.get_gridlines()[0].get_visible() and not top.xaxis.get_gridlines()[0].get_visible()
+    assert not plot_replay.plt.fignum_exists(fig.number)  # closed once saved: a batch of plots does not pile up
     assert description.startswith(f"trace: {trace}; replay: {replay}; input: trace.csv (")
 
 
