@@ -162,14 +162,15 @@ class Disassembly(unittest.TestCase):
 
     def test_an_object_file_and_its_symbols(self):
         source = (".syntax unified\n.thumb\n.text\n.global sized\n.thumb_func\nsized:\nldr r0, =0x12345678\n"
-                  "bx lr\n.ltorg\n.size sized, .-sized\n.global bare\n.thumb_func\nbare:\nnop\nbx lr\n")
+                  "bx lr\n.ltorg\n.size sized, .-sized\n.global bare\n.thumb_func\nbare:\nnop\nbx lr\n.short 0xabcd\n"
+                  "nop\n")
         with tempfile.TemporaryDirectory() as tmp:
             s, o = os.path.join(tmp, "f.s"), os.path.join(tmp, "f.o")
             Path(s).write_text(source)
             subprocess.run(["arm-none-eabi-as", "-mcpu=cortex-m4", "-mthumb", s, "-o", o], check=True)
             ins, table = disassemble(o), symbols(o)
-        # ldr (0), bx (2), the literal .word (4) skipped; bare: nop (8), bx (10)
-        self.assertEqual(sorted(ins), [0, 2, 8, 10])
+        # ldr (0), bx (2), the literal .word (4) skipped; bare: nop (8), bx (10), .short (12) skipped, nop (14)
+        self.assertEqual(sorted(ins), [0, 2, 8, 10, 14])
         self.assertEqual((ins[0].function, ins[8].function), ("sized", "bare"))
         self.assertEqual(table["sized"], (0, 8))   # nm -S: address and size
         self.assertEqual(table["bare"], (8, 0))    # no .size: its address only
