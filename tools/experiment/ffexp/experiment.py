@@ -369,7 +369,7 @@ def run(argv, device_factory=None):
 
 
 def run_on(dev, args, folder, plan, first, score, session, clock):
-    """The study on an opened device: session header, window, trials, summary."""
+    """The study on the device run() made: opened, session header, window, trials, summary."""
     import pygame
     from .pacing import Pacer
     try:
