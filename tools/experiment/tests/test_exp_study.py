@@ -36,6 +36,7 @@ def person_study(tmp_path, monkeypatch):
     now = [0.0]
     args = experiment.parse(["--device", "fake", "--participant-number", "4", "-o", str(tmp_path)])
     dev = device.FakeDevice(lambda: now[0])
+    dev.wall = dev.clock  # its silence measured in study time too
     dev.open()
     folder = str(tmp_path / "P04")
     study = experiment.Study(args, dev, folder, design.plan(4), 1, 0, lambda: now[0], SteppingPacer(now))
@@ -106,6 +107,13 @@ def test_a_counter_that_changes_is_logged_with_its_new_value(person_study):
     assert events == [("3", "counters", "off_screen=5")]
 
 
+def _flip_times(study, monkeypatch):
+    """The study time of each screen shown (pygame.display.flip), as it happens."""
+    flips = []
+    monkeypatch.setattr(study.pg.display, "flip", lambda: flips.append(study.clock()))
+    return flips
+
+
 def _answers_on_try(study, n, then=None):
     """The fake device answers its n-th status query after going silent (then calls `then`)."""
     tries = []
@@ -127,8 +135,7 @@ def test_while_the_device_is_away_a_person_sees_why_and_esc_stops(person_study, 
     study, folder = person_study
     study.pacer.step = 0.125  # exact in binary: the retry times below are exact too
     study.args.screenshots = str(tmp_path / "shots")
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    flips = _flip_times(study, monkeypatch)
     study.dev.silent = True
     tries = _answers_on_try(study, 3)
     syncs = []
@@ -170,7 +177,6 @@ def test_a_key_screen_sends_its_scene_again_after_a_loss(person_study, monkeypat
     from ffexp import protocol
     study, folder = person_study
     study.pacer.step = 0.125
-    study.dev.wall, study.dev.last_heard = study.clock, 0.0  # silence measured in study time
     polls = []
     poll = study.dev.poll
 
@@ -180,8 +186,7 @@ def test_a_key_screen_sends_its_scene_again_after_a_loss(person_study, monkeypat
         return poll()
     study.dev.poll = poll_then_fall_silent
     _answers_on_try(study, 2, then=lambda: pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_SPACE)))
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    flips = _flip_times(study, monkeypatch)
     scene = protocol.FAMILIARISATION["bump-map"]
     assert study.key_screen("Bumps", ["Press space."], scene) is True
     assert len(set(flips)) == len(flips)  # one screen a frame: none drawn for the frame the device missed
@@ -240,8 +245,7 @@ def test_a_key_screen_shows_its_message_and_the_amplitude(person_study, tmp_path
     from ffexp import protocol, screen
     study, _ = person_study
     study.args.screenshots = str(tmp_path / "shots")
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(1))
+    flips = _flip_times(study, monkeypatch)
     study.dev.amplitude = 1.0
     answered = []
 
@@ -257,18 +261,9 @@ def test_a_key_screen_shows_its_message_and_the_amplitude(person_study, tmp_path
 
 
 def test_esc_on_a_key_screen_while_the_device_is_away_stops_it(person_study, monkeypatch):
-    import pygame
     study, folder = person_study
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
-    study.dev.wall, study.dev.last_heard = study.clock, 0.0  # silence measured in study time
-    study.dev.silent = True
-    _answers_on_try(study, 10 ** 9)
-
-    def keys():  # Esc once the study has noticed
-        study.stop = study.stop or study.dev.lost()
-        return False
-    study.keys = keys
+    flips = _flip_times(study, monkeypatch)
+    _falls_silent_and_esc_follows(study)
     assert study.key_screen("Pause", ["Take a break."]) is False
     study.close()
     assert [e["event"] for e in logs.read_events(folder)] == ["device-lost"]
@@ -326,8 +321,7 @@ def test_a_stuck_participant_starts_over_and_the_crossing_is_interpolated_at_x_7
     study, folder = person_study
     study.pacer.step = 0.125
     study.args.screenshots = str(tmp_path / "shots")
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    flips = _flip_times(study, monkeypatch)
 
     def path(t):  # in the circle, then right at 800 px/s and up at 200 px/s
         x = 60 + max(0.0, t - 0.5) * 800
@@ -410,8 +404,7 @@ def test_a_run_pauses_after_trial_45_and_ends_on_a_neutral_plate_and_thanks(pers
     study.args.trials = 90
     study.args.screenshots = str(tmp_path / "shots")
     calls = _scripted_run(study, monkeypatch)
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(1))
+    flips = _flip_times(study, monkeypatch)
     assert study.run() == 0
     assert len(flips) == 1  # the thank-you screen shown
     trials = [c[1] for c in calls if c[0] == "trial"]
@@ -447,9 +440,8 @@ def test_a_resumed_run_skips_the_familiarisation(person_study, monkeypatch):
 
 
 def _falls_silent_and_esc_follows(study):
-    """The fake device falls silent at the study's first frame (silence in
-    study time) and never answers again; Esc once the study notices."""
-    study.dev.wall, study.dev.last_heard = study.clock, 0.0
+    """The fake device falls silent at the study's first frame and never
+    answers again; Esc once the study notices."""
     poll = study.dev.poll
 
     def silent_from_the_first_poll():
@@ -473,10 +465,8 @@ def test_esc_while_the_device_is_away_during_a_trial_ends_it_without_a_restart(p
 
 
 def test_esc_while_the_device_is_away_during_the_feedback_ends_it(person_study, monkeypatch):
-    import pygame
     study, folder = person_study
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    flips = _flip_times(study, monkeypatch)
     _falls_silent_and_esc_follows(study)
     assert study.feedback(design.plan(4)[0], True) is False
     study.close()
@@ -486,14 +476,11 @@ def test_esc_while_the_device_is_away_during_the_feedback_ends_it(person_study, 
 
 
 def test_a_device_back_during_the_feedback_lets_it_finish(person_study, monkeypatch):
-    import pygame
     study, folder = person_study
-    study.dev.wall, study.dev.last_heard = study.clock, 0.0
     poll = study.dev.poll
     study.dev.poll = lambda: setattr(study.dev, "silent", study.dev.silent or study.clock() < 0.25) or poll()
     tries = _answers_on_try(study, 1)
-    flips = []
-    monkeypatch.setattr(pygame.display, "flip", lambda: flips.append(study.clock()))
+    flips = _flip_times(study, monkeypatch)
     assert study.feedback(design.plan(4)[0], True) is True
     study.close()
     assert [e["event"] for e in logs.read_events(folder)] == ["device-lost", "device-back"] and len(tries) == 1
