@@ -21,6 +21,7 @@ import subprocess
 import sys
 import tempfile
 import threading
+from fractions import Fraction
 from pathlib import Path
 
 sys.path[:0] = [str(Path(__file__).resolve().parent), str(Path(__file__).resolve().parent.parent / "common")]
@@ -42,7 +43,8 @@ class UsageError(Exception):
 def percentile(values, p):
     """Nearest rank: the smallest value with at least p % of values at or below it."""
     ordered = sorted(values)
-    rank = max(1, math.ceil(p / 100.0 * len(ordered)))
+    # p as written in decimal, not its binary float: 99.9 / 100 * 1000 is 999.0000000000001 in floats.
+    rank = max(1, math.ceil(Fraction(str(p)) * len(ordered) / 100))
     return ordered[rank - 1]
 
 

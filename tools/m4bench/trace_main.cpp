@@ -27,7 +27,7 @@ using namespace ff;
 using namespace ff::bench;
 using ff::m4::Line;
 
-// 1 s of stroke per scene: the p99.9 of 2,000 ticks is their second largest.
+// 1 s of stroke per scene: the p99.9 of 2,000 ticks is their third largest.
 constexpr int kStrokeTicks = 2000;
 
 HapticPipeline g_pipeline;
