@@ -86,6 +86,14 @@ def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
     assert any(e["event"] == "resume" and int(float(e["trial"])) == len(done) + 1 for e in events)
 
 
+def _one(made, device_class=None, **kw):
+    """A device factory that makes a device_class (ClosingDevice by default) and keeps it in `made`."""
+    def factory(spec, root, speed, clock):
+        made.append((device_class or ClosingDevice)(clock, **kw))
+        return made[-1]
+    return factory
+
+
 class FlakyDevice(device.FakeDevice):
     """Falls silent for one wall-clock second during trial 2."""
 
@@ -116,11 +124,8 @@ class FlakyDevice(device.FakeDevice):
 
 def test_device_loss_pauses_and_restarts_the_trial(tmp_path, capsys):
     made = []
-    def factory(spec, root, speed, clock):
-        made.append(FlakyDevice(clock))
-        return made[0]
     # real time: the loss (0.5 s of wall-clock silence) falls inside trial 2
-    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation", factory=factory, speed=1) == 0
+    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation", factory=_one(made, FlakyDevice), speed=1) == 0
     assert "study paused (trial 2)" in capsys.readouterr().err
     ev = [e["event"] for e in logs.read_events(str(tmp_path / "P04"))]
     assert ev.index("device-lost") < ev.index("device-back") < ev.index("trial-restart")
@@ -175,12 +180,7 @@ class NoisyLinkDevice(device.FakeDevice):
 
 
 def test_refused_datagrams_and_device_errors_are_logged_once_a_frame(tmp_path):
-    made = []
-
-    def factory(spec, root, speed, clock):
-        made.append(NoisyLinkDevice(clock))
-        return made[0]
-    assert run_fake(tmp_path, "--trials", "1", "--skip-familiarisation", factory=factory) == 0
+    assert run_fake(tmp_path, "--trials", "1", "--skip-familiarisation", factory=_one([], NoisyLinkDevice)) == 0
     errors = [(e["trial"], e["detail"]) for e in logs.read_events(str(tmp_path / "P04")) if e["event"] == "device-error"]
     assert errors == [("1", "datagram refused: bad CRC (3 times)"), ("1", "device error: busy (message type 0x02)")]
 
@@ -225,11 +225,6 @@ class ClosingDevice(device.FakeDevice):
         self.closed += 1
 
 
-def _one(made, **kw):
-    def factory(spec, root, speed, clock):
-        made.append(ClosingDevice(clock, **kw))
-        return made[-1]
-    return factory
 
 
 def test_a_finished_run_closes_the_device_the_log_and_pygame_and_sums_up(tmp_path, capsys, monkeypatch):
