@@ -8,7 +8,6 @@ import datetime
 import math
 import os
 import platform
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
@@ -19,7 +18,6 @@ CLOCK_HZ = 180e6            # Teensy 3.6
 PREPARE_GOAL_INSTR = 360_000  # 2 ms at 180 MHz, 1 instruction ~ 1 cycle
 TICK_GOAL_INSTR = 1_000
 ERROR_GOAL_LSB = 1.0
-SLOT_BYTES = 96 * 1024      # FF_TABLE_SLOT_BYTES
 
 
 def parse_args():
@@ -39,9 +37,9 @@ def parse_args():
 def fnum(text):
     try:
         v = float(text)
-        return v if math.isfinite(v) else None
     except (TypeError, ValueError):
         return None
+    return v if math.isfinite(v) else None
 
 
 def without_metadata(f):
@@ -156,8 +154,6 @@ def merge(host_cases, m4):
 def fmt(v, digits=3):
     if v is None:
         return "–"
-    if v == 0:
-        return "0"
     if abs(v) >= 1000:
         return "{:,.0f}".format(v)
     if abs(v) >= 100:
@@ -183,8 +179,6 @@ def ms_at_180(instr):
 
 
 def tick_text(r):
-    if r["m4_tick"] is None:
-        return "–"
     return ("≈" if r["m4_tick_estimated"] else "") + fmt(r["m4_tick"])
 
 
@@ -295,13 +289,6 @@ def write_csv_rows(rows, cols, f, metadata):
                     g(r["m4_tick_max"]), g(r["m4_prepare"]), r["gradient_evaluations"], r["host_eval_ns"],
                     r["host_prepare_us"], r["host_tick_ns"],
                     "" if r["checksum_match"] is None else int(r["checksum_match"])])
-
-
-def tool_version(cmd):
-    try:
-        return subprocess.run(cmd, capture_output=True, text=True, check=False).stdout.splitlines()[0].strip()
-    except (OSError, IndexError):
-        return "?"
 
 
 def host_cpu():
@@ -525,6 +512,8 @@ def report(rows, m4, host_trackers, args):
     have_m4 = m4 is not None and bool(m4["cases"])
     by_id = {r["id"]: r for r in rows}
     defaults = [r for r in rows if r["default"] == "1" and r["builtin"] == "1"]
+    neutral = by_id.get("neutral/closed-form")
+    heightmap = by_id.get("heightmap-top/closed-form")
     out = []
     w = out.append
     w("# Benchmarks: run time against error for every evaluation strategy")
@@ -589,8 +578,6 @@ def report(rows, m4, host_trackers, args):
               "(1 instruction counted as 1 cycle) | worst: %s, %s instructions = %.2f ms; over: %s | %s |" % (
                   worst_prep["scene"], fmt(worst_prep["m4_prepare"]), ms_at_180(worst_prep["m4_prepare"]),
                   ", ".join(over) if over else "none", "yes" if not over else "**no**"))
-            neutral = by_id.get("neutral/closed-form")
-            heightmap = by_id.get("heightmap-top/closed-form")
             if neutral and heightmap and neutral["m4_tick"] and heightmap["m4_tick"]:
                 ratio = neutral["m4_tick"] / heightmap["m4_tick"]
                 w("| neutral costs a small fraction of heightmap (whole tick) | %s / %s instructions = %.0f %%; "
@@ -643,8 +630,6 @@ def report(rows, m4, host_trackers, args):
         w("## Where the time goes (M4 instructions per tick)")
         w("")
         comp = m4["components"]
-        neutral = by_id.get("neutral/closed-form")
-        heightmap = by_id.get("heightmap-top/closed-form")
         every = 10  # a report every 10th tick
         on_sample = comp.get("Tracker::on_sample (recommended(); per report)", 0) / every
         tick_nofilter = comp.get("Tracker::on_tick need_filter=false (finger present)", 0)

@@ -3,6 +3,8 @@ figure below is worked out from the inputs in this file, not read from the
 tool's output."""
 import argparse
 import os
+import re
+import subprocess
 import sys
 
 import pytest
@@ -131,6 +133,15 @@ def run(tmp_path):
     rows = make_report.merge(cases, m4)
     return {"rows": rows, "by_id": {r["id"]: r for r in rows}, "m4": m4, "trackers": trackers,
             "text": make_report.report(rows, m4, trackers, args_for(tmp_path)), "folder": tmp_path}
+
+
+GOLDEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "testdata", "make_report_golden.md")
+TOOL = os.path.join(os.path.dirname(os.path.abspath(__file__)), "make_report.py")
+
+
+def golden_text(text):
+    """The report with what changes run to run (the date, the machine) made fixed."""
+    return re.sub(r"\(\d{4}-\d{2}-\d{2}\)", "(DATE)", text)
 
 
 def section(text, title):
@@ -474,6 +485,8 @@ def test_the_figure_has_a_panel_per_scene_its_strategies_and_their_pareto_front(
     assert hm.get_yscale() == "log" and hm.get_ylim() == (5e-5, 5000)
     assert hm.get_xlabel() == "M4 instructions per whole tick (≈ = estimated)"
     assert hm.get_ylabel() == "max amplitude error, DAC LSB"
+    assert all(line.get_visible() for line in hm.xaxis.get_gridlines() + hm.yaxis.get_gridlines())
+    assert all(tick.gridline.get_visible() for tick in hm.yaxis.get_minor_ticks())  # the log scale's too
     assert len(fig.axes[8].collections) == 0 and len(fig.axes[8].lines) == 2  # no strategy: no front
     legend = [t.get_text() for t in fig.legends[0].get_texts()]
     assert len(legend) == len(make_report.FAMILIES) + 3 and legend[-1] == "goals: 1 LSB, 1,000 instructions"
@@ -482,10 +495,47 @@ def test_the_figure_has_a_panel_per_scene_its_strategies_and_their_pareto_front(
 
 def test_without_the_m4_the_figure_plots_host_time_and_an_exact_zero_at_the_floor(run, monkeypatch):
     rows = [dict(r, max_lsb="0") if r["id"] == "bump-map/closed-form" else r for r in run["rows"]]
+    rows = [dict(r, host_eval_ns="") if r["id"] == "heightmap-top/table-4px-int16-gradient" else r for r in rows]
     fig = drawn(rows, False, monkeypatch)[0]
     bump = fig.axes[5]
     assert [tuple(c.get_offsets()[0]) for c in bump.collections] == [(29, 1e-4), (10, 0.9)]
+    # a strategy without a cost is left out, and so is one without an error
+    assert [tuple(c.get_offsets()[0]) for c in fig.axes[0].collections] == [(17, 0.5), (9, 0.8), (12, 3.0)]
+    rows = [dict(r, max_lsb="") if r["id"] == "heightmap-top/closed-form" else r for r in rows]
+    assert [tuple(c.get_offsets()[0]) for c in drawn(rows, False, monkeypatch)[0].axes[0].collections] == [
+        (9, 0.8), (12, 3.0)]
     assert len(bump.lines) == 2 and bump.get_xlabel() == "host ns per evaluation"  # no instruction goal
+
+
+def test_the_whole_report_is_as_it_was(run, monkeypatch):
+    """A change detector: every line the checks above leave alone (the prose, each table's header, the
+    blank lines between). Rewrite it with `python3 tools/bench/test_make_report_tables.py --update-golden`
+    after a deliberate change, and read its diff."""
+    monkeypatch.setattr(make_report, "host_cpu", lambda: "a test machine")
+    text = make_report.report(run["rows"], run["m4"], run["trackers"], args_for(run["folder"]))
+    with open(GOLDEN, encoding="utf-8") as f:
+        assert golden_text(text) == f.read()
+
+
+def test_the_host_cpu_is_the_model_name_linux_reports(monkeypatch):
+    try:
+        with open("/proc/cpuinfo") as f:
+            names = [line.split(":", 1)[1].strip() for line in f if line.startswith("model name")]
+    except OSError:
+        names = []
+    if names:
+        assert make_report.host_cpu() == names[0]
+    real_open = open
+
+    def no_cpuinfo(path, *args, **kwargs):
+        if path == "/proc/cpuinfo":
+            raise OSError("no /proc here")
+        return real_open(path, *args, **kwargs)
+    monkeypatch.setattr("builtins.open", no_cpuinfo)
+    monkeypatch.setattr(make_report.platform, "processor", lambda: "")
+    assert make_report.host_cpu() == "?"
+    monkeypatch.setattr(make_report.platform, "processor", lambda: "arm64")
+    assert make_report.host_cpu() == "arm64"
 
 
 # ------------------------------------------------------------- the whole tool
@@ -509,6 +559,22 @@ def test_main_writes_the_report_the_csv_and_the_figure(run, monkeypatch, capsys)
     assert open(args.md).read().startswith("# Benchmarks:") and os.path.getsize(args.png) > 0
 
 
+def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_line(tmp_path):
+    write_run(tmp_path, m4_done=False)
+    args = args_for(tmp_path)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png], capture_output=True, text=True, env=env, cwd=str(tmp_path))
+    assert (r.returncode, r.stdout) == (1, "")
+    assert r.stderr == f"make_report: {args.m4} is incomplete (no done line): did the harness crash?\n"
+    (tmp_path / "whole").mkdir()
+    write_run(tmp_path / "whole")
+    args = args_for(tmp_path / "whole")
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--md", args.md, "--csv", args.csv, "--png",
+                        args.png], capture_output=True, text=True, env=env, cwd=str(tmp_path))
+    assert r.returncode == 0 and r.stdout.startswith(f"make_report: wrote {args.md}"), r.stderr
+
+
 @pytest.mark.parametrize("done, errors, says", [
     (False, (), "is incomplete (no done line): did the harness crash?"),
     (True, ("prepare,heightmap-top", "tick,vortex"), "the harness reported errors: prepare,heightmap-top; tick,vortex"),
@@ -521,3 +587,18 @@ def test_a_harness_run_that_crashed_or_failed_writes_nothing(tmp_path, monkeypat
     with pytest.raises(SystemExit) as stop:
         make_report.main()
     assert says in str(stop.value.code) and not os.path.exists(tmp_path / "out")
+
+
+if __name__ == "__main__" and sys.argv[1:] == ["--update-golden"]:
+    import tempfile
+    import pathlib
+    folder = pathlib.Path(tempfile.mkdtemp())
+    write_run(folder)
+    make_report.host_cpu = lambda: "a test machine"
+    cases, trackers = make_report.read_host(str(folder / "host"))
+    m4 = make_report.read_m4(str(folder / "m4bench.txt"))
+    report = make_report.report(make_report.merge(cases, m4), m4, trackers, args_for(folder))
+    os.makedirs(os.path.dirname(GOLDEN), exist_ok=True)
+    with open(GOLDEN, "w", encoding="utf-8") as f:
+        f.write(golden_text(report))
+    print("wrote", GOLDEN)
