@@ -1,6 +1,9 @@
 """standstill_breakdown.py on a hand-made tick file whose shares are worked
 out by hand, and its exit codes on bad input."""
 import math
+import os
+import subprocess
+import sys
 
 import pytest
 
@@ -67,20 +70,27 @@ def test_cli_prints_the_table(tmp_path, capsys):
     path = tmp_path / "ticks.csv"
     write_ticks(path)
     assert standstill_breakdown.main([str(path), "--bins", "1,2"]) == 0
-    out = capsys.readouterr().out
-    assert "| 0-1 ms | 40.0 % | 13.3 % | 26.7 % | 0.50 | 0.75 |" in out
-    assert "| 2 ms and later | 20.0 % | 60.0 % | 0.0 % | 1.00 | 1.00 |" in out
-    assert "5 moving ticks; heightmap error RMS 0.1732, 0.0894" in out
+    # 1-2 ms: the ticks 1.0 and 1.5 ms into the first stroke, 0.04 of the 0.15 squared, directions 0.5 long,
+    # read at the true speed
+    assert capsys.readouterr().out.splitlines() == [
+        "| since the standstill | ticks | squared error | at full length | direction | speed ratio |",
+        "|---|--:|--:|--:|--:|--:|",
+        "| 0-1 ms | 40.0 % | 13.3 % | 26.7 % | 0.50 | 0.75 |",
+        "| 1-2 ms | 40.0 % | 26.7 % | 0.0 % | 0.50 | 1.00 |",
+        "| 2 ms and later | 20.0 % | 60.0 % | 0.0 % | 1.00 | 1.00 |",
+        "",
+        "5 moving ticks; heightmap error RMS 0.1732, 0.0894 with the tracked direction at full length"]
 
 
-@pytest.mark.parametrize("content,args", [
-    ("t_us,x\n1,2\n", []),        # not a tick file
-    (None, []),                   # missing file
-    (HEADER, []),                 # no ticks
-    ("ok", ["--bins", "80,40"]),  # decreasing bins
-    ("ok", ["--bins", "x"]),
-])
-def test_bad_input_exits_2_with_one_line(tmp_path, capsys, content, args):
+@pytest.mark.parametrize("content,args,says", [
+    ("t_us,x\n1,2\n", [], "not a --dump-ticks file (missing vx_true, vy_true, touching,"),
+    (None, [], "No such file"),
+    (HEADER, [], "no ticks"),
+    ("ok", ["--bins", "80,40"], "--bins 80,40: positive and increasing edges wanted"),
+    ("ok", ["--bins", "x"], "could not convert string to float"),
+    ("ok", ["--moving-speed", "0"], "--moving-speed must be above 0"),
+], ids=["not-a-tick-file", "missing", "no-ticks", "decreasing-bins", "bins-not-numbers", "no-moving-speed"])
+def test_bad_input_exits_2_with_one_line(tmp_path, capsys, content, args, says):
     path = tmp_path / "ticks.csv"
     if content == "ok":
         write_ticks(path)
@@ -88,4 +98,14 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, content, args):
         path.write_text(content)
     assert standstill_breakdown.main([str(path)] + args) == 2
     err = capsys.readouterr().err
-    assert err.startswith("standstill_breakdown: ") and err.count("\n") == 1
+    assert err.startswith("standstill_breakdown: ") and err.count("\n") == 1 and says in err
+
+
+def test_run_as_a_script_it_exits_with_mains_code(tmp_path):
+    path = tmp_path / "ticks.csv"
+    write_ticks(path)
+    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "standstill_breakdown.py")
+    r = subprocess.run([sys.executable, tool, str(path), "--moving-speed", "150"], capture_output=True, text=True)
+    assert r.returncode == 2 and r.stderr.startswith("standstill_breakdown: ") and r.stdout == ""
+    r = subprocess.run([sys.executable, tool, str(path)], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout.startswith("| since the standstill |")

@@ -4,6 +4,10 @@ ramp followed without steady-state error, the ideal detector's deflection (a
 constant displacement: s sqrt(n) / sigma), its 1-D level against the speed's
 tail at rest (Monte Carlo), no filter above it (Cauchy-Schwarz), and the CLI's
 tables and exit codes."""
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -88,3 +92,36 @@ def test_cli_prints_the_ideal_detector_too(capsys):
     out = capsys.readouterr().out
     assert "| not the direction (2-D) | 55 ms, 2.0 px moved" in out
     assert "| the direction too (1-D, 1.71 / 4.48 sigma) | 50 ms, 1.5 px moved" in out
+
+
+def test_cli_prints_both_tables_whole(capsys):
+    assert start_snr.main(["--sqrt-q", "45"]) == 0
+    # Minimum-jerk, 300 px in 0.6 s: at 55 ms (tau 0.0917) 300 (10 tau^3 - 15 tau^4 + 6 tau^5) = 2.0 px moved at
+    # 500 (30 tau^2 - 60 tau^3 + 30 tau^4) = 104 px/s; at 70 ms 4.0 px, 159 px/s; at 65 ms 3.2 px, 140 px/s; at 50
+    # ms 1.5 px, 88 px/s. 5.32 px/s: the settled filter's resting sigma (the alpha-beta closed form, tested above).
+    assert capsys.readouterr().out.splitlines() == [
+        "# start_snr: minimum-jerk start of 300 px in 0.6 s, 200 reports/s, 1 px white noise; noiseless response "
+        "of the settled filter",
+        "| sqrt q px/s² | resting sigma_v px/s | 2.5 sigma at | 5 sigma at |",
+        "|--:|--:|--:|--:|",
+        "| 45 | 5.32 | 55 ms, 2.0 px moved (104 px/s) | 70 ms, 4.0 px moved (159 px/s) |",
+        "",
+        "# the ideal detector, told when the stroke starts, its shape and where the finger rested; its levels have "
+        "the speed's false-alarm rate at rest",
+        "| told | 2.5 sigma at | 5 sigma at |",
+        "|--|--:|--:|",
+        "| not the direction (2-D) | 55 ms, 2.0 px moved (104 px/s) | 65 ms, 3.2 px moved (140 px/s) |",
+        "| the direction too (1-D, 1.71 / 4.48 sigma) | 50 ms, 1.5 px moved (88 px/s) | 65 ms, 3.2 px moved (140 px/s) |"]
+
+
+def test_a_stroke_too_short_to_stand_out_is_never_seen_and_bad_values_are_one_line(capsys):
+    assert start_snr.main(["--sqrt-q", "45", "--distance-px", "1"]) == 0
+    assert "| 45 | 5.32 | never | never |" in capsys.readouterr().out.splitlines()
+    assert start_snr.main(["--noise-px", "-1"]) == 2
+    assert capsys.readouterr() == ("", "start_snr: every value must be > 0\n")
+
+
+def test_run_as_a_script_it_exits_with_mains_code():
+    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "start_snr.py")
+    r = subprocess.run([sys.executable, tool, "--duration-s", "0"], capture_output=True, text=True)
+    assert (r.returncode, r.stdout, r.stderr) == (2, "", "start_snr: every value must be > 0\n")
