@@ -83,7 +83,6 @@ def render(args, words):
     for a in axes[0]:
         a.set_xlim(0, 800)
         a.set_ylim(480, 0)
-        a.set_aspect("equal")
         a.set_xlabel("x [px]")
         a.set_ylabel("y [px]")
     fig.suptitle(title)

@@ -80,7 +80,7 @@ def breakdown(traces, moving_speed_px_s, edges_ms):
     bounds = [0.0] + list(edges_ms) + [np.inf]
     rows = []
     for low, high in zip(bounds[:-1], bounds[1:]):
-        m = (since >= low) & (since < high)
+        m = (since >= low) & ((since < high) | np.isinf(high))  # a finger never still yet: the last bin
         k = int(m.sum())
         rows.append((low, high, k / n, sq[m].sum() / total, sq_full[m].sum() / total,
                      length[m].mean() if k else float("nan"), ratio[m].mean() if k else float("nan")))

@@ -19,7 +19,6 @@ def draw(tmp_path, monkeypatch, rows):
     path = tmp_path / "frontier.csv"
     write_csv(path, rows)
     saved = []
-    monkeypatch.setattr(plot_frontier.plt, "close", lambda fig: None)  # keep the figure to read it back
     monkeypatch.setattr("plot_classes.ff_files.save_figure",
                         lambda fig, output, software, description, **kw: saved.append((fig, software, kw)))
     assert plot_frontier.main([str(path), "-o", str(tmp_path / "frontier.png")]) == 0
@@ -36,6 +35,7 @@ def test_each_class_has_its_points_front_shipping_fade_and_goals(tmp_path, monke
     assert software == "plot_frontier.py" and options == {"dpi": 100}
     assert tuple(fig.get_size_inches()) == pytest.approx((3.6 * 2 + 1, 3.4 + 0.8))  # two panels side by side
     white, slow = fig.axes
+    assert not plot_frontier.plt.fignum_exists(fig.number)  # closed once written (read back all the same)
     assert (white.get_title(), slow.get_title()) == ("white-200hz", "slow-fingers")
     points, front, star, goal_hm, goal_rest = white.lines
     assert xy(points) == [(0.08, 0.5), (0.04, 0.42), (0.15, 0.37), (0.01, 0.47)]

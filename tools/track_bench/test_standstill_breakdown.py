@@ -82,6 +82,17 @@ def test_cli_prints_the_table(tmp_path, capsys):
         "5 moving ticks; heightmap error RMS 0.1732, 0.0894 with the tracked direction at full length"]
 
 
+def test_a_file_of_one_tick_moving_since_it_began_is_in_the_last_bin(tmp_path, capsys):
+    path = tmp_path / "ticks.csv"
+    path.write_text(HEADER + tick(0, 100, 1, 100, 1.0, 0.0, 0.1, 0.0))  # no standstill before it
+    assert standstill_breakdown.main([str(path), "--bins", "40"]) == 0
+    assert capsys.readouterr().out.splitlines()[2:] == [
+        "| 0-40 ms | 0.0 % | 0.0 % | 0.0 % | nan | nan |",
+        "| 40 ms and later | 100.0 % | 100.0 % | 0.0 % | 1.00 | 1.00 |",
+        "",
+        "1 moving ticks; heightmap error RMS 0.1000, 0.0000 with the tracked direction at full length"]
+
+
 @pytest.mark.parametrize("content,args,says", [
     ("t_us,x\n1,2\n", [], "not a --dump-ticks file (missing vx_true, vy_true, touching,"),
     (None, [], "No such file"),

@@ -16,7 +16,6 @@ def draw(tmp_path, monkeypatch, ff_scene_render):
     saved = []
     monkeypatch.setattr(render_scene.ff_files, "save_figure",
                         lambda fig, output, software, description, **kw: saved.append((fig, output, software, kw)))
-    monkeypatch.setattr(render_scene.plt, "close", lambda fig: None)  # keep the figure to read it back
 
     def run(words, direction=None, title=None):
         args = argparse.Namespace(bin=ff_scene_render, direction=direction, step=16.0, title=title,
@@ -49,6 +48,8 @@ def test_a_directional_scene_has_the_amplitude_with_its_arrow_and_the_field(draw
         assert ax.get_xlim() == (0, 800) and ax.get_ylim() == (480, 0) and ax.get_aspect() == 1.0
         assert (ax.get_xlabel(), ax.get_ylabel()) == ("x [px]", "y [px]")
     assert fig._suptitle.get_text() == title == "heightmap, target top, strength 1"
+    assert amplitude.get_position().x0 < 0.1  # laid out tight: matplotlib's default margin is 0.125
+    assert not render_scene.plt.fignum_exists(fig.number)  # closed once written (read back all the same)
 
 
 def test_a_position_scene_has_one_panel_and_a_constant_one_says_its_value(draw, tmp_path):
