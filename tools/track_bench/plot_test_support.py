@@ -1,6 +1,8 @@
-"""What the plot scripts' tests share: a hand-made CSV, the PNG check and
+"""What the track bench scripts' tests share: a hand-made CSV, a run as a user runs a script, the PNG check and
 the refusal of bad input (one line on stderr, exit 2, no figure)."""
 import os
+import subprocess
+import sys
 
 
 def write_csv(path, header, rows, metadata):
@@ -10,6 +12,13 @@ def write_csv(path, header, rows, metadata):
         f.write(header + "\n")
         for r in rows:
             f.write(r + "\n")
+
+
+def run_script(name, *args, cwd=None):
+    """Runs a script of this folder as a user does: its own process, no PYTHONPATH (it finds its modules)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
+    return subprocess.run([sys.executable, tool, *map(str, args)], capture_output=True, text=True, env=env, cwd=cwd)
 
 
 def assert_png_with_metadata(path, tool):

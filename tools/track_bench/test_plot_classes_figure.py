@@ -5,12 +5,11 @@ steady chatter a third of the chatter, the start floor 0.04, the bounds 0.08
 / 0.05 / 0.06 / 0.055 / 0.05 / 0.056 and each heightmap marker over the
 thesis row's 0.2)."""
 import os
-import subprocess
-import sys
 
 import pytest
 
 import plot_classes
+from plot_test_support import run_script
 from test_plot_classes import ROWS, write_csv
 
 WIDTH = 0.38  # of a bar; the two trackers' bars sit half a width either side of each class
@@ -130,11 +129,7 @@ def test_the_printed_table_says_each_goal_per_class(tmp_path, capsys):
 def test_run_as_a_script_it_finds_ff_files_and_exits_with_mains_code(tmp_path):
     path = tmp_path / "classes.csv"
     write_csv(path, ROWS)
-    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "plot_classes.py")
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    r = subprocess.run([sys.executable, tool, str(path), "-o", str(tmp_path / "c.png")], capture_output=True,
-                       text=True, env=env, cwd=str(tmp_path))
+    r = run_script("plot_classes.py", path, "-o", tmp_path / "c.png", cwd=tmp_path)
     assert r.returncode == 0 and os.path.getsize(tmp_path / "c.png") > 0, r.stderr
-    r = subprocess.run([sys.executable, tool, str(tmp_path / "none.csv")], capture_output=True, text=True, env=env,
-                       cwd=str(tmp_path))
+    r = run_script("plot_classes.py", tmp_path / "none.csv", cwd=tmp_path)
     assert r.returncode == 2 and r.stderr.startswith("plot_classes.py: cannot read")

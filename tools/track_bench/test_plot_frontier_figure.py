@@ -4,12 +4,11 @@ star, the goal region and the axes worked out from its rows by hand (the
 smallest chatter is slow-fingers' 0.009, so a chatter is drawn no lower than
 half of it, 0.0045, and the axes start at half of that)."""
 import os
-import subprocess
-import sys
 
 import pytest
 
 import plot_frontier
+from plot_test_support import run_script
 from test_plot_frontier import ROWS, write_csv
 
 FLOOR = 0.0045
@@ -91,11 +90,7 @@ def test_the_printed_verdict_per_class(tmp_path, capsys):
 def test_run_as_a_script_it_finds_its_modules_and_exits_with_mains_code(tmp_path):
     path = tmp_path / "frontier.csv"
     write_csv(path, ROWS)
-    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "plot_frontier.py")
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    r = subprocess.run([sys.executable, tool, str(path), "-o", str(tmp_path / "f.png")], capture_output=True,
-                       text=True, env=env, cwd=str(tmp_path))
+    r = run_script("plot_frontier.py", path, "-o", tmp_path / "f.png", cwd=tmp_path)
     assert r.returncode == 0 and os.path.getsize(tmp_path / "f.png") > 0, r.stderr
-    r = subprocess.run([sys.executable, tool, str(path), "-o", str(path)], capture_output=True, text=True, env=env,
-                       cwd=str(tmp_path))
+    r = run_script("plot_frontier.py", path, "-o", path, cwd=tmp_path)
     assert r.returncode == 2 and r.stderr.startswith("plot_frontier.py: -o ")

@@ -1,13 +1,11 @@
 """standstill_breakdown.py on a hand-made tick file whose shares are worked
 out by hand, and its exit codes on bad input."""
 import math
-import os
-import subprocess
-import sys
 
 import pytest
 
 import standstill_breakdown
+from plot_test_support import run_script
 
 HEADER = "t_us,x_true,y_true,vx_true,vy_true,touching,resting,present,x,y,vx,vy,dx,dy,hm,hm_ideal,fm,fm_ideal,hm_true_dir,hm_unit_dir\n"
 
@@ -115,8 +113,7 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, content, args, says):
 def test_run_as_a_script_it_exits_with_mains_code(tmp_path):
     path = tmp_path / "ticks.csv"
     write_ticks(path)
-    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "standstill_breakdown.py")
-    r = subprocess.run([sys.executable, tool, str(path), "--moving-speed", "150"], capture_output=True, text=True)
+    r = run_script("standstill_breakdown.py", path, "--moving-speed", "150")
     assert r.returncode == 2 and r.stderr.startswith("standstill_breakdown: ") and r.stdout == ""
-    r = subprocess.run([sys.executable, tool, str(path)], capture_output=True, text=True)
+    r = run_script("standstill_breakdown.py", path)
     assert r.returncode == 0 and r.stdout.startswith("| since the standstill |")

@@ -4,14 +4,11 @@ ramp followed without steady-state error, the ideal detector's deflection (a
 constant displacement: s sqrt(n) / sigma), its 1-D level against the speed's
 tail at rest (Monte Carlo), no filter above it (Cauchy-Schwarz), and the CLI's
 tables and exit codes."""
-import os
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
 import start_snr
+from plot_test_support import run_script
 
 
 @pytest.mark.parametrize("sqrt_q,rate_hz", [(45.0, 200.0), (750.0, 100.0), (45.0, 1000.0)])
@@ -122,6 +119,5 @@ def test_a_stroke_too_short_to_stand_out_is_never_seen_and_bad_values_are_one_li
 
 
 def test_run_as_a_script_it_exits_with_mains_code():
-    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "start_snr.py")
-    r = subprocess.run([sys.executable, tool, "--duration-s", "0"], capture_output=True, text=True)
+    r = run_script("start_snr.py", "--duration-s", "0")
     assert (r.returncode, r.stdout, r.stderr) == (2, "", "start_snr: every value must be > 0\n")
