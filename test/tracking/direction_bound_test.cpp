@@ -62,10 +62,10 @@ void batch_von_mises(const std::vector<Report>& reports, const UnknownNoise& noi
   mu = std::atan2(b1, b0);
 }
 
-// 12 reports at rest, then a 0.3 s minimum-jerk stroke of 60 px turned by
-// `turn` (rad) from the direction the observer is told, every 5 ms with
-// 1 ms of jitter; the noise drawn as the filter models it.
-std::vector<Report> stroke(double turn, const UnknownNoise& noise, uint64_t seed) {
+// 12 reports at rest (`rest_s`), then a 0.3 s minimum-jerk stroke of 60 px
+// turned by `turn` (rad) from the direction the observer is told, every 5 ms
+// with 1 ms of jitter; the noise drawn as the filter models it.
+std::vector<Report> stroke(double turn, const UnknownNoise& noise, uint64_t seed, double rest_s = 0.06) {
   support::Random rng(seed);
   const double a_dir = 0.4;  // the told direction
   std::vector<Report> out;
@@ -79,7 +79,7 @@ std::vector<Report> stroke(double turn, const UnknownNoise& noise, uint64_t seed
       gy = a * gy + fresh * rng.gaussian();
       t += dt;
     }
-    const double s = 60.0 * tracegen::min_jerk(std::clamp((t - 0.06) / 0.3, 0.0, 1.0));
+    const double s = 60.0 * tracegen::min_jerk(std::clamp((t - rest_s) / 0.3, 0.0, 1.0));
     const double dx = s * std::cos(a_dir), dy = s * std::sin(a_dir);
     const double ex = s * std::cos(a_dir + turn) + gx + noise.white_px * rng.gaussian();
     const double ey = s * std::sin(a_dir + turn) + gy + noise.white_px * rng.gaussian();
@@ -88,9 +88,8 @@ std::vector<Report> stroke(double turn, const UnknownNoise& noise, uint64_t seed
   return out;
 }
 
-void expect_filter_matches_batch(const UnknownNoise& noise, double turn) {
-  const std::vector<Report> reports = stroke(turn, noise, 7);
-  StrokeRotation filter(noise);
+void expect_filter_matches_batch(StrokeRotation& filter, const UnknownNoise& noise, double turn, double rest_s = 0.06) {
+  const std::vector<Report> reports = stroke(turn, noise, 7, rest_s);
   std::vector<Report> seen;
   for (size_t k = 0; k < reports.size(); ++k) {
     if (k > 0) filter.predict(reports[k].t_s - reports[k - 1].t_s);
@@ -110,11 +109,35 @@ void expect_filter_matches_batch(const UnknownNoise& noise, double turn) {
 }
 
 TEST(DirectionBound, TheFilterIsTheBatchPosteriorWithWhiteNoise) {
-  expect_filter_matches_batch({1.0, 0.0, 0.03}, 0.5);
+  const UnknownNoise noise{1.0, 0.0, 0.03};
+  StrokeRotation filter(noise);
+  expect_filter_matches_batch(filter, noise, 0.5);
 }
 
 TEST(DirectionBound, TheFilterIsTheBatchPosteriorWithTheWander) {
-  expect_filter_matches_batch({0.56, 1.5, 0.03}, -2.0);
+  const UnknownNoise noise{0.56, 1.5, 0.03};
+  StrokeRotation filter(noise);
+  expect_filter_matches_batch(filter, noise, -2.0);
+}
+
+// Moving from the first report, before the rest's reports could pin the
+// wander down: the filter starts with the wander's stationary spread.
+TEST(DirectionBound, TheFilterIsTheBatchPosteriorFromTheFirstReport) {
+  const UnknownNoise noise{0.56, 1.5, 0.03};
+  StrokeRotation filter(noise);
+  expect_filter_matches_batch(filter, noise, 1.1, 0.0);
+}
+
+// A new touch forgets the last one: its turn, its wander and their covariances.
+TEST(DirectionBound, ATouchDownStartsTheFilterAfresh) {
+  const UnknownNoise noise{0.56, 1.5, 0.03};
+  StrokeRotation filter(noise);
+  for (const Report& r : stroke(2.5, noise, 9, 0.0)) {
+    filter.predict(0.005);
+    filter.update(r.ex + 4.0, r.ey - 3.0, r.dx, r.dy);  // a wander far from 0 at the lift
+  }
+  filter.touch_down();
+  expect_filter_matches_batch(filter, noise, 1.1, 0.0);
 }
 
 TEST(DirectionBound, AtRestTheReportsSayNothingOfTheTurn) {
@@ -130,7 +153,7 @@ TEST(DirectionBound, AtRestTheReportsSayNothingOfTheTurn) {
   EXPECT_GT(first, 0.5);
   EXPECT_NEAR(filter.mu(), 0.0, 0.5);
   filter.new_stroke();  // a new stroke forgets the turn
-  EXPECT_LT(filter.kappa(), 1e-5);
+  EXPECT_EQ(filter.kappa(), 0.0);  // not merely small: nothing of the old turn is left
 }
 
 TEST(DirectionBound, ThePosteriorMeanIsTheVonMisesAverage) {
@@ -162,6 +185,13 @@ TEST(DirectionBound, ThePosteriorMeanIsTheVonMisesAverage) {
             << "kappa " << kappa << " mu " << mu;
       }
     }
+    // A certain heading, however it is told: its own direction's amplitude.
+    const Vec2 at_mu{direction.x * std::cos(0.3f) - direction.y * std::sin(0.3f),
+                     direction.x * std::sin(0.3f) + direction.y * std::cos(0.3f)};
+    for (double kappa : {1e12, static_cast<double>(INFINITY)})
+      EXPECT_NEAR(posterior_mean_amplitude(*c.heightmap, position, direction, kappa, 0.3),
+                  static_cast<double>(c.heightmap->amplitude(position, at_mu)), 1e-6)
+          << kappa;
   }
   EXPECT_EQ(checked, 4);
 }
@@ -171,11 +201,11 @@ TEST(DirectionBound, UnknownNoiseCountsTheQuantumAsWhite) {
   s.noise_px = 0.5;
   s.quantum_px = 0.5;
   s.correlated_noise_px = 1.5;
-  s.correlated_noise_tau_s = 0.03;
+  s.correlated_noise_tau_s = 0.045;  // not UnknownNoise's default
   const UnknownNoise n = unknown_noise(s);
   EXPECT_NEAR(n.white_px, std::sqrt(0.25 + 0.25 / 12.0), 1e-12);
   EXPECT_EQ(n.wander_px, 1.5);
-  EXPECT_EQ(n.wander_tau_s, 0.03);
+  EXPECT_EQ(n.wander_tau_s, 0.045);
 }
 
 TEST(DirectionBound, WithoutDriftOnlyTheDriftChanges) {

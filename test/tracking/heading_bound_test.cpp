@@ -9,6 +9,7 @@
 #include "class_report.hpp"
 #include "heading_bound.hpp"
 #include "lookahead_bound.hpp"
+#include "stroke_end_predictor.hpp"
 #include "support/models/trace_classes.hpp"
 #include "support/random.hpp"
 
@@ -122,6 +123,100 @@ TEST(HeadingBound, AStandstillForgetsTheHeadingAndTheNextStrokeIsLearnt) {
   }
   EXPECT_GT(heading.kappa(), 100.0);
   EXPECT_NEAR(heading.mu(), M_PI / 2, 0.05);
+}
+
+// A new stroke's heading is unknown and tied to nothing: with a wander, not
+// to the wander either.
+TEST(HeadingBound, ANewStrokeForgetsTheHeadingsTieToTheWander) {
+  ReportNoise noise = white(0.5f);
+  noise.wander_variance = 2.0f;
+  noise.inverse_tau_s = 1.0f / 0.03f;
+  StrokeHeading heading(noise, 1e-4f);
+  const std::vector<Report> stroke = straight_stroke(1.0, 0.5, 10);
+  heading.touch_down(stroke[0].z);
+  for (size_t k = 1; k < stroke.size(); ++k) heading.update(stroke[k].z, stroke[k].travelled_px, 0.005f);
+  ASSERT_NE(heading.filter().P12, 0.0f);
+  heading.new_stroke();
+  EXPECT_EQ(heading.filter().P12, 0.0f);
+  EXPECT_EQ(heading.filter().P01, 0.0f);
+}
+
+// The matching of predicted ends to standstills, on times written out: an
+// end counts for a standstill from 40 ms before its first report to 40 ms
+// after its last, the nearest to its first report; the delay is to its first.
+TEST(HeadingBound, EndsAreMatchedToTheNearestStandstillWithinTheTolerance) {
+  StrokeEndLog a;
+  a.standstills = {{1.0, 1.5}, {2.0, 2.01}, {3.0, 3.02}};
+  a.ends = {1.45,    // inside the first standstill, 450 ms after its first report
+            1.98,    // 20 ms before the second
+            2.049,   // 49 ms after the second's first report, 39 ms after its last
+            2.8,     // near none
+            3.061};  // 61 ms after the third's first report, 41 ms after its last: near none
+  StrokeEndLog b;
+  b.standstills = {{0.5, 0.6}};
+  b.ends = {0.47, 0.52};  // the nearer of two
+  const StrokeEndStats stats = stroke_end_stats({a, b});
+  EXPECT_EQ(stats.standstills, 4u);
+  EXPECT_EQ(stats.found, 3u);       // the third has no end within its window
+  EXPECT_EQ(stats.other_ends, 2u);  // 2.8 and 3.061
+  EXPECT_NEAR(stats.median_delay_ms, 20.0, 1e-9);  // of 450, -20 and 20 ms
+  EXPECT_TRUE(std::isnan(stroke_end_stats({}).median_delay_ms));
+}
+
+// What the observer logs: the truth's standstills and the ends of a
+// minimum-jerk fit fed every report of each touch, both found here again by
+// a replay of the case's reports written out on its own.
+TEST(HeadingBound, TheLoggedEndsAreThePredictorsOnEveryReport) {
+  const tracegen::TraceClass* white_class = tracegen::find_trace_class("white-200hz");
+  ASSERT_NE(white_class, nullptr);
+  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white_class, 4.0));
+  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  HeadingBoundOptions predicted;
+  predicted.boundaries = StrokeBoundaries::PredictedEnds;
+  const HeadingBoundResult r = heading_bound(cases, kClassMovingSpeedPxS, noise, predicted);
+  ASSERT_EQ(r.end_logs.size(), cases.size());
+  size_t standstills = 0, ends = 0;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const PreparedCase& c = cases[i];
+    StrokeEndLog expected;
+    StrokeEndPredictor predictor;
+    bool touching = false, was_still = false, began_still = false;
+    for (const tracegen::TraceSample& s : c.trace.samples) {
+      const double scan_us = static_cast<double>(s.t_us) - s.latency_us;
+      if (scan_us > static_cast<double>(c.ticks.back().t_us)) break;  // the replay ends with the ticks
+      if (!s.touch || !std::isfinite(s.x) || !std::isfinite(s.y)) {
+        touching = touching && s.touch;
+        continue;
+      }
+      const double scan_s = scan_us * 1e-6;
+      const bool still = standing_still(c.trace.truth_at(static_cast<uint64_t>(std::llround(scan_us))));
+      if (!touching) {
+        predictor.restart();
+        predictor.report(scan_s, s.x, s.y);
+        began_still = still;
+      } else if (predictor.report(scan_s, s.x, s.y)) {
+        expected.ends.push_back(scan_s);
+      }
+      if (still && !began_still) {
+        if (was_still && touching) expected.standstills.back().second = scan_s;
+        else expected.standstills.push_back({scan_s, scan_s});
+      }
+      if (!still) began_still = false;
+      was_still = still;
+      touching = true;
+    }
+    EXPECT_EQ(r.end_logs[i].ends, expected.ends) << "case " << i;
+    EXPECT_EQ(r.end_logs[i].standstills, expected.standstills) << "case " << i;
+    standstills += expected.standstills.size();
+    ends += expected.ends.size();
+  }
+  EXPECT_GT(standstills, 10u);
+  EXPECT_GT(ends, 10u);
+  // Some standstills last longer than a report: their last report is logged.
+  size_t lasting = 0;
+  for (const StrokeEndLog& log : r.end_logs)
+    for (const auto& [first, last] : log.standstills) lasting += last > first ? 1 : 0;
+  EXPECT_GT(lasting, 0u);
 }
 
 TEST(HeadingBound, OnTracesItLiesBetweenTheFloorAndTheTrackers) {

@@ -35,13 +35,6 @@ double StrokeHeading::mu() const { return std::atan2(static_cast<double>(k_.v.y)
 
 namespace {
 
-// Per case: the truth's standstills (first and last report's scan time; not
-// those a touch begins with, which end no stroke) and the predicted ends.
-struct EndLog {
-  std::vector<std::pair<double, double>> standstills;
-  std::vector<double> ends;
-};
-
 constexpr double kEndToleranceS = kPredictedEndToleranceMs * 1e-3;
 
 bool predicts_ends(StrokeBoundaries b) { return b == StrokeBoundaries::PredictedEnds || b == StrokeBoundaries::TrackerEnds; }
@@ -49,10 +42,12 @@ bool predicts_ends(StrokeBoundaries b) { return b == StrokeBoundaries::Predicted
 // The tracker's clock: wrapping microseconds.
 uint32_t stamp_us(double scan_s) { return static_cast<uint32_t>(std::llround(scan_s * 1e6)); }
 
-StrokeEndStats end_stats(const std::vector<EndLog>& logs) {
+}  // namespace
+
+StrokeEndStats stroke_end_stats(const std::vector<StrokeEndLog>& logs) {
   StrokeEndStats stats;
   std::vector<double> delays;
-  for (const EndLog& log : logs) {
+  for (const StrokeEndLog& log : logs) {
     for (const auto& [first, last] : log.standstills) {
       ++stats.standstills;
       double best = INFINITY;
@@ -65,7 +60,7 @@ StrokeEndStats end_stats(const std::vector<EndLog>& logs) {
       }
     }
   }
-  for (const EndLog& log : logs) {
+  for (const StrokeEndLog& log : logs) {
     for (double e : log.ends) {
       bool near = false;
       for (const auto& [first, last] : log.standstills)
@@ -77,13 +72,11 @@ StrokeEndStats end_stats(const std::vector<EndLog>& logs) {
   return stats;
 }
 
-}  // namespace
-
 HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
                                  const ReportNoise& noise, const HeadingBoundOptions& options) {
   constexpr float kUnknownSpeedPxS = 1000.0f;  // the speed filter at touch-down, as the tracker's
   const float speed_q = options.speed_accel_noise_px_s2 * options.speed_accel_noise_px_s2;
-  std::vector<EndLog> logs;
+  std::vector<StrokeEndLog> logs;
   logs.reserve(cases.size());
   struct Observer {
     StrokeHeading heading;
@@ -93,7 +86,7 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
     const ReportNoise& noise;
     const HeadingBoundOptions& options;
     float speed_q;
-    EndLog* log;
+    StrokeEndLog* log;
     double last_scan_s = 0.0;
     bool in_standstill = false, touch_began_still = false;
 
@@ -165,8 +158,8 @@ HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double 
                     speed_q,
                     &logs.back()};
   });
-  HeadingBoundResult result{errors.heightmap_rms, errors.rest_rms, {}};
-  if (predicts_ends(options.boundaries)) result.ends = end_stats(logs);
+  HeadingBoundResult result{errors.heightmap_rms, errors.rest_rms, {}, std::move(logs)};
+  if (predicts_ends(options.boundaries)) result.ends = stroke_end_stats(result.end_logs);
   return result;
 }
 

@@ -18,6 +18,7 @@
 // the ends from the reports leaves (StrokeBoundaries::PredictedEnds).
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "frictionfield/core/finger_kalman.hpp"
@@ -77,9 +78,18 @@ struct StrokeEndStats {
   double median_delay_ms = NAN;
 };
 
+// One case's standstills of the truth (first and last report's scan time, s;
+// not those a touch begins with, which end no stroke) and its predicted ends.
+struct StrokeEndLog {
+  std::vector<std::pair<double, double>> standstills;
+  std::vector<double> ends;
+};
+StrokeEndStats stroke_end_stats(const std::vector<StrokeEndLog>& logs);
+
 struct HeadingBoundResult {
   double heightmap_rms = 0.0, rest_rms = 0.0;  // ObserverErrors
   StrokeEndStats ends;                         // PredictedEnds and TrackerEnds only
+  std::vector<StrokeEndLog> end_logs;          // per case
 };
 
 HeadingBoundResult heading_bound(const std::vector<PreparedCase>& cases, double moving_speed_px_s,

@@ -70,8 +70,8 @@ struct LookaheadRow {
   double anchored_accel_noise = 0.0;
   double heading_bound_rms = NAN;    // heading_bound.hpp: told when each stroke starts; NaN: not measured
   double direction_bound_rms = NAN;  // direction_bound.hpp: told all but where each stroke goes; NaN: not measured
-  HeadingBoundResult predicted_ends{NAN, NAN, {}};  // heading_bound.hpp, StrokeBoundaries::PredictedEnds
-  HeadingBoundResult tracker_ends{NAN, NAN, {}};    // StrokeBoundaries::TrackerEnds
+  HeadingBoundResult predicted_ends{NAN, NAN, {}, {}};  // heading_bound.hpp, StrokeBoundaries::PredictedEnds
+  HeadingBoundResult tracker_ends{NAN, NAN, {}, {}};    // StrokeBoundaries::TrackerEnds
 };
 // Every lookahead, and the anchored causal bound, at its best acceleration noise; the measurement noise is
 // the profile's white and correlated noise together.
