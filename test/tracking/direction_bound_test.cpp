@@ -114,6 +114,22 @@ TEST(DirectionBound, TheFilterIsTheBatchPosteriorWithWhiteNoise) {
   expect_filter_matches_batch(filter, noise, 0.5);
 }
 
+// Without a wander its correlation time means nothing, and may be 0: two
+// reports scanned at once (dt 0) stay finite.
+TEST(DirectionBound, WhiteNoiseNeedsNoCorrelationTime) {
+  const UnknownNoise noise{1.0, 0.0, 0.0};
+  StrokeRotation filter(noise);
+  filter.update(0.0, 0.0, 0.0, 0.0);
+  filter.predict(0.0);
+  filter.update(4.0, 0.1, 4.0, 0.0);
+  ASSERT_TRUE(std::isfinite(filter.kappa()));
+  EXPECT_NEAR(filter.mu(), std::atan2(0.1, 4.0), 0.05);
+  // The update's gain: two reports, the second 4 px along the told direction.
+  double kappa = 0.0, mu = 0.0;
+  batch_von_mises({{0.0, 0.0, 0.0, 0.0, 0.0}, {0.0, 4.0, 0.1, 4.0, 0.0}}, noise, kappa, mu);
+  EXPECT_NEAR(filter.kappa(), kappa, 1e-6 * kappa + 1e-5);
+}
+
 TEST(DirectionBound, TheFilterIsTheBatchPosteriorWithTheWander) {
   const UnknownNoise noise{0.56, 1.5, 0.03};
   StrokeRotation filter(noise);
@@ -154,6 +170,13 @@ TEST(DirectionBound, AtRestTheReportsSayNothingOfTheTurn) {
   EXPECT_NEAR(filter.mu(), 0.0, 0.5);
   filter.new_stroke();  // a new stroke forgets the turn
   EXPECT_EQ(filter.kappa(), 0.0);  // not merely small: nothing of the old turn is left
+  // Nor is the new turn tied to the wander: a rest after the stroke, however
+  // noisy, teaches it nothing.
+  for (int k = 0; k < 10; ++k) {
+    filter.predict(0.005);
+    filter.update(3.0 * std::cos(k), 2.0 - std::sin(k), 0.0, 0.0);
+  }
+  EXPECT_EQ(filter.kappa(), 0.0);
 }
 
 TEST(DirectionBound, ThePosteriorMeanIsTheVonMisesAverage) {
