@@ -179,6 +179,60 @@ TEST(DirectionBound, AtRestTheReportsSayNothingOfTheTurn) {
   EXPECT_EQ(filter.kappa(), 0.0);
 }
 
+// The observer's anchor, on reports written out: a stroke's reports are its
+// path turned about where the finger touched down or last stood still, and
+// the observer finds that turn only if it turns about the same point.
+struct Observed {
+  tracegen::TraceSample sample;
+  tracegen::TrueState truth;
+};
+
+// `n` reports 5 ms apart from `from` to `to` (still if equal), reported
+// turned by `turn` about `pivot`.
+void move(std::vector<Observed>& out, tracegen::Point from, tracegen::Point to, int n, double turn,
+          tracegen::Point pivot) {
+  for (int k = 1; k <= n; ++k) {
+    Observed o;
+    o.sample.t_us = 1000000 + 5000 * out.size();
+    o.sample.touch = true;
+    o.truth.touching = true;
+    o.truth.position = {from.x + (to.x - from.x) * k / n, from.y + (to.y - from.y) * k / n};
+    o.truth.velocity = {(to.x - from.x) / (n * 0.005), (to.y - from.y) / (n * 0.005)};
+    const double dx = o.truth.position.x - pivot.x, dy = o.truth.position.y - pivot.y;
+    o.sample.x = pivot.x + dx * std::cos(turn) - dy * std::sin(turn);
+    o.sample.y = pivot.y + dx * std::sin(turn) + dy * std::cos(turn);
+    out.push_back(o);
+  }
+}
+
+double observed_turn(const std::vector<Observed>& reports) {
+  const tracegen::GeneratedTrace no_tremor;
+  RotationObserver observer({0.01, 0.0, 0.03}, no_tremor);
+  for (size_t k = 0; k < reports.size(); ++k)
+    observer.report(reports[k].sample, reports[k].truth, reports[k].sample.t_us,
+                    static_cast<double>(reports[k].sample.t_us) * 1e-6, k == 0);
+  EXPECT_GT(observer.rotation().kappa(), 1e4);
+  return observer.rotation().mu();
+}
+
+TEST(DirectionBound, AStrokeTurnsAboutWhereItTouchedDown) {
+  std::vector<Observed> reports;
+  const tracegen::Point touch{100.0, 80.0};
+  // Moving from the first report, which is at `touch` (steps of 2, 0.5 px).
+  move(reports, {touch.x - 2.0, touch.y - 0.5}, {touch.x + 38.0, touch.y + 9.5}, 20, 0.5, touch);
+  EXPECT_NEAR(observed_turn(reports), 0.5, 1e-3);
+}
+
+TEST(DirectionBound, AStrokeTurnsAboutWhereTheFingerLastStoodStill) {
+  std::vector<Observed> reports;
+  const tracegen::Point touch{100.0, 80.0}, stop{140.0, 80.0};
+  move(reports, touch, touch, 5, 0.0, touch);
+  move(reports, touch, stop, 20, 0.0, touch);
+  move(reports, stop, stop, 5, 0.0, touch);
+  move(reports, stop, {stop.x, stop.y + 30.0}, 20, -0.7, stop);
+  EXPECT_NEAR(observed_turn(reports), -0.7, 1e-3);
+}
+
 TEST(DirectionBound, ThePosteriorMeanIsTheVonMisesAverage) {
   // Against a plain Riemann sum over the whole circle, 2e5 steps (100 per
   // spread at kappa 1e5), with the density's peak divided out.

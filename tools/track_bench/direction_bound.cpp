@@ -146,38 +146,33 @@ double StrokeRotation::mu() const {
   return std::atan2(m[1], m[0]);
 }
 
+void RotationObserver::report(const tracegen::TraceSample& s, const tracegen::TrueState& truth, uint64_t scanned_us,
+                              double scan_s, bool touch_down) {
+  if (touch_down) {
+    rotation_.touch_down();
+    anchor_ = truth.position;
+  } else {
+    rotation_.predict(scan_s - last_scan_s_);
+  }
+  if (standing_still(truth)) {
+    rotation_.new_stroke();
+    anchor_ = truth.position;
+  }
+  last_scan_s_ = scan_s;
+  const tracegen::Point shake = trace_.tremor_at(scanned_us);
+  rotation_.update(s.x - shake.x - anchor_.x, s.y - shake.y - anchor_.y, truth.position.x - anchor_.x,
+                   truth.position.y - anchor_.y);
+}
+
+double RotationObserver::amplitude(const ScenePlan& heightmap, const TickTruth& tick) const {
+  return posterior_mean_amplitude(heightmap, to_vec(tick.state.position), true_direction(tick.state),
+                                  rotation_.kappa(), rotation_.mu());
+}
+
 double direction_bound_heightmap_rms(const std::vector<PreparedCase>& cases, double moving_speed_px_s,
                                      const UnknownNoise& noise) {
-  struct Observer {
-    StrokeRotation rotation;
-    const PreparedCase& c;
-    double last_scan_s = 0.0;
-    tracegen::Point anchor;
-
-    void report(const tracegen::TraceSample& s, const tracegen::TrueState& truth, uint64_t scanned, double scan_s,
-                bool touch_down) {
-      if (touch_down) {
-        rotation.touch_down();
-        anchor = truth.position;
-      } else {
-        rotation.predict(scan_s - last_scan_s);
-      }
-      if (standing_still(truth)) {
-        rotation.new_stroke();
-        anchor = truth.position;
-      }
-      last_scan_s = scan_s;
-      const tracegen::Point shake = c.trace.tremor_at(scanned);
-      rotation.update(s.x - shake.x - anchor.x, s.y - shake.y - anchor.y, truth.position.x - anchor.x,
-                      truth.position.y - anchor.y);
-    }
-    double amplitude(const ScenePlan& heightmap, const TickTruth& tick) const {
-      return posterior_mean_amplitude(heightmap, to_vec(tick.state.position), true_direction(tick.state),
-                                      rotation.kappa(), rotation.mu());
-    }
-  };
   return observer_errors(cases, moving_speed_px_s,
-                         [&](const PreparedCase& c) { return Observer{StrokeRotation(noise), c, 0.0, {}}; })
+                         [&](const PreparedCase& c) { return RotationObserver(noise, c.trace); })
       .heightmap_rms;
 }
 

@@ -66,6 +66,24 @@ class StrokeRotation {
 // direction alone above kappa 1e8.
 double posterior_mean_amplitude(const ScenePlan& heightmap, Vec2 position, Vec2 direction, double kappa, double mu);
 
+// The observer of one trace (observer_replay.hpp): the rotation of each
+// stroke about where the finger last stood still (or touched down), from
+// the reports less the tremor and the truth's path since that anchor.
+class RotationObserver {
+ public:
+  RotationObserver(const UnknownNoise& noise, const tracegen::GeneratedTrace& trace) : rotation_(noise), trace_(trace) {}
+  void report(const tracegen::TraceSample& s, const tracegen::TrueState& truth, uint64_t scanned_us, double scan_s,
+              bool touch_down);
+  double amplitude(const ScenePlan& heightmap, const TickTruth& tick) const;
+  const StrokeRotation& rotation() const { return rotation_; }
+
+ private:
+  StrokeRotation rotation_;
+  const tracegen::GeneratedTrace& trace_;
+  double last_scan_s_ = 0.0;
+  tracegen::Point anchor_;
+};
+
 // RMS of |A - A_ideal| over the moving ticks (as Metrics::heightmap_rms
 // counts them, from the first report of each touch) of the observer's
 // posterior-mean amplitude; the cases generated without drift.
