@@ -141,6 +141,26 @@ TEST(LookaheadBound, MoreOfTheFutureLessError) {
   }
 }
 
+// Told the latency, the bound dates each report when it was scanned and
+// uses it once it is stamped: reports stamped 20 ms late are the on-time
+// reports seen 20 ms later (a lookahead 20 ms shorter), but for the ticks
+// of each touch's first 20 ms, before its first report is stamped.
+TEST(LookaheadBound, ReportsAreDatedWhenScannedAndSeenWhenStamped) {
+  const std::vector<PreparedCase> cases = class_traces("white-200hz", 4.0);
+  std::vector<PreparedCase> late = class_traces("white-200hz", 4.0);
+  for (PreparedCase& c : late)
+    for (tracegen::TraceSample& s : c.trace.samples) s.t_us += 20000;
+  SmootherOptions smoother;
+  smoother.accel_noise_px2_s3 = 3e3;
+  smoother.measurement_noise_px = 1.0;
+  for (double lookahead_s : {0.0, 0.03}) {
+    const double seen_later = lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0, lookahead_s - 0.02);
+    EXPECT_NEAR(lookahead_heightmap_rms(late, kClassMovingSpeedPxS, smoother, 0.02, lookahead_s), seen_later,
+                0.02 * seen_later)
+        << lookahead_s;
+  }
+}
+
 TEST(LookaheadBound, TheTablePicksTheBestAccelerationNoisePerLookahead) {
   const std::vector<PreparedCase> cases = class_traces("white-200hz", 3.0);
   LookaheadRow row = lookahead_row("white-200hz", cases, kClassMovingSpeedPxS, 1.0, 0.0, 0.0);
