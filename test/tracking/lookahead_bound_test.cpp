@@ -166,18 +166,24 @@ TEST(LookaheadBound, TheTablePicksTheBestAccelerationNoisePerLookahead) {
   LookaheadRow row = lookahead_row("white-200hz", cases, kClassMovingSpeedPxS, 1.0, 0.0, 0.0);
   SmootherOptions smoother;
   smoother.measurement_noise_px = 1.0;
-  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) {
+  // The least of the grid, and where it is.
+  const auto expect_best = [&](double lookahead_s, BoundModel model, double rms, double accel_noise) {
+    double least = INFINITY, at = NAN;
     for (double q : kLookaheadAccelNoise) {
       smoother.accel_noise_px2_s3 = q;
-      EXPECT_LE(row.best_rms[i], lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0,
-                                                         kLookaheadsMs[i] * 1e-3) + 1e-12);
+      const double r = lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0, lookahead_s, model);
+      if (r < least) {
+        least = r;
+        at = q;
+      }
     }
-  }
-  for (double q : kLookaheadAccelNoise) {
-    smoother.accel_noise_px2_s3 = q;
-    EXPECT_LE(row.anchored_rms, lookahead_heightmap_rms(cases, kClassMovingSpeedPxS, smoother, 0.0, 0.0,
-                                                        BoundModel::AnchoredAtRest) + 1e-12);
-  }
+    EXPECT_GT(least, 0.0);
+    EXPECT_EQ(rms, least) << lookahead_s;
+    EXPECT_EQ(accel_noise, at) << lookahead_s;
+  };
+  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i)
+    expect_best(kLookaheadsMs[i] * 1e-3, BoundModel::ConstantVelocity, row.best_rms[i], row.best_accel_noise[i]);
+  expect_best(0.0, BoundModel::AnchoredAtRest, row.anchored_rms, row.anchored_accel_noise);
   row.thesis_heightmap_rms = 0.2;
   row.tracker_heightmap_rms = 0.09;
   std::ostringstream out;
