@@ -6,6 +6,7 @@
 // generated class what more lookahead, the latency's dating and the anchor buy.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -191,6 +192,66 @@ TEST(LookaheadBound, TheTablePicksTheBestAccelerationNoisePerLookahead) {
   EXPECT_NE(out.str().find("| white-200hz | 0.200 | 0.090 (0.45×) |"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("whole stroke (RTS)"), std::string::npos);
   EXPECT_NE(out.str().find("causal, anchored at rest |"), std::string::npos);
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// The two tables on rows written by hand: every cell, each row as wide as
+// its header; a bound not measured is a dash.
+TEST(LookaheadBound, TheTablesShowEveryFigureOfARow) {
+  LookaheadRow row;
+  row.trace_class = "slow";
+  row.thesis_heightmap_rms = 0.25;
+  row.tracker_heightmap_rms = 0.1;
+  const double best[] = {0.125, 0.1, 0.075, 0.05, 0.025};
+  const double q[] = {3e3, 1e3, 3e2, 1e2, 3e1};
+  for (size_t i = 0; i < std::size(kLookaheadsMs); ++i) {
+    row.best_rms[i] = best[i];
+    row.best_accel_noise[i] = q[i];
+  }
+  row.anchored_rms = 0.0875;
+  row.anchored_accel_noise = 1e4;
+  row.heading_bound_rms = 0.0625;
+  std::ostringstream table;
+  write_lookahead_report(table, {row});
+  const std::vector<std::string> lines = lines_of(table.str());
+  ASSERT_GE(lines.size(), 4u);
+  EXPECT_EQ(lines[0],
+            "| class | thesis HM amp RMS | recommended(profile) | causal, 0 ms ahead | 10 ms ahead | 30 ms ahead | "
+            "100 ms ahead | whole stroke (RTS) | causal, anchored at rest | told when each stroke starts | "
+            "told all but each stroke's direction |");
+  EXPECT_EQ(lines[1], "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+  EXPECT_EQ(lines[2],
+            "| slow | 0.250 | 0.100 (0.40×) | 0.125 (0.50×, q 3e+03) | 0.100 (0.40×, q 1e+03) | "
+            "0.075 (0.30×, q 3e+02) | 0.050 (0.20×, q 1e+02) | 0.025 (0.10×, q 3e+01) | 0.087 (0.35×, q 1e+04) | "
+            "0.062 (0.25×) | - |");
+  EXPECT_EQ(lines[3], "");
+  EXPECT_NE(lines[4].find("every report up to 0, 10, 30 or 100 ms after it"), std::string::npos);
+
+  row.predicted_ends.heightmap_rms = 0.075;
+  row.predicted_ends.rest_rms = 0.2;
+  row.predicted_ends.ends = {40, 36, 3, 5.0};
+  row.tracker_ends.ends = {40, 35, 2, 7.0};
+  std::ostringstream ends;
+  write_predicted_ends_report(ends, {row});
+  const std::vector<std::string> end_lines = lines_of(ends.str());
+  ASSERT_GE(end_lines.size(), 5u);
+  EXPECT_EQ(end_lines[0],
+            "| class | thesis HM amp RMS | recommended(profile) | heading model, told the standstills | told nothing, "
+            "strokes ended where predicted | its HM at rest RMS | standstills | predicted within 40 ms | median delay "
+            "ms | other predicted ends | the tracker's predictor: within 40 ms | median delay ms | other ends |");
+  EXPECT_EQ(end_lines[1], "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+  EXPECT_EQ(end_lines[2],
+            "| slow | 0.250 | 0.100 (0.40×) | 0.062 (0.25×) | 0.075 (0.30×) | 0.200 | 40 | 36 | 5 | 3 | 35 | 7 | 2 |");
+  for (const std::vector<std::string>* t : {&lines, &end_lines})
+    EXPECT_EQ(std::count((*t)[2].begin(), (*t)[2].end(), '|'), std::count((*t)[0].begin(), (*t)[0].end(), '|'));
+  EXPECT_NE(end_lines[4].find("at most 32 decimated reports"), std::string::npos) << end_lines[4];
+  EXPECT_NE(end_lines[4].find("per 4 ms of reports"), std::string::npos) << end_lines[4];
 }
 
 TEST(LookaheadBound, AnAnchorAtRestHelpsAtStartsAndIsCausalOnly) {
