@@ -69,6 +69,12 @@ TEST(FadeFrontier, TheReportSaysWhetherAnyFadeMeetsBothGoals) {
                    "5.0 σ) | 0.45× | no |"),
             std::string::npos)
       << s;
+  // No fade quiet enough, and a shipping fade off the grid: both cells say so.
+  FrontierRow loud{"tremor", 0.45, 0.01, {2.0f, 7.0f}, {point(2.5f, 5, 0.50, 0.02), point(1, 3, 0.40, 0.03)}};
+  std::ostringstream none;
+  write_frontier_report(none, {loud}, 30.0);
+  EXPECT_NE(none.str().find("| tremor | none | none | 0.40× at 0.030 (1.0 / 3.0 σ) | 0.45× | no |"), std::string::npos)
+      << none.str();
 }
 
 class FadeFrontierOnTraces : public ::testing::Test {
