@@ -60,6 +60,9 @@ TEST(FadeFrontier, TheReportSaysWhetherAnyFadeMeetsBothGoals) {
   std::ostringstream out;
   write_frontier_report(out, {met, missed}, 30.0);
   const std::string s = out.str();
+  EXPECT_EQ(s.substr(0, s.find("| slow-fingers")),
+            "| class | shipping fade | best at chatter ≤ goal | best at any chatter | heightmap goal | both goals by "
+            "some fade |\n|---|--:|--:|--:|--:|---|\n");
   EXPECT_NE(s.find("| slow-fingers | 0.44× at 0.009 (2.5 / 5.0 σ) | 0.44× (2.5 / 5.0 σ) | 0.30× at 0.050 (1.0 / 3.0 σ) "
                    "| 0.45× | yes |"),
             std::string::npos)
@@ -119,6 +122,17 @@ TEST_F(FadeFrontierOnTraces, TheShippingPointIsWhatTheClassTableMeasures) {
   EXPECT_DOUBLE_EQ(shipping->heightmap_ratio, ships.heightmap_rms / thesis.heightmap_rms);
   EXPECT_DOUBLE_EQ(shipping->chatter, ships.heightmap_rest_rms);
   EXPECT_DOUBLE_EQ(row_->heightmap_goal, kClassMaxHeightmapRatioWhite);
+  // And two points off the shipping fade, each level of them its own: the
+  // tracker evaluated directly with those levels.
+  for (FadeLevels fade : {FadeLevels{0.5f, 2.0f}, FadeLevels{4.0f, 9.0f}}) {
+    ProposedConstants constants = recommended_constants();
+    constants.rest_sigmas = fade.rest_sigmas;
+    constants.moving_sigmas = fade.moving_sigmas;
+    const Metrics m = evaluate([&](const PreparedCase& c) { return proposed_tracker(constants, nominal_profile(c)); },
+                               *cases_, options_);
+    EXPECT_DOUBLE_EQ(at(fade.rest_sigmas, fade.moving_sigmas).heightmap_ratio, m.heightmap_rms / thesis.heightmap_rms);
+    EXPECT_DOUBLE_EQ(at(fade.rest_sigmas, fade.moving_sigmas).chatter, m.heightmap_rest_rms);
+  }
 }
 
 TEST_F(FadeFrontierOnTraces, ARaisedLevelFadesMoreAtEveryTick) {
