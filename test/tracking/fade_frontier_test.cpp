@@ -80,6 +80,20 @@ TEST(FadeFrontier, TheReportSaysWhetherAnyFadeMeetsBothGoals) {
       << none.str();
 }
 
+// The CSV: a row per point, on the front or not, the shipping fade marked,
+// the goals on every row.
+TEST(FadeFrontier, TheCsvHasEveryPointWithItsMarks) {
+  FrontierRow row{"slow-fingers", 0.45, 0.01, {2.5f, 5.0f},
+                  {point(2.5f, 5, 0.44, 0.009), point(1, 3, 0.30, 0.05), point(3, 5, 0.5, 0.02)}};
+  std::ostringstream out;
+  write_frontier_csv(out, {row});
+  EXPECT_EQ(out.str(),
+            "class,rest_sigmas,moving_sigmas,heightmap_vs_thesis,rest_rms,pareto,shipping,heightmap_goal,rest_goal\n"
+            "slow-fingers,2.50,5.00,0.44,0.009,1,1,0.45,0.010\n"
+            "slow-fingers,1.00,3.00,0.3,0.05,1,0,0.45,0.010\n"
+            "slow-fingers,3.00,5.00,0.5,0.02,0,0,0.45,0.010\n");
+}
+
 class FadeFrontierOnTraces : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
