@@ -412,6 +412,78 @@ TEST(Report, GoalCheckAndTable) {
   EXPECT_NE(out.str().find(": met."), std::string::npos);
 }
 
+Metrics report_metrics(double position, double lag, double direction, double heightmap, double frictionmap,
+                       double rest, double ns) {
+  Metrics m;
+  m.position_rmse_px = position;
+  m.position_p95_px = 2.0 * position;
+  m.lag_ms = lag;
+  m.direction_mean_deg = direction;
+  m.direction_p95_deg = 3.0 * direction;
+  m.heightmap_rms = heightmap;
+  m.heightmap_p95 = 2.5 * heightmap;
+  m.frictionmap_rms = frictionmap;
+  m.frictionmap_p95 = 2.5 * frictionmap;
+  m.heightmap_rest_rms = rest;
+  m.ns_per_tick = ns;
+  m.moving_ticks = 1000;
+  m.rest_ticks = 200;
+  return m;
+}
+
+// The whole report on rows written by hand: every figure of the table, the
+// set's line from the first row, and a goal line per proposal and noise
+// level against the baseline (the first row's tracker) at that level; a
+// tracker that is not a proposal gets none.
+TEST(Report, TheWholeReportOnRowsWrittenByHand) {
+  const std::vector<ReportRow> rows = {
+      {"thesis", "low", report_metrics(1.5, 4.0, 12.0, 0.2, 0.04, 0.05, 1234.0)},
+      {"recommended()", "low", report_metrics(1.0, 1.5, 6.0, 0.08, 0.03, 0.01, 2500.0)},
+      {"thesis", "high", report_metrics(2.5, 5.0, 20.0, 0.3, 0.06, 0.1, 1250.0)},
+      {"recommended()", "high", report_metrics(2.0, 1.0, 10.0, 0.18, 0.03, 0.02, 2600.0)},
+      {"kalman tuned a", "low", report_metrics(1.25, 2.5, 8.0, 0.1, 0.05, 0.03, 900.0)},
+      {"1-euro", "low", report_metrics(1.75, 3.0, 9.0, 0.12, 0.02, 0.04, 300.0)},
+  };
+  std::ostringstream out;
+  write_report(out, rows, generated_set_description(30.0), 50.0);
+  EXPECT_EQ(out.str(),
+            "| tracker | noise | pos RMSE px | pos p95 px | lag ms | dir err mean ° | dir err p95 ° | HM amp RMS | "
+            "HM amp p95 | FM amp RMS | FM amp p95 | HM at rest RMS | ns/tick |\n"
+            "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n"
+            "| thesis | low | 1.50 | 3.00 | 4.00 | 12.0 | 36.0 | 0.200 | 0.500 | 0.040 | 0.100 | 0.050 | 1234 |\n"
+            "| recommended() | low | 1.00 | 2.00 | 1.50 | 6.0 | 18.0 | 0.080 | 0.200 | 0.030 | 0.075 | 0.010 | 2500 |\n"
+            "| thesis | high | 2.50 | 5.00 | 5.00 | 20.0 | 60.0 | 0.300 | 0.750 | 0.060 | 0.150 | 0.100 | 1250 |\n"
+            "| recommended() | high | 2.00 | 4.00 | 1.00 | 10.0 | 30.0 | 0.180 | 0.450 | 0.030 | 0.075 | 0.020 | 2600 |\n"
+            "| kalman tuned a | low | 1.25 | 2.50 | 2.50 | 8.0 | 24.0 | 0.100 | 0.250 | 0.050 | 0.125 | 0.030 | 900 |\n"
+            "| 1-euro | low | 1.75 | 3.50 | 3.00 | 9.0 | 27.0 | 0.120 | 0.300 | 0.020 | 0.050 | 0.040 | 300 |\n"
+            "\n"
+            "Each row: 6 generated traces of 30 s (1000 ticks while moving above 10 mm/s, 200 at rest); noise low = "
+            "1 px, high = 2.5 px (1 sigma per axis); amplitudes on the raw 0..1 scale (strength 1).\n"
+            "\n"
+            "Goal (low noise): recommended(): heightmap error 40 % of the thesis pipeline's (<= 50 %), lag 1.50 ms "
+            "(<= 2), frictionmap error 75 % of the thesis pipeline's (<= 100 %): met.\n"
+            "Goal (high noise): recommended(): heightmap error 60 % of the thesis pipeline's (<= 50 %), lag 1.00 ms "
+            "(<= 2), frictionmap error 50 % of the thesis pipeline's (<= 100 %): NOT met.\n"
+            "Goal (low noise): kalman tuned a: heightmap error 50 % of the thesis pipeline's (<= 50 %), lag 2.50 ms "
+            "(<= 2), frictionmap error 125 % of the thesis pipeline's (<= 100 %): NOT met.\n");
+  const std::vector<GoalCheck> checks = check_goal(rows, "recommended()");
+  ASSERT_EQ(checks.size(), 2u);
+  EXPECT_EQ(checks[0].noise, "low");
+  EXPECT_EQ(checks[1].noise, "high");
+  EXPECT_TRUE(check_goal({}, "recommended()").empty());
+  // Recorded traces: the noise is what the files hold.
+  std::ostringstream recorded;
+  write_report(recorded, {{"thesis", "recorded", report_metrics(1.0, 1.0, 1.0, 0.1, 0.1, 0.1, 1.0)}}, "2 recordings",
+               50.0);
+  EXPECT_NE(recorded.str().find("Each row: 2 recordings (1000 ticks while moving above 10 mm/s, 200 at rest); noise: "
+                                "what the files hold; amplitudes"),
+            std::string::npos)
+      << recorded.str();
+  std::ostringstream empty;
+  write_report(empty, {}, "nothing", 50.0);
+  EXPECT_EQ(empty.str().find("Each row"), std::string::npos);
+}
+
 TEST(Report, MarkedSectionIsReplacedOrAppended) {
   const std::string begin = "<!-- track-bench:begin -->", end = "<!-- track-bench:end -->";
   EXPECT_EQ(replace_marked_text("# Title\nText", "T1\n"), "# Title\nText\n" + begin + "\nT1\n" + end + "\n");

@@ -76,10 +76,10 @@ void write_report(std::ostream& out, const std::vector<ReportRow>& rows, const s
   }
   for (const std::string& name : candidates) {
     for (const GoalCheck& g : check_goal(rows, name)) {
-    out << "Goal (" << g.noise << " noise): " << name << ": heightmap error " << fixed(100.0 * g.heightmap_ratio, 0)
-        << " % of the thesis pipeline's (<= 50 %), lag " << fixed(g.lag_ms, 2) << " ms (<= 2), frictionmap error "
-        << fixed(100.0 * g.frictionmap_ratio, 0) << " % of the thesis pipeline's (<= 100 %): "
-        << (g.met() ? "met" : "NOT met") << ".\n";
+      out << "Goal (" << g.noise << " noise): " << name << ": heightmap error " << fixed(100.0 * g.heightmap_ratio, 0)
+          << " % of the thesis pipeline's (<= 50 %), lag " << fixed(g.lag_ms, 2) << " ms (<= 2), frictionmap error "
+          << fixed(100.0 * g.frictionmap_ratio, 0) << " % of the thesis pipeline's (<= 100 %): "
+          << (g.met() ? "met" : "NOT met") << ".\n";
     }
   }
 }
