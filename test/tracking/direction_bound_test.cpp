@@ -285,6 +285,12 @@ TEST(DirectionBound, UnknownNoiseCountsTheQuantumAsWhite) {
   EXPECT_EQ(n.wander_tau_s, 0.045);
 }
 
+TEST(DirectionBound, NoCasesNoError) {
+  const tracegen::TraceClass* realistic = tracegen::find_trace_class("realistic-200hz");
+  ASSERT_NE(realistic, nullptr);
+  EXPECT_EQ(class_direction_bound(*realistic, {}, 2.0, kClassMovingSpeedPxS), 0.0);
+}
+
 TEST(DirectionBound, WithoutDriftOnlyTheDriftChanges) {
   const tracegen::TraceClass* realistic = tracegen::find_trace_class("realistic-200hz");
   ASSERT_NE(realistic, nullptr);
