@@ -313,7 +313,10 @@ TEST(FfctlUsb, ACablePulledWhileRecordingKeepsWhatCame) {
   std::string error;
   ASSERT_TRUE(read_recording(path, rec, error)) << error;
   EXPECT_GT(rec.ticks.size(), 1000u) << "what came before the cable went is kept";
-  EXPECT_LT(rec.ticks.size(), 3000u);
+  // Ended by the cable, well short of the 5 s asked (10,000 ticks); how many
+  // came in its 1.5 s depends on how a loaded machine paces the emulated
+  // device (4,559 once, beside two other test binaries on 2 cores).
+  EXPECT_LT(rec.ticks.size(), 7000u);
   EXPECT_EQ(bus.device(), "absent");
   EXPECT_EQ(count_of(bus.events(), "unplugged"), 1u);
 }
