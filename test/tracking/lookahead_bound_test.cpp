@@ -119,6 +119,24 @@ TEST(AnchoredFilter, AveragesAtAStandstillAndStartsFromTheMean) {
   EXPECT_NE(plain.filtered_v[20], 0.0);
 }
 
+// A stop told by the oracle: from the first still report the velocity is
+// exactly 0, however fast the finger was moving before it.
+TEST(AnchoredFilter, AStopHoldsTheVelocityAtZero) {
+  std::vector<double> t, z;
+  std::vector<bool> still;
+  for (int k = 0; k < 40; ++k) {
+    t.push_back(0.005 * k);
+    z.push_back(k < 20 ? 2.0 * k : 40.0 + 0.3 * (k % 2));
+    still.push_back(k >= 20);
+  }
+  SmootherOptions options;
+  options.measurement_noise_px = 1.0;
+  options.accel_noise_px2_s3 = 3e3;
+  const AxisPass pass = filter_axis(t, z, options, &still);
+  EXPECT_GT(pass.filtered_v[19], 300.0);  // 400 px/s
+  for (int k = 20; k < 40; ++k) EXPECT_EQ(pass.filtered_v[k], 0.0) << k;
+}
+
 std::vector<PreparedCase> class_traces(const char* name, double duration_s) {
   std::vector<PreparedCase> cases;
   for (const TrackCase& c : class_cases(*tracegen::find_trace_class(name), duration_s)) cases.push_back(prepare_case(c));

@@ -39,6 +39,14 @@ TEST(OfflineSmoother, AveragesNoiseAtRest) {
   for (size_t k = 20; k + 20 < t.size(); ++k) EXPECT_NEAR(p[k], 50.0, 0.2) << k;
 }
 
+TEST(OfflineSmoother, NoReportsNothingSmoothed) {
+  std::vector<double> p{1.0}, v{1.0};
+  smooth_axis({}, {}, SmootherOptions{}, p, v);
+  EXPECT_TRUE(p.empty());
+  EXPECT_TRUE(v.empty());
+  EXPECT_TRUE(filter_axis({}, {}, SmootherOptions{}).filtered_p.empty());
+}
+
 TEST(ReferencePath, TruthColumnsGiveCentralDifferences) {
   // x = 100 + 1000 t^2 (central differences are exact for a parabola), y fixed; a lift splits.
   std::vector<host::TraceRow> rows;
@@ -46,7 +54,7 @@ TEST(ReferencePath, TruthColumnsGiveCentralDifferences) {
   for (int k = 0; k < 5; ++k) {
     const double t = 0.01 * k;
     rows.push_back({static_cast<uint64_t>(1000000 + 10000 * k), 0.0f, 0.0f, true});
-    truth.push_back({100.0 + 1000.0 * t * t, 200.0});
+    truth.push_back({100.0 + 1000.0 * t * t, 200.0 - 500.0 * t});
   }
   rows.push_back({1050000, 0.0f, 0.0f, false});
   truth.push_back({});  // lifted: NaN
@@ -54,7 +62,9 @@ TEST(ReferencePath, TruthColumnsGiveCentralDifferences) {
   ASSERT_EQ(path.segments().size(), 1u);
   const std::vector<PathNode>& s = path.segments()[0];
   EXPECT_NEAR(s[2].vx, 2000.0 * 0.02, 1e-9);  // dx/dt = 2000 t
-  EXPECT_NEAR(s[2].vy, 0.0, 1e-12);
+  EXPECT_NEAR(s[2].vy, -500.0, 1e-9);
+  EXPECT_NEAR(s[0].vy, -500.0, 1e-9);  // one-sided at the ends: exact for a line
+  EXPECT_NEAR(s[4].vy, -500.0, 1e-9);
   // At a node the interpolation is the node; past the segment the finger is up.
   const tracegen::TrueState at_node = path.at(0.02, 10.0);
   EXPECT_TRUE(at_node.touching);
