@@ -58,8 +58,15 @@ TEST(ReferencePath, TruthColumnsGiveCentralDifferences) {
   }
   rows.push_back({1050000, 0.0f, 0.0f, false});
   truth.push_back({});  // lifted: NaN
+  for (int k = 6; k < 9; ++k) {  // and down again: a segment of its own
+    rows.push_back({static_cast<uint64_t>(1000000 + 10000 * k), 0.0f, 0.0f, true});
+    truth.push_back({300.0, 100.0 + k});
+  }
   const ReferencePath path = ReferencePath::from_truth(rows, truth, 1000000);
-  ASSERT_EQ(path.segments().size(), 1u);
+  ASSERT_EQ(path.segments().size(), 2u);
+  EXPECT_EQ(path.segments()[0].size(), 5u);
+  EXPECT_EQ(path.segments()[1].size(), 3u);
+  EXPECT_NEAR(path.segments()[1][0].t_s, 0.06, 1e-12);
   const std::vector<PathNode>& s = path.segments()[0];
   EXPECT_NEAR(s[2].vx, 2000.0 * 0.02, 1e-9);  // dx/dt = 2000 t
   EXPECT_NEAR(s[2].vy, -500.0, 1e-9);
