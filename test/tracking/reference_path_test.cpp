@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "support/models/sensor_model.hpp"
 
@@ -80,6 +81,47 @@ TEST(ReferencePath, TruthColumnsGiveCentralDifferences) {
   EXPECT_FALSE(path.at(0.045, 10.0).touching);
   // Halfway between nodes 1 and 2 (t = 0.015): Hermite with exact tangents of a quadratic is exact.
   EXPECT_NEAR(path.at(0.015, 10.0).position.x, 100.0 + 1000.0 * 0.015 * 0.015, 1e-9);
+}
+
+// The runs of reports a trace is smoothed in, on rows written by hand: a
+// lift and a gap longer than max_gap_s end a run; an off-screen report, a
+// repeated stamp and one out of order are skipped inside it.
+TEST(ReferencePath, TouchRunsSplitAtLiftsAndGapsAndSkipFaults) {
+  const std::vector<host::TraceRow> rows = {
+      {1000000, 10.0f, 20.0f, true},   {1005000, 11.0f, 21.0f, true},
+      {1005000, 50.0f, 50.0f, true},   // the same stamp again: skipped
+      {1004000, 50.0f, 50.0f, true},   // earlier: skipped
+      {1010000, -3.0f, 22.0f, true},   // off the screen: skipped
+      {1015000, 12.0f, 23.0f, true},   {1020000, 0.0f, 0.0f, false},  // lifted
+      {1025000, 30.0f, 40.0f, true},   {1030000, 31.0f, 41.0f, true},
+      {1090000, 60.0f, 70.0f, true},   // 60 ms later: a new run
+      {1095000, 61.0f, 71.0f, true},
+  };
+  const std::vector<ReportRun> runs = touch_runs(rows, 1000000, 0.05);
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[0].t, (std::vector<double>{0.0, 0.005, 0.015}));
+  EXPECT_EQ(runs[0].x, (std::vector<double>{10.0, 11.0, 12.0}));
+  EXPECT_EQ(runs[0].y, (std::vector<double>{20.0, 21.0, 23.0}));
+  EXPECT_EQ(runs[1].x, (std::vector<double>{30.0, 31.0}));
+  EXPECT_EQ(runs[2].t.size(), 2u);
+  EXPECT_NEAR(runs[2].t[0], 0.09, 1e-12);
+  EXPECT_EQ(runs[2].y, (std::vector<double>{70.0, 71.0}));
+}
+
+// The truth's nodes skip a repeated or earlier stamp as the reports do.
+TEST(ReferencePath, TruthSkipsRepeatedStamps) {
+  const std::vector<host::TraceRow> rows = {{1000000, 0.0f, 0.0f, true},
+                                            {1010000, 0.0f, 0.0f, true},
+                                            {1010000, 0.0f, 0.0f, true},
+                                            {1005000, 0.0f, 0.0f, true},
+                                            {1020000, 0.0f, 0.0f, true}};
+  const std::vector<host::TruthPoint> truth = {{0.0, 0.0}, {1.0, 0.0}, {9.0, 9.0}, {9.0, 9.0}, {2.0, 0.0}};
+  const ReferencePath path = ReferencePath::from_truth(rows, truth, 1000000);
+  ASSERT_EQ(path.segments().size(), 1u);
+  ASSERT_EQ(path.segments()[0].size(), 3u);
+  EXPECT_EQ(path.segments()[0][1].x, 1.0);
+  EXPECT_EQ(path.segments()[0][2].x, 2.0);
+  EXPECT_NEAR(path.segments()[0][1].vx, 100.0, 1e-9);  // (2 - 0) / 0.02 s
 }
 
 TEST(ReferencePath, SmootherStaysCloseToTheGeneratedTruth) {
