@@ -22,6 +22,16 @@ ReportNoise white(float sigma_px) {
   return n;
 }
 
+// white-200hz's 4 s traces, and the noise the bounds are told on them.
+std::vector<PreparedCase> white_200hz_cases() {
+  const tracegen::TraceClass* white_class = tracegen::find_trace_class("white-200hz");
+  EXPECT_NE(white_class, nullptr);
+  return white_class != nullptr ? prepare_cases(class_cases(*white_class, 4.0)) : std::vector<PreparedCase>{};
+}
+ReportNoise told_noise(const std::vector<PreparedCase>& cases) {
+  return ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+}
+
 struct Report {
   float travelled_px;  // since the previous report
   Vec2 z;
@@ -167,10 +177,8 @@ TEST(HeadingBound, EndsAreMatchedToTheNearestStandstillWithinTheTolerance) {
 // minimum-jerk fit fed every report of each touch, both found here again by
 // a replay of the case's reports written out on its own.
 TEST(HeadingBound, TheLoggedEndsAreThePredictorsOnEveryReport) {
-  const tracegen::TraceClass* white_class = tracegen::find_trace_class("white-200hz");
-  ASSERT_NE(white_class, nullptr);
-  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white_class, 4.0));
-  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  const std::vector<PreparedCase> cases = white_200hz_cases();
+  const ReportNoise noise = told_noise(cases);
   HeadingBoundOptions predicted;
   predicted.boundaries = StrokeBoundaries::PredictedEnds;
   const HeadingBoundResult r = heading_bound(cases, kClassMovingSpeedPxS, noise, predicted);
@@ -243,10 +251,8 @@ TEST(HeadingBound, OnTracesItLiesBetweenTheFloorAndTheTrackers) {
 // generator's strokes (exactly minimum-jerk) it finds almost every end, on
 // time, and stays near the bound told the standstills.
 TEST(HeadingBound, StrokesEndedWherePredictedComeCloseToTheStandstillsTold) {
-  const tracegen::TraceClass* white = tracegen::find_trace_class("white-200hz");
-  ASSERT_NE(white, nullptr);
-  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white, 4.0));
-  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  const std::vector<PreparedCase> cases = white_200hz_cases();
+  const ReportNoise noise = told_noise(cases);
   const double told = heading_bound_heightmap_rms(cases, kClassMovingSpeedPxS, noise);
   HeadingBoundOptions predicted;
   predicted.boundaries = StrokeBoundaries::PredictedEnds;
@@ -266,10 +272,8 @@ TEST(HeadingBound, StrokesEndedWherePredictedComeCloseToTheStandstillsTold) {
 // refinement) against the standstills and beside the double-precision full
 // search: on white-200hz it finds as many, as soon, and as few elsewhere.
 TEST(HeadingBound, TheTrackersPredictorFindsTheEndsTheFullSearchFinds) {
-  const tracegen::TraceClass* white_class = tracegen::find_trace_class("white-200hz");
-  ASSERT_NE(white_class, nullptr);
-  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white_class, 4.0));
-  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  const std::vector<PreparedCase> cases = white_200hz_cases();
+  const ReportNoise noise = told_noise(cases);
   HeadingBoundOptions full, tracker;
   full.boundaries = StrokeBoundaries::PredictedEnds;
   tracker.boundaries = StrokeBoundaries::TrackerEnds;
@@ -296,10 +300,8 @@ TEST(HeadingBound, PredictedEndsForgetTheHeadingWhileTheFingerIsSlow) {
 
   // In the observer: a heading forgotten while the finger is slow renders
   // closer to 0.5 where it rests.
-  const tracegen::TraceClass* white_class = tracegen::find_trace_class("white-200hz");
-  ASSERT_NE(white_class, nullptr);
-  const std::vector<PreparedCase> cases = prepare_cases(class_cases(*white_class, 4.0));
-  const ReportNoise noise = ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
+  const std::vector<PreparedCase> cases = white_200hz_cases();
+  const ReportNoise noise = told_noise(cases);
   HeadingBoundOptions predicted;
   predicted.boundaries = StrokeBoundaries::PredictedEnds;
   HeadingBoundOptions never_forgets = predicted;
