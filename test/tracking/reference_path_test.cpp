@@ -124,6 +124,28 @@ TEST(ReferencePath, TruthSkipsRepeatedStamps) {
   EXPECT_NEAR(path.segments()[0][1].vx, 100.0, 1e-9);  // (2 - 0) / 0.02 s
 }
 
+// Between two touches (and before the first, after the last) the finger is
+// where it was seen nearest in time: the end of one segment or the start of
+// the next. A touch of one report has no path to smooth.
+TEST(ReferencePath, BetweenTouchesTheFingerIsWhereItWasSeenNearest) {
+  std::vector<host::TraceRow> rows;
+  for (int k = 0; k < 5; ++k) rows.push_back({static_cast<uint64_t>(1000000 + 5000 * k), 10.0f + k, 20.0f, true});
+  rows.push_back({1030000, 0.0f, 0.0f, false});
+  rows.push_back({1040000, 300.0f, 300.0f, true});  // a touch of one report
+  rows.push_back({1045000, 0.0f, 0.0f, false});
+  for (int k = 0; k < 5; ++k) rows.push_back({static_cast<uint64_t>(1100000 + 5000 * k), 100.0f + k, 50.0f, true});
+  const ReferencePath path = ReferencePath::smoothed(rows, 1000000, SmootherOptions{});
+  ASSERT_EQ(path.segments().size(), 2u);
+  const auto at = [&](double t_s) { return path.at(t_s, 10.0); };
+  EXPECT_FALSE(at(0.03).touching);
+  EXPECT_NEAR(at(0.03).position.x, path.segments()[0].back().x, 1e-9);   // 10 ms after the first, 70 before the next
+  EXPECT_NEAR(at(0.09).position.x, path.segments()[1].front().x, 1e-9);  // 70 ms after, 10 before
+  EXPECT_NEAR(at(-0.5).position.x, path.segments()[0].front().x, 1e-9);
+  EXPECT_NEAR(at(2.0).position.x, path.segments()[1].back().x, 1e-9);
+  EXPECT_NEAR(path.segments()[0].back().x, 14.0, 0.1);
+  EXPECT_NEAR(path.segments()[1].front().x, 100.0, 0.1);
+}
+
 TEST(ReferencePath, SmootherStaysCloseToTheGeneratedTruth) {
   // Against the motion model's own truth (independent of the smoother):
   // within half a pixel and a few degrees at low noise, a pixel and ~9 degrees at high.
