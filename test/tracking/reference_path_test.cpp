@@ -79,6 +79,10 @@ TEST(ReferencePath, TruthColumnsGiveCentralDifferences) {
   EXPECT_NEAR(at_node.position.x, 100.4, 1e-9);
   EXPECT_NEAR(at_node.velocity.x, 40.0, 1e-9);
   EXPECT_FALSE(path.at(0.045, 10.0).touching);
+  // At the first node too, which has no node before it.
+  EXPECT_TRUE(path.at(0.0, 10.0).touching);
+  EXPECT_NEAR(path.at(0.0, 10.0).position.x, 100.0, 1e-9);
+  EXPECT_NEAR(path.at(0.0, 10.0).position.y, 200.0, 1e-9);
   // Halfway between nodes 1 and 2 (t = 0.015): Hermite with exact tangents of a quadratic is exact.
   EXPECT_NEAR(path.at(0.015, 10.0).position.x, 100.0 + 1000.0 * 0.015 * 0.015, 1e-9);
 }
