@@ -15,6 +15,7 @@
 #include "support/models/trace_classes.hpp"
 #include "support/reference/reference_scene.hpp"
 #include "support/reference/spec_scenes.hpp"
+#include "support/file_contents.hpp"
 #include "support/scratch_path.hpp"
 #include "proposed_config.hpp"
 #include "tracking_evaluation.hpp"
@@ -489,6 +490,24 @@ TEST(Report, MarkedSectionIsReplacedOrAppended) {
   EXPECT_EQ(replace_marked_text("# Title\nText", "T1\n"), "# Title\nText\n" + begin + "\nT1\n" + end + "\n");
   const std::string doc = "A\n" + begin + "\nold\n" + end + "\nB\n";
   EXPECT_EQ(replace_marked_text(doc, "new\n"), "A\n" + begin + "\nnew\n" + end + "\nB\n");
+
+  // In a file: the rest of the document is kept; a file not there yet is made.
+  const std::string path = support::scratch_path("marked_section.md");
+  {
+    std::ofstream out(path);
+    out << doc;
+  }
+  std::string error;
+  ASSERT_TRUE(replace_marked_section(path, "new\n", error)) << error;
+  EXPECT_EQ(support::file_contents(path), "A\n" + begin + "\nnew\n" + end + "\nB\n");
+  const std::string fresh = support::scratch_path("marked_section_new.md");
+  std::remove(fresh.c_str());
+  ASSERT_TRUE(replace_marked_section(fresh, "T1\n", error)) << error;
+  EXPECT_EQ(support::file_contents(fresh), begin + "\nT1\n" + end + "\n");
+  // A folder that is not there: refused, with the path.
+  EXPECT_FALSE(replace_marked_section(support::scratch_path("no_such_folder") + "/x.md", "T1\n", error));
+  EXPECT_NE(error.find("cannot write "), std::string::npos) << error;
+  EXPECT_NE(error.find("no_such_folder/x.md"), std::string::npos) << error;
 }
 
 }  // namespace
