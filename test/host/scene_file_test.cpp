@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "frictionfield/core/scene_plan.hpp"
 #include "frictionfield/core/scenes.hpp"
+#include "support/scratch_path.hpp"
 
 namespace ff::host {
 namespace {
@@ -260,7 +262,8 @@ TEST(SceneFile, RefusesValuesItWouldOtherwiseClampOrIgnore) {
 TEST(SceneFile, RefusesADirectoryAnEmptyFileAndAMissingOne) {
   SceneDefinition s;
   std::string err;
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = support::scratch_path("scene_dir");
+  std::filesystem::create_directories(dir);
   EXPECT_FALSE(read_scene_file(dir, s, err));
   EXPECT_NE(err.find("directory"), std::string::npos) << err;
   const std::string empty = dir + "/ff_empty_scene.txt";

@@ -11,6 +11,7 @@
 #include "frictionfield/core/scenes.hpp"
 #include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/host/scene_hash.hpp"
+#include "support/scratch_path.hpp"
 
 namespace ff::host {
 namespace {
@@ -37,8 +38,8 @@ Parsed parse(std::vector<std::string> words) {
 
 // One file per test: ctest runs the tests of this file in parallel processes.
 std::string scene_file(const char* text) {
-  const std::string path = ::testing::TempDir() + "/ff_scene_spec_" +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".txt";
+  const std::string path = support::scratch_path(std::string("scene_spec_") +
+                                                 ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".txt");
   std::ofstream(path) << text;
   return path;
 }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "frictionfield/protocol/codec.hpp"
+#include "support/scratch_path.hpp"
 
 namespace {
 
@@ -203,7 +204,7 @@ TEST(FfSim, AScriptedStrokeTouchesAndPresses) {
 
 TEST(FfSim, ABadFingerDatagramIsNamedOnStderrUnlessQuiet) {
   for (const bool quiet : {false, true}) {
-    const std::string log = ::testing::TempDir() + "ff_sim_datagram.log";
+    const std::string log = ff::support::scratch_path("sim_datagram.log");
     std::remove(log.c_str());
     {
       Sim sim("2>" + log, quiet);
@@ -233,7 +234,7 @@ TEST(FfSim, ATracesFingerPressesTheLoadCellsOnlyWhileItTouches) {
   // the plate is pressed only while the trace touches, and not after its last report. The firmware averages 5 load-cell readings 30 ms apart
   // (150 ms to settle), so each check comes 350 ms after a change and 150 ms before the next:
   // ff-sim may fall 200 ms behind the wall clock on a loaded machine and still pass.
-  const std::string path = ::testing::TempDir() + "ff_sim_force_trace.csv";
+  const std::string path = ff::support::scratch_path("sim_force_trace.csv");
   {
     FILE* f = std::fopen(path.c_str(), "w");
     ASSERT_NE(f, nullptr);
