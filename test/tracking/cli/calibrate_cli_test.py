@@ -118,6 +118,10 @@ class Calibrate(unittest.TestCase):
             ([self.strokes], "the finger is not resting"),
             ([self.rest, "--profile-out", self.rest], "would overwrite the recording"),
             ([self.rest, "--trace", self.strokes], "--calibrate takes none of"),
+            ([self.rest, "--classes"], "--calibrate takes none of"),
+            ([self.rest, "--class", "white-200hz"], "--calibrate takes none of"),
+            ([self.rest, "--tune"], "--calibrate takes none of"),
+            ([self.rest, "--write-doc", os.path.join(self.tmp, "doc.md")], "--calibrate takes none of"),
         ]
         for args, message in cases:
             res = run(BENCH, "--calibrate", *args)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""ff-track-bench --trace run as a user runs it: a subprocess, trace files on
+"""ff-track-bench, its default run and --trace, run as a user runs them: a subprocess, trace files on
 disk, exit codes (0 ok, 2 bad usage or input) and what it prints.
 
 usage: track_bench_cli_test.py path/to/ff-track-bench path/to/test/traces
@@ -113,6 +113,96 @@ class TrackBenchTrace(TraceFiles):
         res = run(BENCH, "--trace", lifted)
         self.assertEqual(res.returncode, 2)
         self.assertIn("no stroke to judge", res.stderr)
+
+
+class GeneratedSet(unittest.TestCase):
+    """The default run: the standard table on 2 x 6 generated traces (2 s each here)."""
+
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory()
+        self.tmp = self._tmp.name
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    TRACKERS = ("thesis (ticks + 1-euro, filtered derivative)", "thesis, 1-euro raw derivative",
+                "timed extrapolation + 1-euro (filtered)", "timed extrapolation + 1-euro (raw)",
+                "kalman, one filter (the direction filter alone)", "recommended()")
+
+    def test_every_tracker_at_both_noise_levels_with_the_goal_lines(self):
+        res = run(BENCH, "--duration", 2)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("ff-track-bench: generating 2 x 6 traces of 2 s...", res.stderr)
+        rows = [l for l in res.stdout.splitlines() if l.startswith("| ") and not l.startswith("| tracker |")]
+        self.assertEqual([(r.split("|")[1].strip(), r.split("|")[2].strip()) for r in rows],
+                         [(t, n) for t in self.TRACKERS for n in ("low", "high")])
+        self.assertIn("Each row: 6 generated traces of 2 s", res.stdout)
+        self.assertIn("noise low = 1 px, high = 2.5 px", res.stdout)
+        self.assertIn("Goal (low noise): recommended(): ", res.stdout)
+        self.assertIn("Goal (high noise): recommended(): ", res.stdout)
+
+    def test_the_tuned_row_named_by_its_constants_and_equal_to_recommended_at_its_defaults(self):
+        # The row's constants given explicitly as recommended()'s own (the defaults --help shows):
+        # the same configuration, so every figure but the time per tick is recommended()'s.
+        help_text = run(BENCH, "--help").stdout
+        defaults = {}
+        for flag in ("--direction-q", "--position-q", "--rest-sigmas", "--moving-sigmas"):
+            line = next(l for l in help_text.splitlines() if l.strip().startswith(flag + " "))
+            defaults[flag] = line.split("=", 1)[1].split()[0]
+        res = run(BENCH, "--duration", 2, "--direction-q", defaults["--direction-q"])
+        self.assertEqual(res.returncode, 0, res.stderr)
+        name = "tuned (direction q %.0f, position q %.0f, fade %.1f-%.1f sigma)" % tuple(
+            float(defaults[f]) for f in ("--direction-q", "--position-q", "--rest-sigmas", "--moving-sigmas"))
+        tuned = rows_of(res.stdout, name)
+        recommended = rows_of(res.stdout, "recommended()")
+        self.assertEqual(len(tuned), 2, res.stdout)
+        for t, r in zip(tuned, recommended):
+            self.assertEqual(t.split("|")[2:-2], r.split("|")[2:-2])
+        self.assertEqual(rows_of(run(BENCH, "--duration", 2).stdout, "tuned"), [])
+
+    def test_write_doc_replaces_only_its_section(self):
+        doc = os.path.join(self.tmp, "doc.md")
+        with open(doc, "w") as f:
+            f.write("# Tracking\n<!-- track-bench:begin -->\nold table\n<!-- track-bench:end -->\nafter\n")
+        res = run(BENCH, "--duration", 2, "--write-doc", doc)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("ff-track-bench: table written to " + doc, res.stderr)
+        with open(doc) as f:
+            text = f.read()
+        self.assertTrue(text.startswith("# Tracking\n<!-- track-bench:begin -->\n"), text)
+        self.assertTrue(text.endswith("<!-- track-bench:end -->\nafter\n"), text)
+        self.assertNotIn("old table", text)
+        self.assertIn(res.stdout.strip(), text)
+        nowhere = os.path.join(self.tmp, "no-such-folder", "doc.md")
+        res = run(BENCH, "--duration", 2, "--write-doc", nowhere)
+        self.assertEqual(res.returncode, 2)
+        self.assertTrue(res.stderr.splitlines()[-1].startswith("ff-track-bench: "), res.stderr)
+        self.assertIn(nowhere, res.stderr)
+
+    def test_dump_ticks_writes_the_first_low_noise_trace(self):
+        path = os.path.join(self.tmp, "ticks.csv")
+        res = run(BENCH, "--duration", 2, "--dump-ticks", path)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        with open(path) as f:
+            lines = f.read().splitlines()
+        meta = dict(l[2:].split(": ", 1) for l in lines if l.startswith("# "))
+        self.assertEqual(meta["trace"], "along-top")  # the first trace of the low-noise set
+        self.assertIn("--white-noise-px 1.01 ", meta["sensor_profile"])
+        self.assertTrue(meta["what"].startswith("every 500 us tick"), meta["what"])
+        data = [l for l in lines if not l.startswith("#")]
+        self.assertTrue(data[0].startswith("t_us,x_true,y_true,"), data[0])
+        stamps = [int(l.split(",")[0]) for l in data[1:]]
+        self.assertGreater(len(stamps), 2000)
+        self.assertEqual({b - a for a, b in zip(stamps, stamps[1:])}, {500})
+        res = run(BENCH, "--duration", 2, "--dump-ticks", self.tmp)
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("cannot write " + self.tmp, res.stderr)
+
+    def test_profile_out_needs_calibrate(self):
+        res = run(BENCH, "--profile-out", os.path.join(self.tmp, "p.txt"))
+        self.assertEqual(res.returncode, 2)
+        self.assertEqual(res.stderr, "ff-track-bench: --profile-out needs --calibrate\n")
+        self.assertEqual(os.listdir(self.tmp), [])
 
 
 class TuneOnTraceFiles(TraceFiles):
