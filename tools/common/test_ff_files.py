@@ -59,6 +59,27 @@ def test_the_data_reaches_the_disk_before_the_rename(tmp_path, monkeypatch):
     assert calls == ["fsync", "replace"]
 
 
+def test_what_python_buffered_is_in_the_file_when_it_is_synced(tmp_path, monkeypatch):
+    # fsync only syncs what the OS holds: Python's own buffer must be flushed first.
+    sizes = []
+    real_fsync = os.fsync
+
+    def fsync(fd):
+        sizes.append(os.fstat(fd).st_size)
+        real_fsync(fd)
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    ff_files.write_whole(str(tmp_path / "log.csv"), lambda f: f.write("t_us,x\n0,1\n"))
+    assert sizes == [len("t_us,x\n0,1\n")]
+
+
+def test_a_bare_file_name_is_written_in_the_current_folder(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    ff_files.write_whole("summary.md", lambda f: f.write("new\n"))
+    assert (tmp_path / "summary.md").read_text() == "new\n"
+    assert os.listdir(tmp_path) == ["summary.md"]
+
+
 def test_a_fifo_is_written_into_not_replaced(tmp_path):
     fifo = str(tmp_path / "pipe")
     os.mkfifo(fifo)
