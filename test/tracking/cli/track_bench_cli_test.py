@@ -10,6 +10,8 @@ import sys
 import tempfile
 import unittest
 
+import tune_log
+
 BENCH = TRACES = None
 
 
@@ -213,6 +215,16 @@ class TuneOnTraceFiles(TraceFiles):
         self.assertEqual(res.returncode, 0, res.stderr)
         self.assertIn("best  ", res.stderr)
         self.assertEqual(len([l for l in res.stdout.splitlines() if l.startswith("| tuned (")]), 1)
+
+    def test_the_climb_follows_its_rules_and_its_best_is_the_tuned_row(self):
+        # Bounds that some candidates break: |lag| 0.03-0.6 ms, chatter 0.11-0.13 on this trace.
+        res = run(BENCH, "--trace", self.generated, "--tune", "--target", "top", "--max-lag", 0.2,
+                  "--rest-bound", 0.125)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        best = tune_log.check(self, res.stderr, rest_bound=0.125, max_lag_ms=0.2, max_fm_ratio=1.0, levels=1)
+        name = "tuned (direction q %.0f, position q %.0f, fade %.1f-%.1f sigma)" % (
+            best["dir_q"], best["pos_q"], best["rest_sigmas"], best["moving_sigmas"])
+        self.assertEqual(len(rows_of(res.stdout, name)), 1, res.stdout)
 
 
 if __name__ == "__main__":
