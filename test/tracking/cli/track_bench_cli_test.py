@@ -225,6 +225,15 @@ class TuneOnTraceFiles(TraceFiles):
         name = "tuned (direction q %.0f, position q %.0f, fade %.1f-%.1f sigma)" % (
             best["dir_q"], best["pos_q"], best["rest_sigmas"], best["moving_sigmas"])
         self.assertEqual(len(rows_of(res.stdout, name)), 1, res.stdout)
+        # The climb's first candidate is recommended(), which the table judges on its own:
+        # the same lag, chatter and ratios to the thesis row (to the table's rounding).
+        start = tune_log.parse(res.stderr)[0]
+        rec, thesis = rows_of(res.stdout, "recommended()")[0], rows_of(res.stdout, "thesis (ticks + 1-euro, "
+                                                                                "filtered derivative)")[0]
+        self.assertAlmostEqual(start["lag"], abs(column(rec, 4)), delta=0.006)
+        self.assertAlmostEqual(start["rest"], column(rec, 11), delta=6e-4)
+        self.assertAlmostEqual(start["hm"], column(rec, 7) / column(thesis, 7), delta=0.01)
+        self.assertAlmostEqual(start["fm"], column(rec, 9) / column(thesis, 9), delta=0.02)
 
 
 if __name__ == "__main__":
