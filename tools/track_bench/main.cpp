@@ -141,7 +141,7 @@ std::vector<LevelSet> prepare_levels(double duration_s) {
 // Grid search for the finger's acceleration densities and the direction
 // confidence's fade. The objective is the heightmap amplitude error while
 // moving (mean over the sets); candidates must keep the lag under max_lag_ms,
-// the frictionmap error no worse than the thesis pipeline's, and the
+// the frictionmap error within max_fm_ratio of the thesis pipeline's, and the
 // heightmap chatter at rest (RMS of A - 0.5, worst set) under `rest_bound`.
 // Every candidate is logged, and the trade-off between moving error and rest
 // chatter is printed at the end.
@@ -237,7 +237,8 @@ Tuned tune(const std::vector<LevelSet>& levels, double rest_bound, double max_la
     }
   }
   // The trade-off: for each bound on rest chatter, the best moving error.
-  log << "trade-off (|lag| <= " << max_lag_ms << " ms, frictionmap no worse than thesis): rest chatter bound -> best\n";
+  log << "trade-off (|lag| <= " << max_lag_ms << " ms, frictionmap <= " << max_fm_ratio
+      << "x the thesis pipeline's): rest chatter bound -> best\n";
   for (double bound : {0.005, 0.01, 0.02, 0.04, 0.08}) {
     const Scored* pick = nullptr;
     for (const Scored& s : all)

@@ -93,6 +93,8 @@ def check(test, stderr, rest_bound, max_lag_ms, max_fm_ratio, levels):
         "dir_q", "pos_q", "rest_sigmas", "moving_sigmas", "threshold", "time_ms")})), logged_best)
     test.assertTrue(best_of(logged_best, seen))
 
+    test.assertIn("\ntrade-off (|lag| <= %g ms, frictionmap <= %gx the thesis pipeline's): rest chatter bound -> best\n"
+                  % (max_lag_ms, max_fm_ratio), stderr)
     trade_off = {float(c["stage"][2:]): c for c in lines if c["stage"].startswith("<=")}
     for bound in TRADE_OFF_BOUNDS:
         fitting = [c for c in candidates if not c["flagged"] and c["rest"] <= bound]
