@@ -82,6 +82,30 @@ class Calibrate(unittest.TestCase):
         for unit in ("| px |", "| ms |", "| Hz |", "| us |"):
             self.assertIn(unit, out)
 
+    def test_the_printed_table_is_the_profile_row_by_row(self):
+        out = self.calibrate("--latency-us", 1500).stdout
+        lines = out.splitlines()
+        p = parse_flags(next(l for l in lines if l.strip().startswith("ffctl sensor-profile ")).strip()[21:])
+        start = lines.index("| quantity | estimate | unit | how |")
+        self.assertEqual(lines[start + 1], "|---|--:|---|---|")
+        rows = [[cell.strip() for cell in line.strip("|").split("|")] for line in lines[start + 2:start + 10]]
+        expected = [("white noise (with quantisation), 1 sigma per axis", "--white-noise-px", 2, "px"),
+                    ("correlated noise, 1 sigma per axis", "--correlated-noise-px", 2, "px"),
+                    ("correlation time", "--correlation-time-ms", 1, "ms"),
+                    ("tremor, peak per axis", "--tremor-px", 2, "px"),
+                    ("tremor frequency", "--tremor-hz", 2, "Hz"),
+                    ("report rate", "--report-rate-hz", 1, "Hz"),
+                    ("jitter, 1 sigma of the report interval", "--jitter-us", 0, "us"),
+                    ("latency", "--latency-us", 0, "us")]
+        self.assertEqual([r[0] for r in rows], [e[0] for e in expected])
+        for row, (_, flag, decimals, unit) in zip(rows, expected):
+            self.assertEqual(row[2], unit, row)
+            self.assertEqual(len(row[1].partition(".")[2]), decimals, row)
+            self.assertAlmostEqual(float(row[1]), p[flag], delta=0.51 * 10 ** -decimals + 1e-9, msg=row)
+        # No wander in a rest of white noise and tremor; the tremor's peak at the frequency of its flag.
+        self.assertTrue(rows[1][3].endswith("(not significant: 0)"), rows[1])
+        self.assertTrue(rows[3][3].startswith("cosine term at the spectral peak, %.2f Hz" % p["--tremor-hz"]), rows[3])
+
     def test_profile_out_has_the_flags_and_a_header(self):
         path = os.path.join(self.tmp, "profile.txt")
         out = self.calibrate("--profile-out", path).stdout
