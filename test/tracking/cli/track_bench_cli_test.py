@@ -135,6 +135,9 @@ class GeneratedSet(unittest.TestCase):
         res = run(BENCH, "--duration", 2)
         self.assertEqual(res.returncode, 0, res.stderr)
         self.assertIn("ff-track-bench: generating 2 x 6 traces of 2 s...", res.stderr)
+        for tracker in self.TRACKERS:  # progress: each row as it is evaluated
+            for noise in ("low", "high"):
+                self.assertIn("ff-track-bench: %s, %s noise\n" % (tracker, noise), res.stderr)
         rows = [l for l in res.stdout.splitlines() if l.startswith("| ") and not l.startswith("| tracker |")]
         self.assertEqual([(r.split("|")[1].strip(), r.split("|")[2].strip()) for r in rows],
                          [(t, n) for t in self.TRACKERS for n in ("low", "high")])
