@@ -108,7 +108,8 @@ class Calibrate(unittest.TestCase):
 
     def test_profile_out_has_the_flags_and_a_header(self):
         path = os.path.join(self.tmp, "profile.txt")
-        out = self.calibrate("--profile-out", path).stdout
+        res = self.calibrate("--profile-out", path)
+        out = res.stdout
         with open(path) as f:
             lines = f.read().splitlines()
         header = [line for line in lines if line.startswith("#")]
@@ -118,6 +119,7 @@ class Calibrate(unittest.TestCase):
         self.assertTrue(any(line.startswith("# date: 20") for line in header), header)
         self.assertEqual(len(body), 1)
         self.assertIn("ffctl sensor-profile " + body[0], out)
+        self.assertEqual(res.stderr, "ff-track-bench: profile written to %s\n" % path)
         self.assertFalse(os.path.exists(path + ".partial"))
 
     def test_the_flags_are_accepted_by_ff_track_bench(self):
@@ -159,6 +161,14 @@ class Calibrate(unittest.TestCase):
         self.assertEqual(res.returncode, 2, res.stderr)
         self.assertIn("cannot write " + nowhere, res.stderr)
         self.assertIn("ffctl sensor-profile ", res.stdout)
+        # A recording that is not a trace, at rest or as the strokes: its line and field, one line.
+        bad = os.path.join(self.tmp, "bad.csv")
+        with open(bad, "w") as f:
+            f.write("t_us,x,y,touch\n0,abc,2,1\n")
+        for args in ([bad], [self.rest, bad]):
+            res = run(BENCH, "--calibrate", *args)
+            self.assertEqual(res.returncode, 2, (args, res.stderr))
+            self.assertEqual(res.stderr, "ff-track-bench: %s:2:2: x is not a number (got 'abc')\n" % bad, args)
         # A missing file is a usage error: CLI11's line and its pointer to --help.
         res = run(BENCH, "--calibrate", os.path.join(self.tmp, "nope.csv"))
         self.assertEqual(res.returncode, 2)
