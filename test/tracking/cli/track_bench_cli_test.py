@@ -27,16 +27,21 @@ def column(row, index):
     return float(row.split("|")[index + 1])
 
 
-class TraceFiles(unittest.TestCase):
-    """A generated trace, and the same reports as a recording without truth."""
-
+class WithScratchFolder(unittest.TestCase):
     def setUp(self):
         self._tmp = tempfile.TemporaryDirectory()
         self.tmp = self._tmp.name
-        self.generated = os.path.join(TRACES, "gen_across_high_px.csv")  # has x_true, y_true
 
     def tearDown(self):
         self._tmp.cleanup()
+
+
+class TraceFiles(WithScratchFolder):
+    """A generated trace, and the same reports as a recording without truth."""
+
+    def setUp(self):
+        super().setUp()
+        self.generated = os.path.join(TRACES, "gen_across_high_px.csv")  # has x_true, y_true
 
     def without_truth(self):
         """The same reports with the truth columns dropped: what a recording looks like."""
@@ -117,15 +122,8 @@ class TrackBenchTrace(TraceFiles):
         self.assertIn("no stroke to judge", res.stderr)
 
 
-class GeneratedSet(unittest.TestCase):
+class GeneratedSet(WithScratchFolder):
     """The default run: the standard table on 2 x 6 generated traces (2 s each here)."""
-
-    def setUp(self):
-        self._tmp = tempfile.TemporaryDirectory()
-        self.tmp = self._tmp.name
-
-    def tearDown(self):
-        self._tmp.cleanup()
 
     TRACKERS = ("thesis (ticks + 1-euro, filtered derivative)", "thesis, 1-euro raw derivative",
                 "timed extrapolation + 1-euro (filtered)", "timed extrapolation + 1-euro (raw)",

@@ -166,13 +166,6 @@ size_t lines_in(const std::string& path) {
   return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
-// A recording's three files gone before a test records to `path`: a scratch
-// name carries the pid, which a later run may get again, and a stale ticks
-// file would make a "recorded enough" wait true before ffctl has started.
-void remove_recording(const std::string& path) {
-  for (const std::string& p : {path, ticks_path_for(path), force_path_for(path)}) std::remove(p.c_str());
-}
-
 // ffctl "--udp 127.0.0.1:PORT" + args, run until `ready()` (polled every 20 ms;
 // a loaded machine only makes it wait longer, at most 30 s), then sent
 // `signal`; stdout to `stdout_path` (not a terminal). Returns the wait status.
@@ -572,8 +565,7 @@ TEST(FfctlCli, MonitorPrintsALinePerChangeAndCtrlCEndsItWithZero) {
 
 TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
   UdpDevice device(strokes);
-  const std::string path = support::scratch_path("udp_ctrl_c.csv");
-  remove_recording(path);
+  const std::string path = support::scratch_path("udp_ctrl_c.csv");  // a fresh folder: no stale ticks file
   const auto half_a_second = [&] { return lines_in(ticks_path_for(path)) > 1100; };  // 2 kHz ticks
   const int status = run_then_signal(device, {"record", "-o", path}, half_a_second, SIGINT);
   ASSERT_TRUE(WIFEXITED(status));
@@ -589,7 +581,6 @@ TEST(FfctlCli, CtrlCEndsARecordingCleanly) {
 TEST(FfctlCli, AKilledRecorderLeavesValidFiles) {
   UdpDevice device(strokes);
   const std::string path = support::scratch_path("udp_killed.csv");
-  remove_recording(path);
   const auto a_second = [&] { return lines_in(ticks_path_for(path)) > 2100; };  // 2 kHz ticks, as flushed
   const int status = run_then_signal(device, {"record", "-o", path, "--scene", "heightmap"}, a_second, SIGKILL);
   EXPECT_TRUE(WIFSIGNALED(status));
