@@ -41,6 +41,20 @@ def ratio(cell):
     return float(cell.rstrip("×"))
 
 
+def table_after(out, header_start):
+    """{class: [cells]} of the printed table whose header row starts with these cells."""
+    rows, inside = {}, False
+    for line in out.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if not line.startswith("|"):
+            inside = False
+        elif cells[:len(header_start)] == header_start:
+            inside = True
+        elif inside and cells[0] in CLASSES:
+            rows[cells[0]] = cells
+    return rows
+
+
 class TrackBenchClasses(unittest.TestCase):
     def test_every_class_has_the_thesis_pipeline_and_recommended(self):
         res = run(BENCH, "--classes", "--duration", "2")
@@ -101,6 +115,11 @@ class TrackBenchClasses(unittest.TestCase):
             with open(path) as f:
                 lines = f.read().splitlines()
             self.assertFalse(os.path.exists(path + ".partial"))
+        # A progress line per class as it starts, the file's name at the end.
+        self.assertEqual([l for l in res.stderr.splitlines() if l.startswith("ff-track-bench: ")],
+                         ["ff-track-bench: class white-200hz: generating 6 traces of 3 s...",
+                          "ff-track-bench: class tremor: generating 6 traces of 3 s...",
+                          "ff-track-bench: figures written to " + path])
         meta = [l for l in lines if l.startswith("#")]
         self.assertTrue(any(l.startswith("# tool: ff-track-bench --classes") for l in meta), meta)
         self.assertTrue(any("3 s each" in l for l in meta), meta)
@@ -134,6 +153,36 @@ class TrackBenchClasses(unittest.TestCase):
             if r["tracker"] == "recommended(profile)":
                 self.assertLess(float(r["heading_bound_rms"]), float(r["heightmap_rms"]), r["class"])
         self.assertIn("| white-200hz | %.3f |" % float(rows[0]["heightmap_rms"]), res.stdout)  # the bound's table
+        # The start floors: the error of a tracker blind for the first d px after each standstill grows with d; the
+        # shipping tracker's cells are the class table's, faded and never faded.
+        # Five tables, each after a blank line (or a paragraph would swallow it in Markdown).
+        lines = res.stdout.splitlines()
+        headers = [i for i, line in enumerate(lines) if line.startswith("| class |")]
+        self.assertEqual(len(headers), 5, res.stdout)
+        self.assertEqual(headers[0], 0)
+        self.assertTrue(all(lines[i - 1] == "" for i in headers[1:]), res.stdout)
+        floors = table_after(res.stdout, ["class", "thesis HM amp RMS", "floor, direction from 0.5 px"])
+        bounds = table_after(res.stdout, ["class", "thesis HM amp RMS", "recommended(profile)", "causal, 0 ms ahead"])
+        self.assertEqual(sorted(floors), ["tremor", "white-200hz"])
+        for r in rows:
+            floor = [float(r["floor_%spx_rms" % d]) for d in ("0.5", "1.0", "2.0")]
+            self.assertTrue(0.0 < floor[0] < floor[1] < floor[2], (r["class"], floor))
+            # The heading model's three runs are three: told the standstills, ended by the full fit, by the
+            # tracker's own predictor (the only ones that count ends).
+            self.assertGreater(int(r["predicted_ends_found"]), 0, r["class"])
+            self.assertNotEqual(r["predicted_ends_rms"], r["heading_bound_rms"], r["class"])
+            self.assertGreater(int(r["tracker_ends_found"]), 0, r["class"])
+            self.assertNotEqual(r["tracker_ends_rms"], r["predicted_ends_rms"], r["class"])
+            if r["tracker"] == "thesis":
+                for per_class in (floors, bounds):
+                    self.assertEqual(per_class[r["class"]][1], table[(r["class"], "thesis")][5])
+            if r["tracker"] != "recommended(profile)":
+                continue
+            cells = table[(r["class"], r["tracker"])]
+            shipping = "%s (%s)" % (cells[5], cells[6])
+            self.assertEqual(floors[r["class"]][5], shipping)
+            self.assertEqual(bounds[r["class"]][2], shipping)
+            self.assertEqual(floors[r["class"]][6].split()[0], "%.3f" % float(r["unfaded_heightmap_rms"]))
         self.assertIn("whole stroke (RTS)", res.stdout)
         self.assertIn("causal, anchored at rest", res.stdout)
         self.assertIn("told all but each stroke's direction", res.stdout)
