@@ -105,6 +105,7 @@ class TrackBenchClasses(unittest.TestCase):
             self.assertNotIn("\nold\n", text)
             self.assertIn("| latency | recommended() |", text)
             self.assertTrue(text.endswith("<!-- track-bench-classes:end -->\nafter\n"))
+            self.assertEqual(res.stderr.splitlines()[-1], "ff-track-bench: table written to " + doc)
             self.assertEqual(os.listdir(tmp), ["doc.md"])  # written through doc.md.partial, renamed
 
     def test_csv_holds_the_tables_figures_with_metadata(self):
@@ -229,6 +230,12 @@ class TrackBenchClasses(unittest.TestCase):
             self.assertEqual(res.stderr.strip().splitlines()[-1],
                              "ff-track-bench: cannot write %s" % os.path.join(tmp, "missing", "d.csv"))
             self.assertEqual(res.stdout, "")  # refused before the class is evaluated
+            # The CSV is written after the tables are printed.
+            res = run(BENCH, "--class", "latency", "--duration", "2", "--csv", os.path.join(tmp, "missing", "c.csv"))
+            self.assertEqual(res.returncode, 2)
+            self.assertEqual(res.stderr.splitlines()[-1],
+                             "ff-track-bench: cannot write %s" % os.path.join(tmp, "missing", "c.csv"))
+            self.assertIn("| latency | thesis |", res.stdout)
             res = run(BENCH, "--class", "latency", "--duration", "2", "--write-doc", tmp)  # a folder
             self.assertEqual(res.returncode, 2)
             self.assertIn("cannot write " + tmp, res.stderr)
