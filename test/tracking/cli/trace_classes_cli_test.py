@@ -154,14 +154,14 @@ class TrackBenchClasses(unittest.TestCase):
             if r["tracker"] == "recommended(profile)":
                 self.assertLess(float(r["heading_bound_rms"]), float(r["heightmap_rms"]), r["class"])
         self.assertIn("| white-200hz | %.3f |" % float(rows[0]["heightmap_rms"]), res.stdout)  # the bound's table
-        # The start floors: the error of a tracker blind for the first d px after each standstill grows with d; the
-        # shipping tracker's cells are the class table's, faded and never faded.
         # Five tables, each after a blank line (or a paragraph would swallow it in Markdown).
-        lines = res.stdout.splitlines()
-        headers = [i for i, line in enumerate(lines) if line.startswith("| class |")]
+        printed = res.stdout.splitlines()
+        headers = [i for i, line in enumerate(printed) if line.startswith("| class |")]
         self.assertEqual(len(headers), 5, res.stdout)
         self.assertEqual(headers[0], 0)
-        self.assertTrue(all(lines[i - 1] == "" for i in headers[1:]), res.stdout)
+        self.assertTrue(all(printed[i - 1] == "" for i in headers[1:]), res.stdout)
+        # The start floors: the error of a tracker blind for the first d px after each standstill grows with d; the
+        # shipping tracker's cells are the class table's, faded and never faded.
         floors = table_after(res.stdout, ["class", "thesis HM amp RMS", "floor, direction from 0.5 px"])
         bounds = table_after(res.stdout, ["class", "thesis HM amp RMS", "recommended(profile)", "causal, 0 ms ahead"])
         self.assertEqual(sorted(floors), ["tremor", "white-200hz"])
