@@ -27,11 +27,16 @@ def run(*args):
     return subprocess.run([str(a) for a in args], capture_output=True, text=True)
 
 
+def cells_of(line):
+    """The cells of a Markdown table row."""
+    return [c.strip() for c in line.strip().strip("|").split("|")]
+
+
 def table_rows(out):
     """{(class, tracker): [cells]} of the per-class table."""
     rows = {}
     for line in out.splitlines():
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        cells = cells_of(line)
         if len(cells) == 12 and cells[0] in CLASSES:
             rows[(cells[0], cells[1])] = cells
     return rows
@@ -45,7 +50,7 @@ def table_after(out, header_start):
     """{class: [cells]} of the printed table whose header row starts with these cells."""
     rows, inside = {}, False
     for line in out.splitlines():
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        cells = cells_of(line)
         if not line.startswith("|"):
             inside = False
         elif cells[:len(header_start)] == header_start:
@@ -84,7 +89,7 @@ class TrackBenchClasses(unittest.TestCase):
         for tracker, standard_name in (("thesis", "thesis (ticks + 1-euro, filtered derivative)"),
                                        ("recommended(profile)", "recommended()")):
             line = next(l for l in standard.stdout.splitlines() if l.startswith("| %s | low |" % standard_name))
-            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            cells = cells_of(line)
             mine = rows[("white-200hz", tracker)]
             self.assertEqual(mine[2], cells[4])  # lag
             self.assertEqual(mine[3], cells[2])  # position RMSE
