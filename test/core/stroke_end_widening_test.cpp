@@ -13,7 +13,7 @@
 namespace ff {
 namespace {
 
-constexpr uint32_t kPeriodUs = 5000;  // 200 Hz
+constexpr uint32_t kReportPeriodUs = 5000;  // 200 Hz
 constexpr uint32_t kStartUs = 1000000;
 constexpr double kStrokeStartS = 0.2, kStrokeS = 0.5;  // stops at 0.7 s
 
@@ -24,9 +24,9 @@ double profile(double tau) {
 }
 
 SensorSample report(uint32_t k, support::Random& rng) {
-  const double t = k * (kPeriodUs * 1e-6);
+  const double t = k * (kReportPeriodUs * 1e-6);
   const double s = profile((t - kStrokeStartS) / kStrokeS);
-  return {kStartUs + k * kPeriodUs, static_cast<float>(150.0 + 300.0 * s + rng.gaussian()),
+  return {kStartUs + k * kReportPeriodUs, static_cast<float>(150.0 + 300.0 * s + rng.gaussian()),
           static_cast<float>(240.0 - 100.0 * s + rng.gaussian()), true};
 }
 
@@ -46,7 +46,7 @@ AfterTheStop run(const TrackerConfig& c, uint64_t seed, uint32_t burst = 1) {
   const uint32_t stop_us = kStartUs + static_cast<uint32_t>((kStrokeStartS + kStrokeS) * 1e6);
   for (uint32_t now = kStartUs; now < kStartUs + 1200000; now += kTickPeriodUs) {
     uint32_t due = 0;  // reports scanned by now
-    while (kStartUs + (k + due) * kPeriodUs <= now) ++due;
+    while (kStartUs + (k + due) * kReportPeriodUs <= now) ++due;
     if (due >= burst)
       while (due-- > 0) tracker.on_sample(report(k++, rng));
     const TrackState& s = tracker.on_tick(now);
@@ -129,9 +129,9 @@ AfterTheTurn run_reversal(const TrackerConfig& c, uint64_t seed) {
   uint32_t k = 0;
   const uint32_t turn_us = kStartUs + static_cast<uint32_t>(turn_s * 1e6);
   for (uint32_t now = kStartUs; now < kStartUs + 1400000; now += kTickPeriodUs) {
-    while (kStartUs + k * kPeriodUs <= now) {
-      const double s = at(k * (kPeriodUs * 1e-6));
-      tracker.on_sample({kStartUs + k * kPeriodUs, static_cast<float>(150.0 + 300.0 * s + rng.gaussian()),
+    while (kStartUs + k * kReportPeriodUs <= now) {
+      const double s = at(k * (kReportPeriodUs * 1e-6));
+      tracker.on_sample({kStartUs + k * kReportPeriodUs, static_cast<float>(150.0 + 300.0 * s + rng.gaussian()),
                          static_cast<float>(240.0 - 100.0 * s + rng.gaussian()), true});
       ++k;
     }
@@ -175,7 +175,7 @@ TEST(StrokeEndWidening, ABurstOfReportsRefinesOncePerTick) {
   // Eight reports at once (a stalled main loop) every 40 ms: at most one
   // refinement per burst, as its reports come within one tick.
   const AfterTheStop burst = run(TrackerConfig::recommended(), 5, 8);
-  const uint32_t bursts = 1200000 / (8 * kPeriodUs) + 1;
+  const uint32_t bursts = 1200000 / (8 * kReportPeriodUs) + 1;
   EXPECT_GT(burst.refinements, 0u);
   EXPECT_LE(burst.refinements, bursts);
 }
@@ -187,13 +187,13 @@ TEST(StrokeEndWidening, TheCountsStartAgainWithEachConfiguration) {
   support::Random rng(6);
   auto feed = [&](uint32_t k, SensorSample s) {  // a report and the ticks up to the next one
     tracker.on_sample(s);
-    for (uint32_t t = 0; t < kPeriodUs; t += kTickPeriodUs) tracker.on_tick(kStartUs + k * kPeriodUs + t);
+    for (uint32_t t = 0; t < kReportPeriodUs; t += kTickPeriodUs) tracker.on_tick(kStartUs + k * kReportPeriodUs + t);
   };
   uint32_t k = 0;
   for (; k < 240; ++k) feed(k, report(k, rng));  // the stroke and its stop
   for (int i = 0; i < 80; ++i, ++k) {            // then a sharp back-and-forth: 400 px/s, turned at once
     const float x = 450.0f - 2.0f * static_cast<float>(i < 40 ? i : 80 - i);
-    feed(k, {kStartUs + k * kPeriodUs, x, 140.0f, true});
+    feed(k, {kStartUs + k * kReportPeriodUs, x, 140.0f, true});
   }
   ASSERT_GT(tracker.maneuvers(), 0u);
   ASSERT_GT(tracker.stroke_ends(), 0u);

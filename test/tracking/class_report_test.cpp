@@ -11,22 +11,17 @@
 #include <string>
 #include <vector>
 
+#include "support/text_lines.hpp"
+
 namespace ff::bench {
 namespace {
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
 
 size_t count_of(const std::string& line, char c) { return static_cast<size_t>(std::count(line.begin(), line.end(), c)); }
 
 // A Markdown table at the top of `text`: a header, a separator of as many
 // cells (only '-' and ':' in them), then `rows` rows of as many cells.
 void expect_markdown_table(const std::string& text, size_t rows) {
-  const std::vector<std::string> lines = lines_of(text);
+  const std::vector<std::string> lines = support::lines_of(text);
   ASSERT_GE(lines.size(), rows + 2) << text;
   const size_t pipes = count_of(lines[0], '|');
   EXPECT_GT(pipes, 3u) << lines[0];
@@ -108,7 +103,7 @@ TEST(ClassReport, EveryCsvRowHasItsHeadersFields) {
   lookahead[0].trace_class = "white-200hz";
   std::ostringstream csv;
   write_class_csv(csv, rows, floors, lookahead);
-  const std::vector<std::string> lines = lines_of(csv.str());
+  const std::vector<std::string> lines = support::lines_of(csv.str());
   ASSERT_EQ(lines.size(), rows.size() + 1) << csv.str();
   const size_t fields = count_of(lines[0], ',');
   EXPECT_GT(fields, 30u);

@@ -17,7 +17,7 @@
 namespace ff::bench {
 namespace {
 
-struct Report {
+struct RotationReport {
   double t_s, ex, ey, dx, dy;
 };
 
@@ -27,7 +27,7 @@ struct Report {
 // the log likelihood is c^T b - c^T Lambda c / 2 with b = Dx^T C^-1 ex +
 // Dy^T C^-1 ey, Dx = [dx, -dy], Dy = [dy, dx]; on the unit circle Lambda is
 // isotropic, so (kappa cos mu, kappa sin mu) = b. C^-1 by Gauss-Jordan.
-void batch_von_mises(const std::vector<Report>& reports, const UnknownNoise& noise, double& kappa, double& mu) {
+void batch_von_mises(const std::vector<RotationReport>& reports, const UnknownNoise& noise, double& kappa, double& mu) {
   const size_t n = reports.size();
   std::vector<double> m(n * 2 * n, 0.0);  // [C | I]
   for (size_t i = 0; i < n; ++i) {
@@ -52,8 +52,8 @@ void batch_von_mises(const std::vector<Report>& reports, const UnknownNoise& noi
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = 0; j < n; ++j) {
       const double w = m[i * 2 * n + n + j];  // (C^-1)_ij
-      const Report& ri = reports[i];
-      const Report& rj = reports[j];
+      const RotationReport& ri = reports[i];
+      const RotationReport& rj = reports[j];
       b0 += w * (ri.dx * rj.ex + ri.dy * rj.ey);
       b1 += w * (-ri.dy * rj.ex + ri.dx * rj.ey);
     }
@@ -65,10 +65,10 @@ void batch_von_mises(const std::vector<Report>& reports, const UnknownNoise& noi
 // 12 reports at rest (`rest_s`), then a 0.3 s minimum-jerk stroke of 60 px
 // turned by `turn` (rad) from the direction the observer is told, every 5 ms
 // with 1 ms of jitter; the noise drawn as the filter models it.
-std::vector<Report> stroke(double turn, const UnknownNoise& noise, uint64_t seed, double rest_s = 0.06) {
+std::vector<RotationReport> stroke(double turn, const UnknownNoise& noise, uint64_t seed, double rest_s = 0.06) {
   support::Random rng(seed);
   const double a_dir = 0.4;  // the told direction
-  std::vector<Report> out;
+  std::vector<RotationReport> out;
   double gx = noise.wander_px * rng.gaussian(), gy = noise.wander_px * rng.gaussian(), t = 0.0;
   for (int k = 0; k < 72; ++k) {
     if (k > 0) {
@@ -89,8 +89,8 @@ std::vector<Report> stroke(double turn, const UnknownNoise& noise, uint64_t seed
 }
 
 void expect_filter_matches_batch(StrokeRotation& filter, const UnknownNoise& noise, double turn, double rest_s = 0.06) {
-  const std::vector<Report> reports = stroke(turn, noise, 7, rest_s);
-  std::vector<Report> seen;
+  const std::vector<RotationReport> reports = stroke(turn, noise, 7, rest_s);
+  std::vector<RotationReport> seen;
   for (size_t k = 0; k < reports.size(); ++k) {
     if (k > 0) filter.predict(reports[k].t_s - reports[k - 1].t_s);
     filter.update(reports[k].ex, reports[k].ey, reports[k].dx, reports[k].dy);
@@ -148,7 +148,7 @@ TEST(DirectionBound, TheFilterIsTheBatchPosteriorFromTheFirstReport) {
 TEST(DirectionBound, ATouchDownStartsTheFilterAfresh) {
   const UnknownNoise noise{0.56, 1.5, 0.03};
   StrokeRotation filter(noise);
-  for (const Report& r : stroke(2.5, noise, 9, 0.0)) {
+  for (const RotationReport& r : stroke(2.5, noise, 9, 0.0)) {
     filter.predict(0.005);
     filter.update(r.ex + 4.0, r.ey - 3.0, r.dx, r.dy);  // a wander far from 0 at the lift
   }

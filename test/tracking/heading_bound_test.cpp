@@ -32,16 +32,16 @@ ReportNoise told_noise(const std::vector<PreparedCase>& cases) {
   return ReportNoise::of(tracegen::nominal_profile(cases.front().spec.options));
 }
 
-struct Report {
+struct StrokeReport {
   float travelled_px;  // since the previous report
   Vec2 z;
 };
 
 // A straight stroke from (200, 150) along `angle`, its speed rising and
 // falling, reported every 5 ms with white noise.
-std::vector<Report> straight_stroke(double angle, double sigma_px, uint64_t seed) {
+std::vector<StrokeReport> straight_stroke(double angle, double sigma_px, uint64_t seed) {
   support::Random rng(seed);
-  std::vector<Report> out;
+  std::vector<StrokeReport> out;
   double s = 0.0;
   for (int k = 0; k < 40; ++k) {
     const double step = k == 0 ? 0.0 : 0.2 + 3.0 * std::sin(M_PI * k / 40.0);
@@ -60,13 +60,13 @@ std::vector<Report> straight_stroke(double angle, double sigma_px, uint64_t seed
 // A [p0 u]^T = sum [1 s_k]^T z_k / sigma^2; u's variance is (A^-1)_11.
 TEST(HeadingBound, WithoutTurningTheFilterIsTheBatchRegression) {
   const float sigma = 1.0f;
-  const std::vector<Report> reports = straight_stroke(0.7, static_cast<double>(sigma), 3);
+  const std::vector<StrokeReport> reports = straight_stroke(0.7, static_cast<double>(sigma), 3);
   StrokeHeading heading(white(sigma), 0.0f);
   const double unknown = static_cast<double>(StrokeHeading::kUnknownSigma);
   double a00 = 0, a01 = 0, a11 = 1.0 / (unknown * unknown);
   double bx0 = 0, bx1 = 0, by0 = 0, by1 = 0, s = 0;
   for (size_t k = 0; k < reports.size(); ++k) {
-    const Report& r = reports[k];
+    const StrokeReport& r = reports[k];
     if (k == 0) heading.touch_down(r.z);
     else heading.update(r.z, r.travelled_px, 0.005f);
     s += static_cast<double>(r.travelled_px);
@@ -92,7 +92,7 @@ TEST(HeadingBound, WithoutTurningTheFilterIsTheBatchRegression) {
 }
 
 TEST(HeadingBound, ASpeedReadTooLowRescalesTheHeadingNotItsDirection) {
-  const std::vector<Report> reports = straight_stroke(-2.2, 0.0, 4);  // noise-free
+  const std::vector<StrokeReport> reports = straight_stroke(-2.2, 0.0, 4);  // noise-free
   StrokeHeading exact(white(1.0f), 1e-4f), halved(white(1.0f), 1e-4f);
   exact.touch_down(reports[0].z);
   halved.touch_down(reports[0].z);
@@ -109,7 +109,7 @@ TEST(HeadingBound, ASpeedReadTooLowRescalesTheHeadingNotItsDirection) {
 
 TEST(HeadingBound, AStandstillForgetsTheHeadingAndTheNextStrokeIsLearnt) {
   StrokeHeading heading(white(1.0f), 1e-4f);
-  const std::vector<Report> first = straight_stroke(0.0, 0.5, 5);
+  const std::vector<StrokeReport> first = straight_stroke(0.0, 0.5, 5);
   heading.touch_down(first[0].z);
   for (size_t k = 1; k < first.size(); ++k) heading.update(first[k].z, first[k].travelled_px, 0.005f);
   EXPECT_GT(heading.kappa(), 100.0);
@@ -121,9 +121,9 @@ TEST(HeadingBound, AStandstillForgetsTheHeadingAndTheNextStrokeIsLearnt) {
   // The second stroke leaves from where the first ended, at a right angle,
   // and is learnt as fast as the first: from a few px of it.
   const Vec2 end = heading.filter().p;
-  const std::vector<Report> second = straight_stroke(M_PI / 2, 0.5, 6);
+  const std::vector<StrokeReport> second = straight_stroke(M_PI / 2, 0.5, 6);
   for (size_t k = 0; k < second.size(); ++k) {
-    const Report& r = second[k];
+    const StrokeReport& r = second[k];
     heading.update({end.x + r.z.x - 200.0f, end.y + r.z.y - 150.0f}, r.travelled_px, 0.005f);
     if (k == 5) {  // 4.5 px into it
       EXPECT_NEAR(heading.mu(), M_PI / 2, 0.3);
@@ -142,7 +142,7 @@ TEST(HeadingBound, ANewStrokeForgetsTheHeadingsTieToTheWander) {
   noise.wander_variance = 2.0f;
   noise.inverse_tau_s = 1.0f / 0.03f;
   StrokeHeading heading(noise, 1e-4f);
-  const std::vector<Report> stroke = straight_stroke(1.0, 0.5, 10);
+  const std::vector<StrokeReport> stroke = straight_stroke(1.0, 0.5, 10);
   heading.touch_down(stroke[0].z);
   for (size_t k = 1; k < stroke.size(); ++k) heading.update(stroke[k].z, stroke[k].travelled_px, 0.005f);
   ASSERT_NE(heading.filter().P12, 0.0f);
@@ -291,7 +291,7 @@ TEST(HeadingBound, TheTrackersPredictorFindsTheEndsTheFullSearchFinds) {
 // heading while the speed reads low keeps it from outlasting the stop.
 TEST(HeadingBound, PredictedEndsForgetTheHeadingWhileTheFingerIsSlow) {
   StrokeHeading heading(white(1.0f), 1e-4f);
-  const std::vector<Report> stroke = straight_stroke(0.3, 0.5, 8);
+  const std::vector<StrokeReport> stroke = straight_stroke(0.3, 0.5, 8);
   heading.touch_down(stroke[0].z);
   for (size_t k = 1; k < stroke.size(); ++k) heading.update(stroke[k].z, stroke[k].travelled_px, 0.005f);
   const double kappa = heading.kappa(), variance = static_cast<double>(heading.filter().P11);

@@ -13,6 +13,7 @@
 #include "class_report.hpp"
 #include "lookahead_bound.hpp"
 #include "support/models/trace_classes.hpp"
+#include "support/text_lines.hpp"
 
 namespace ff::bench {
 namespace {
@@ -232,13 +233,6 @@ TEST(LookaheadBound, TheTablePicksTheBestAccelerationNoisePerLookahead) {
   EXPECT_NE(out.str().find("causal, anchored at rest |"), std::string::npos);
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 // The two tables on rows written by hand: every cell, each row as wide as
 // its header; a bound not measured is a dash.
 TEST(LookaheadBound, TheTablesShowEveryFigureOfARow) {
@@ -257,7 +251,7 @@ TEST(LookaheadBound, TheTablesShowEveryFigureOfARow) {
   row.heading_bound_rms = 0.0625;
   std::ostringstream table;
   write_lookahead_report(table, {row});
-  const std::vector<std::string> lines = lines_of(table.str());
+  const std::vector<std::string> lines = support::lines_of(table.str());
   ASSERT_GE(lines.size(), 5u);
   EXPECT_EQ(lines[0],
             "| class | thesis HM amp RMS | recommended(profile) | causal, 0 ms ahead | 10 ms ahead | 30 ms ahead | "
@@ -277,7 +271,7 @@ TEST(LookaheadBound, TheTablesShowEveryFigureOfARow) {
   row.tracker_ends.ends = {40, 35, 2, 7.0};
   std::ostringstream ends;
   write_predicted_ends_report(ends, {row});
-  const std::vector<std::string> end_lines = lines_of(ends.str());
+  const std::vector<std::string> end_lines = support::lines_of(ends.str());
   ASSERT_GE(end_lines.size(), 5u);
   EXPECT_EQ(end_lines[0],
             "| class | thesis HM amp RMS | recommended(profile) | heading model, told the standstills | told nothing, "

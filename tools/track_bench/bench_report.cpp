@@ -13,13 +13,13 @@ namespace ff::bench {
 namespace {
 std::string begin_marker(const std::string& marker) { return "<!-- " + marker + ":begin -->"; }
 std::string end_marker(const std::string& marker) { return "<!-- " + marker + ":end -->"; }
+}  // namespace
 
 std::string fixed(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   return buf;
 }
-}  // namespace
 
 std::vector<GoalCheck> check_goal(const std::vector<ReportRow>& rows, const std::string& default_config) {
   std::vector<GoalCheck> checks;

@@ -25,6 +25,9 @@ struct GoalCheck {
 };
 std::vector<GoalCheck> check_goal(const std::vector<ReportRow>& rows, const std::string& default_config);
 
+// v with that many decimals ("%.*f"): the tables' number format.
+std::string fixed(double v, int decimals);
+
 // "6 generated traces of 30 s": what a row of the standard set averages over.
 std::string generated_set_description(double duration_s);
 void write_report(std::ostream& out, const std::vector<ReportRow>& rows, const std::string& set_description,

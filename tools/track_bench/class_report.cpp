@@ -1,5 +1,6 @@
 #include "class_report.hpp"
 
+#include "bench_report.hpp"
 #include "rest_chatter.hpp"
 
 #include <cmath>
@@ -9,12 +10,6 @@
 namespace ff::bench {
 
 namespace {
-
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
 
 // "0.45x"; "-" where the baseline is 0.
 std::string ratio(double value, double baseline) {

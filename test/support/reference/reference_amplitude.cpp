@@ -7,10 +7,6 @@
 
 namespace ff::reference {
 
-namespace {
-double clamp01(double v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
-}  // namespace
-
 ReferenceAmplitude::ReferenceAmplitude(const AmplitudeSettings& s, bool calibration_valid) {
   const double st = s.strength;
   strength_ = std::isnan(st) ? 0.0 : clamp01(st);

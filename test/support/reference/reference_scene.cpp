@@ -12,7 +12,6 @@ constexpr double kMaxX = 799.0, kMaxY = 479.0;  // the screen's pixel centres
 
 double d(float v) { return static_cast<double>(v); }
 double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
-double clamp01(double v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
 
 // y = -2T/L^3 s^3 + 3T/L^2 s^2 + y0, s = x - x0 in [0, L]; flat (and exact) outside.
 PathPoint cubic_at(double x0, double y0, double length, double rise, double x) {
@@ -40,6 +39,8 @@ double tunnel_width(const TunnelParams& t, double x) {
 }
 
 }  // namespace
+
+double clamp01(double v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
 
 double smootherstep(double t) {
   t = clamp01(t);

@@ -22,6 +22,8 @@ struct PathPoint {
   double slope = 0.0;
 };
 
+// v clamped to [0, 1].
+double clamp01(double v);
 // S5(t) = 6t^5 - 15t^4 + 10t^3 on t clamped to [0, 1].
 double smootherstep(double t);
 PathPoint path_at(const PathCurve& c, double x);

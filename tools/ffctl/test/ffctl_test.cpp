@@ -126,7 +126,7 @@ class SimulatedDevice final : public Transport, public firmware::Board {
   int frames_delivered_ = 0;
 };
 
-Message heightmap_top() {
+Message set_heightmap_top() {
   Message m;
   m.type = MessageType::SetCondition;
   m.condition.kind = protocol::ConditionKind::Heightmap;
@@ -140,7 +140,7 @@ TEST(Ffctl, StatusAndSceneOverTheHostChannel) {
   DeviceClient client(device);
   Message reply;
   std::string error;
-  ASSERT_TRUE(client.request(heightmap_top(), reply, error)) << error;
+  ASSERT_TRUE(client.request(set_heightmap_top(), reply, error)) << error;
   EXPECT_EQ(reply.type, MessageType::Ack);
   EXPECT_EQ(reply.ack.command, MessageType::SetCondition);
   EXPECT_EQ(reply.ack.status, protocol::AckStatus::Ok);
@@ -160,7 +160,7 @@ TEST(Ffctl, StatusAndSceneOverTheHostChannel) {
 TEST(Ffctl, ARefusedSceneIsAnsweredNotApplied) {
   SimulatedDevice device;
   DeviceClient client(device);
-  Message m = heightmap_top();
+  Message m = set_heightmap_top();
   m.condition.kind = protocol::ConditionKind::General;
   m.condition.scene.rendering = Rendering::Directional;
   m.condition.scene.add(FieldElement::point_sink({400.0f, 240.0f}));
@@ -180,7 +180,7 @@ TEST(Ffctl, RecordThenVerifyAgreesTickForTickAndCatchesTampering) {
   DeviceClient client(device);
   Message reply;
   std::string error;
-  ASSERT_TRUE(client.request(heightmap_top(), reply, error)) << error;
+  ASSERT_TRUE(client.request(set_heightmap_top(), reply, error)) << error;
   Recording r;
   int progress_calls = 0, touching_calls = 0;
   ASSERT_TRUE(record(client, 2.5, r, error, [&](const RecordProgress& p) {
@@ -338,7 +338,7 @@ TEST(Ffctl, MalformedRepliesAreCountedAndDisconnectIsReported) {
   Message reply;
   std::string error;
   device.corrupt_next_reply = true;
-  EXPECT_FALSE(client.request(heightmap_top(), reply, error));  // its only reply was corrupt: no answer
+  EXPECT_FALSE(client.request(set_heightmap_top(), reply, error));  // its only reply was corrupt: no answer
   EXPECT_EQ(client.malformed_replies(), 1u);
   EXPECT_NE(error.find("no reply"), std::string::npos) << error;
   device.disconnect_after_frames = 20;
@@ -354,7 +354,7 @@ TEST(Ffctl, ADeviceThatLeavesBeforeItAnswersIsReportedAsGoneNotSilent) {
   device.disconnect_after_frames = 0;  // takes the command, then leaves
   Message reply;
   std::string error;
-  EXPECT_FALSE(client.request(heightmap_top(), reply, error));
+  EXPECT_FALSE(client.request(set_heightmap_top(), reply, error));
   EXPECT_EQ(error, "the device disconnected");
 }
 
