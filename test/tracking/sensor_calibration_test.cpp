@@ -209,6 +209,20 @@ TEST(SensorCalibration, RefusesTooShortAMovingFingerAndNothing) {
   EXPECT_NE(refusal(rows_of(noisy)).find("outside the profile's limits"), std::string::npos);
 }
 
+TEST(SensorCalibration, RefusalsSayWhatWasLeftOut) {
+  std::vector<host::TraceRow> faulty = {{1'000'000, 400.0f, 240.0f, true}};
+  for (int i = 0; i < 60; ++i) faulty.push_back({1'000'000 + 5'000u * (i + 1u), NAN, 240.0f, true});
+  for (int i = 0; i < 40; ++i) faulty.push_back({1'000'000, 401.0f, 240.0f, true});
+  EXPECT_NE(refusal(faulty).find("only 1 usable touch report (at least 100"), std::string::npos) << refusal(faulty);
+  EXPECT_NE(refusal(faulty).find("left out: 60 off the screen or not finite, 40 stamped at or before the one before"),
+            std::string::npos)
+      << refusal(faulty);
+  std::vector<host::TraceRow> sparse;  // 150 reports a second apart: each its own run
+  for (uint64_t i = 0; i < 150; ++i) sparse.push_back({i * 1'000'000, 400.0f, 240.0f, true});
+  EXPECT_NE(refusal(sparse).find("no two of its 150 touch reports lie within 0.25 s"), std::string::npos)
+      << refusal(sparse);
+}
+
 // A resting finger written out by hand, not by the generator: a report at
 // each stamp, white noise of sigma px on both axes, and `x_extra(t)` on x.
 std::vector<host::TraceRow> by_hand(const std::vector<uint64_t>& stamps_us, double sigma_px,

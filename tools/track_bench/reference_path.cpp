@@ -126,7 +126,9 @@ ReferencePath ReferencePath::from_truth(const std::vector<host::TraceRow>& rows,
   return path;
 }
 
-std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint64_t t0_us, double max_gap_s) {
+std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint64_t t0_us, double max_gap_s,
+                                  SkippedReports* skipped) {
+  SkippedReports skips;
   std::vector<ReportRun> runs;
   ReportRun run;
   auto close = [&] {
@@ -140,13 +142,21 @@ std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint6
       continue;
     }
     const double rx = static_cast<double>(row.x), ry = static_cast<double>(row.y);
-    if (!on_screen(rx, ry) || (!run.t.empty() && !(ts > run.t.back()))) continue;  // sensor faults: skipped
+    if (!on_screen(rx, ry)) {  // sensor faults: skipped
+      ++skips.off_screen;
+      continue;
+    }
+    if (!run.t.empty() && !(ts > run.t.back())) {
+      ++skips.not_after;
+      continue;
+    }
     if (!run.t.empty() && ts - run.t.back() > max_gap_s) close();
     run.t.push_back(ts);
     run.x.push_back(rx);
     run.y.push_back(ry);
   }
   close();
+  if (skipped) *skipped = skips;
   return runs;
 }
 

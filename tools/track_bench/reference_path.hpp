@@ -51,11 +51,17 @@ class ReferencePath {
 // The touch reports of a recording as runs: touch reports on the screen
 // (finite, inside 0..kScreenMax), time strictly increasing (duplicates and
 // out-of-order stamps skipped), split at each lift (touch = 0) and at each gap
-// longer than max_gap_s. Times in s since t0_us.
+// longer than max_gap_s. Times in s since t0_us. `skipped`, if given, counts
+// the touch rows left out, so that a refusal can say why.
 struct ReportRun {
   std::vector<double> t, x, y;
 };
-std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint64_t t0_us, double max_gap_s);
+struct SkippedReports {
+  size_t off_screen = 0;     // not finite or outside 0..kScreenMax
+  size_t not_after = 0;      // stamped at or before the report before it
+};
+std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint64_t t0_us, double max_gap_s,
+                                  SkippedReports* skipped = nullptr);
 
 // One axis of a constant-velocity RTS smoother (exposed for its test):
 // positions z at times t (s, increasing) -> smoothed position and velocity.

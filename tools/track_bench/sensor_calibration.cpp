@@ -194,7 +194,9 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
                          uint32_t latency_us, Calibration& out, std::string& error) {
   Calibration cal;
   cal.profile.latency_us = latency_us;
-  const std::vector<ReportRun> runs = touch_runs(rows, rows.empty() ? 0 : rows.front().t_us, options.max_gap_s);
+  SkippedReports skipped;
+  const std::vector<ReportRun> runs =
+      touch_runs(rows, rows.empty() ? 0 : rows.front().t_us, options.max_gap_s, &skipped);
   std::vector<double> intervals;
   for (const ReportRun& r : runs) {
     cal.reports += r.t.size();
@@ -203,9 +205,23 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   }
   cal.runs = runs.size();
   char line[200];
-  if (cal.reports < options.min_reports || intervals.empty()) {
-    std::snprintf(line, sizeof line, "only %zu usable touch reports (at least %zu needed: record a resting finger for ~10 s)",
-                  cal.reports, options.min_reports);
+  if (cal.reports < options.min_reports) {
+    std::snprintf(line, sizeof line, "only %zu usable touch report%s (at least %zu needed: record a resting finger for ~10 s)",
+                  cal.reports, cal.reports == 1 ? "" : "s", options.min_reports);
+    error = line;
+    if (skipped.off_screen + skipped.not_after > 0) {
+      std::snprintf(line, sizeof line,
+                    "; left out: %zu off the screen or not finite, %zu stamped at or before the one before",
+                    skipped.off_screen, skipped.not_after);
+      error += line;
+    }
+    return false;
+  }
+  if (intervals.empty()) {
+    std::snprintf(line, sizeof line,
+                  "no two of its %zu touch reports lie within %.2f s of each other (a longer gap or a lift splits "
+                  "a recording): record a resting finger at the sensor's own rate",
+                  cal.reports, options.max_gap_s);
     error = line;
     return false;
   }
