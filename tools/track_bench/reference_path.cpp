@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "frictionfield/core/geometry.hpp"
 
@@ -132,8 +133,7 @@ std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint6
   std::vector<ReportRun> runs;
   ReportRun run;
   auto close = [&] {
-    if (!run.t.empty()) runs.push_back(std::move(run));
-    run = ReportRun{};
+    if (!run.t.empty()) runs.push_back(std::exchange(run, {}));
   };
   for (const host::TraceRow& row : rows) {
     const double ts = seconds_since(row.t_us, t0_us);
