@@ -148,11 +148,22 @@ def read_session(folder):
     return data
 
 
+def _torn_line(path):
+    """The number of the file's last line if it has no end: a write cut short
+    (a power cut, a full disk), which the appender cuts off before appending
+    and the readers leave out, as a trial that did not finish; else None."""
+    with open(path, "rb") as f:
+        data = f.read()
+    return data.count(b"\n") + 1 if data and not data.endswith(b"\n") else None
+
+
 def _rows(path, columns):
     """Yields (line number, row, column index, complete) for each row, complete
-    when it reaches the last column read; checks the column header."""
+    when it reaches the last column read; checks the column header. A torn last
+    line is not a row."""
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing")
+    torn = _torn_line(path)
     with open(path, newline="", encoding="utf-8") as f:
         reader = csv.reader(f)
         try:
@@ -165,7 +176,7 @@ def _rows(path, columns):
         index = {c: head.index(c) for c in columns}
         last = max(index.values())
         for row in reader:
-            if not row:
+            if not row or reader.line_num == torn:
                 continue
             yield reader.line_num, row, index, len(row) > last
 

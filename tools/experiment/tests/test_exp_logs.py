@@ -164,3 +164,26 @@ def test_torn_rows_are_cut_before_appending(tmp_path):
     log.close()
     lines = open(os.path.join(folder, "frames.csv")).read().splitlines()
     assert lines[1:] == ["1,0.5,10,20,1,0.3,0", "2,0.6,12,22,1,0.3,0"]
+
+
+def test_a_torn_last_row_is_no_row_in_every_reader(tmp_path):
+    # A power cut or a full disk can end a file mid-row; our writer ends every
+    # row with a newline, so a last line without one is a write cut short.
+    log = logs.ParticipantLog(str(tmp_path))
+    log.trial(TRIAL)
+    log.trial(dict(TRIAL, trial=2))
+    log.close()
+    path = tmp_path / "trials.csv"
+    whole = path.read_text()
+    path.write_text(whole[:-1])  # all 13 fields, but without its end nothing says 'ok' was all of the last
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path))] == [1]
+    path.write_text(whole[:-20])  # cut mid-row: once a 'truncated row' refusal, now the unfinished trial
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path))] == [1]
+    path.write_text(whole[:-20] + "\n")  # the same row ended: a row, and too short
+    with pytest.raises(logs.LogError) as e:
+        logs.read_trials(str(tmp_path))
+    assert (e.value.line, e.value.message) == (3, "truncated row (9 of 13 fields)")
+    (tmp_path / "frames.csv").write_text("trial,t,x,y,touch,force_n,late_ms\n1,0,1,2,1,0.3,0\n1,0.1,1,2,1,0.3,1")
+    assert list(logs.read_frames(str(tmp_path))["late_ms"]) == [0.0]  # '1' may be the start of '12'
+    (tmp_path / "events.csv").write_text("t,trial,event,detail\n1,2,device-lost,a\n2,2,device-ba")
+    assert [e["event"] for e in logs.read_events(str(tmp_path))] == ["device-lost"]

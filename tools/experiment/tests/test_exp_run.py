@@ -55,6 +55,18 @@ def test_refuses_to_overwrite_and_resumes(tmp_path, capsys):
     assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4]
 
 
+def test_a_torn_trial_row_runs_that_trial_again(tmp_path):
+    # A power cut while trial 3's row was written: its row has no end.
+    assert run_fake(tmp_path, "--trials", "3") == 0
+    trials = tmp_path / "P04" / "trials.csv"
+    trials.write_text(trials.read_text()[:-12])
+    assert run_fake(tmp_path, "--trials", "4", "--resume") == 0
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4]
+    assert len(trials.read_text().splitlines()) == 5  # the header and four whole rows: the torn one cut off
+    events = logs.read_events(str(tmp_path / "P04"))
+    assert any(e["event"] == "resume" and int(float(e["trial"])) == 3 for e in events)
+
+
 def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
     # as from a shell: not told to hide pygame's greeting (in-process runs set that for this process)
     env = {k: v for k, v in os.environ.items() if k != "PYGAME_HIDE_SUPPORT_PROMPT"}
