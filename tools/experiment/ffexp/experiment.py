@@ -324,9 +324,14 @@ def prepare_folder(args):
             raise logs.LogError(os.path.join(folder, "session.json"), 1, "another participant's folder")
         if session.get("plan") != [[t["rendering"], t["strength"], t["target"]] for t in plan]:
             raise logs.LogError(os.path.join(folder, "session.json"), 1, "its trial order differs from this program's")
-        done = logs.read_trials(folder) if os.path.exists(os.path.join(folder, "trials.csv")) else []
+        trials = os.path.join(folder, "trials.csv")
+        done = logs.read_trials(folder) if os.path.exists(trials) else []
         finished = {t["trial"] for t in done}
         first = next((t["trial"] for t in plan if t["trial"] not in finished), design.TRIALS + 1)
+        torn = logs.torn_line(trials) if os.path.exists(trials) else None
+        if torn:  # the appender cuts it off when the log reopens
+            print(f"ff-experiment: {trials}:{torn}: the last line has no end (a write cut short): "
+                  f"trial {first} runs again", file=sys.stderr)
         return folder, plan, first, sum(t["hit"] for t in done), session
     if os.path.exists(os.path.join(folder, "session.json")):
         raise logs.LogError(folder, 0, "already has a session: continue it with --resume, or choose another folder")

@@ -148,7 +148,7 @@ def read_session(folder):
     return data
 
 
-def _torn_line(path):
+def torn_line(path):
     """The number of the file's last line if it has no end: a write cut short
     (a power cut, a full disk), which the appender cuts off before appending
     and the readers leave out, as a trial that did not finish; else None."""
@@ -163,7 +163,7 @@ def _rows(path, columns):
     line is not a row."""
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing")
-    torn = _torn_line(path)
+    torn = torn_line(path)
     with open(path, newline="", encoding="utf-8") as f:
         reader = csv.reader(f)
         try:

@@ -109,6 +109,19 @@ def test_bad_input_names_file_and_line(planted_folders, tmp_path, capsys, damage
     assert expect in err and "Traceback" not in err and err.count("\n") == 1
 
 
+def test_a_torn_last_trial_is_left_out_and_said(planted_folders, tmp_path, capsys):
+    f = copy_folder(planted_folders[0], tmp_path / "P01")
+    trials = f / "trials.csv"
+    text = trials.read_text()
+    trials.write_text(text[:-1])  # a power cut before the last row's newline
+    assert analyse_cli.main([str(f), planted_folders[1], "-o", str(tmp_path / "r"), "--no-participant-pages"]) == 0
+    err = capsys.readouterr().err
+    lines = text.count("\n")
+    assert err == f"ff-analyse: {trials}:{lines}: the last line has no end (a write cut short): " \
+                  "left out as an unfinished trial\n"
+    assert len(analysis.Participant(str(f)).trials) == len(logs.read_trials(planted_folders[0])) - 1
+
+
 def test_not_a_participant_folder(tmp_path, capsys):
     assert analyse_cli.main([str(tmp_path), "-o", str(tmp_path / "r")]) == 2
     assert "session.json: missing" in capsys.readouterr().err

@@ -55,12 +55,15 @@ def test_refuses_to_overwrite_and_resumes(tmp_path, capsys):
     assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4]
 
 
-def test_a_torn_trial_row_runs_that_trial_again(tmp_path):
+def test_a_torn_trial_row_runs_that_trial_again(tmp_path, capsys):
     # A power cut while trial 3's row was written: its row has no end.
     assert run_fake(tmp_path, "--trials", "3") == 0
     trials = tmp_path / "P04" / "trials.csv"
     trials.write_text(trials.read_text()[:-12])
+    capsys.readouterr()
     assert run_fake(tmp_path, "--trials", "4", "--resume") == 0
+    assert f"ff-experiment: {trials}:4: the last line has no end (a write cut short): trial 3 runs again\n" \
+        in capsys.readouterr().err
     assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4]
     assert len(trials.read_text().splitlines()) == 5  # the header and four whole rows: the torn one cut off
     events = logs.read_events(str(tmp_path / "P04"))
