@@ -101,6 +101,15 @@ bool SensorTraceReader::next(TraceRow& row, TraceError& error, TruthPoint* truth
   std::string line;
   fields_.clear();
   if (!next_data_line(line)) return false;
+  if (parse_row(line, row, error, truth)) return true;
+  // getline stopped at the end of the file, not at a newline: a write cut short.
+  if (in_.eof())
+    error.message +=
+        " (the last line, without its end: a recording cut short? delete it to read the rest)";
+  return false;
+}
+
+bool SensorTraceReader::parse_row(const std::string& line, TraceRow& row, TraceError& error, TruthPoint* truth) {
   fields_ = split(line);
   const std::vector<std::string>& f = fields_;
   if (f.size() < needed_) {

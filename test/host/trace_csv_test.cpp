@@ -100,6 +100,24 @@ TEST(TraceCsv, ErrorsNameLineAndColumn) {
   EXPECT_EQ(e.to_string("a.csv"), "a.csv:3:2: bad");
 }
 
+TEST(TraceCsv, AnErrorInALastLineWithoutItsEndSaysTheRecordingWasCutShort) {
+  const std::string hint = "(the last line, without its end: a recording cut short? delete it to read the rest)";
+  std::vector<TraceRow> rows;
+  TraceError err;
+  EXPECT_FALSE(parse("t_us,x,y,touch\n0,1,2,1\n5,1", rows, err));
+  EXPECT_EQ(err.message, "expected at least 4 fields, got 2 " + hint);
+  EXPECT_EQ(err.line, 3u);
+  rows.clear();
+  EXPECT_FALSE(parse("t_us,x,y,touch\n0,1,2,1\n5,1\n", rows, err));  // ended: a bad row, not a cut
+  EXPECT_EQ(err.message, "expected at least 4 fields, got 2");
+  rows.clear();
+  EXPECT_FALSE(parse("t_us,x,y,touch\n5,1\n0,1,2,1", rows, err));  // not the last line
+  EXPECT_EQ(err.message, "expected at least 4 fields, got 2");
+  rows.clear();
+  EXPECT_TRUE(parse("t_us,x,y,touch\n0,1,2,1\n5,1,2,0", rows, err)) << err.message;  // whole without its end
+  EXPECT_EQ(rows.size(), 2u);
+}
+
 TEST(TraceCsv, WritesTheReplayFormat) {
   std::ostringstream out;
   write_replay_header(out);

@@ -52,6 +52,7 @@ class SensorTraceReader {
   bool read_header(TraceError& error);
   // true with the next row; false at the end (error.message empty) or on an error.
   // With `truth`, also the row's x_true, y_true (NaN where absent or not a number).
+  // An error in a last line without its end says so: a recording cut short.
   bool next(TraceRow& row, TraceError& error, TruthPoint* truth = nullptr);
   bool has_truth() const { return col_x_true_ >= 0 && col_y_true_ >= 0; }
   size_t line() const { return line_no_; }
@@ -63,6 +64,7 @@ class SensorTraceReader {
 
  private:
   bool next_data_line(std::string& line);
+  bool parse_row(const std::string& line, TraceRow& row, TraceError& error, TruthPoint* truth);
   std::istream& in_;
   std::vector<std::string> names_, fields_;  // the header's (trimmed), the last row's
   size_t line_no_ = 0;
