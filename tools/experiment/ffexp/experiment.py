@@ -417,7 +417,7 @@ def run_on(dev, args, folder, plan, first, score, session, clock):
                     print(f"ff-experiment: the device's sensor profile differs from the session's; logged: {detail}",
                           file=sys.stderr)
             code = study.run()
-        except devices.DeviceRefused as e:
+        except (devices.DeviceRefused, logs.LogWriteError) as e:
             print(f"ff-experiment: {e}", file=sys.stderr)
             code = 1
         finally:
@@ -439,6 +439,10 @@ def main(argv=None, device_factory=None):
     except KeyboardInterrupt:
         print("ff-experiment: interrupted; the log holds every finished trial; continue with --resume", file=sys.stderr)
         return 1
+    except logs.LogWriteError as e:  # closing the log after the study stopped
+        print(f"ff-experiment: {e}; the log holds every finished trial before it; continue with --resume",
+              file=sys.stderr)
+        return 1
     except OSError as e:
-        print(f"ff-experiment: {e.filename or ''}: {e.strerror}", file=sys.stderr)
+        print(f"ff-experiment: {e.filename + ': ' if e.filename else ''}{e.strerror or e}", file=sys.stderr)
         return 2

@@ -40,6 +40,15 @@ class LogError(Exception):
         self.path, self.line, self.message = path, line, message
 
 
+class LogWriteError(Exception):
+    """A log file that cannot be written (a full disk, a lost drive): the
+    study stops, and what was logged before stays."""
+
+    def __init__(self, path, error):
+        super().__init__(f"cannot write {path}: {error.strerror or error}")
+        self.path = path
+
+
 # ---------------------------------------------------------------- writing
 
 class CsvAppender:
@@ -50,23 +59,39 @@ class CsvAppender:
             _drop_torn_tail(path)
         fresh = not os.path.exists(path) or os.path.getsize(path) == 0
         self._file = open(path, "a", newline="", encoding="utf-8")
+        self._failed = False
         self._writer = csv.writer(self._file, lineterminator="\n")
         if fresh:
-            self._writer.writerow(columns)
-            self._file.flush()
+            self.append(columns)
 
     def append(self, row):
-        self._writer.writerow([_cell(v) for v in row])
-        self._file.flush()
+        try:
+            self._writer.writerow([_cell(v) for v in row])
+            self._file.flush()
+        except OSError as e:
+            self._failed = True
+            raise LogWriteError(self._file.name, e) from None
 
     def fsync(self):
-        self._file.flush()
-        os.fsync(self._file.fileno())
+        try:
+            self._file.flush()
+            os.fsync(self._file.fileno())
+        except OSError as e:
+            self._failed = True
+            raise LogWriteError(self._file.name, e) from None
 
     def close(self):
-        if not self._file.closed:
-            self.fsync()
-            self._file.close()
+        """Syncs and closes; once a write has failed (and said so), only closes."""
+        if self._file.closed:
+            return
+        try:
+            if not self._failed:
+                self.fsync()
+        finally:
+            try:
+                self._file.close()
+            except OSError:
+                pass  # the failed write's rest, already reported
 
 
 def _drop_torn_tail(path):
@@ -122,8 +147,15 @@ class ParticipantLog:
             a.fsync()
 
     def close(self):
+        """Closes all three, then reports the first that could not be written."""
+        failed = None
         for a in (self.frames, self.trials, self.events):
-            a.close()
+            try:
+                a.close()
+            except LogWriteError as e:
+                failed = failed or e
+        if failed:
+            raise failed
 
 
 # ---------------------------------------------------------------- reading

@@ -1,6 +1,7 @@
 """ff-experiment run whole through its main(), on the in-Python fake device
 with the simulated participant: the plan and the rules, resume after a kill,
 device loss, what is opened is closed, and every failure one line."""
+import errno
 import json
 import os
 import signal
@@ -68,6 +69,39 @@ def test_a_torn_trial_row_runs_that_trial_again(tmp_path, capsys):
     assert len(trials.read_text().splitlines()) == 5  # the header and four whole rows: the torn one cut off
     events = logs.read_events(str(tmp_path / "P04"))
     assert any(e["event"] == "resume" and int(float(e["trial"])) == 3 for e in events)
+
+
+class FillsUp:
+    """A log file on a disk that fills after `room` characters."""
+
+    def __init__(self, f, room):
+        self._f, self.room, self.name = f, room, f.name
+
+    def write(self, text):
+        if len(text) > self.room:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        self.room -= len(text)
+        return self._f.write(text)
+
+    def __getattr__(self, name):  # flush, fileno, closed, close: the real file's
+        return getattr(self._f, name)
+
+
+def test_a_full_disk_stops_the_study_and_resume_goes_on(tmp_path, capsys, monkeypatch):
+    def frames_fill_up(path, *args, **kw):
+        f = open(path, *args, **kw)
+        return FillsUp(f, 25000) if path.endswith("frames.csv") else f
+    monkeypatch.setattr(logs, "open", frames_fill_up, raising=False)
+    assert run_fake(tmp_path, "--trials", "6") == 1
+    out, err = capsys.readouterr()
+    frames = tmp_path / "P04" / "frames.csv"
+    assert err == f"ff-experiment: cannot write {frames}: No space left on device\n"  # once, and no traceback
+    assert out.rstrip().endswith("; continue with --resume")
+    done = [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))]
+    assert 1 <= len(done) < 6 and done == list(range(1, len(done) + 1))
+    monkeypatch.undo()  # space freed
+    assert run_fake(tmp_path, "--trials", "6", "--resume") == 0
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4, 5, 6]
 
 
 def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
