@@ -29,9 +29,18 @@ def write_whole(path, write, binary=False):
             f.flush()
             os.fsync(f.fileno())
         os.replace(partial, path)
+    except OSError as e:
+        if e.filename is None:  # a failed write or sync names no file: this one
+            e.filename = partial
+        raise
     finally:
         if os.path.exists(partial):
             os.remove(partial)
+
+
+def error_text(e):
+    """An OSError as a tool's one line says it: the file (if it names one) and why."""
+    return f"{e.filename}: {e.strerror or e}" if e.filename else str(e.strerror or e)
 
 
 def save_figure(fig, path, software=None, description=None, **savefig_args):

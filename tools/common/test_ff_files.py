@@ -1,6 +1,7 @@
 """ff_files: the Python tools' outputs written whole, through NAME.partial,
 flushed to disk and renamed only once complete, so a failed or killed run
 leaves the old file and no partial one."""
+import errno
 import os
 import threading
 
@@ -39,6 +40,22 @@ def test_a_failed_write_leaves_the_old_file_as_it_was(tmp_path):
         ff_files.write_whole(str(path), half_then_fail)
     assert path.read_text() == "old\n"
     assert os.listdir(tmp_path) == ["exclusions.proposed.csv"]
+
+
+def test_a_failed_write_names_the_file_it_was_writing(tmp_path):
+    path = tmp_path / "summary.md"
+
+    def fill_the_disk(f):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))  # as a write() raises it: no file name
+
+    with pytest.raises(OSError) as e:
+        ff_files.write_whole(str(path), fill_the_disk)
+    assert ff_files.error_text(e.value) == f"{path}.partial: No space left on device"
+    assert ff_files.error_text(OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))) == "No space left on device"
+    assert ff_files.error_text(OSError("no errno")) == "no errno"
+    with pytest.raises(OSError) as e:  # one that names its file keeps it
+        ff_files.write_whole(str(path), lambda f: open(tmp_path / "nowhere" / "x"))
+    assert ff_files.error_text(e.value) == f"{tmp_path / 'nowhere' / 'x'}: No such file or directory"
 
 
 def test_the_data_reaches_the_disk_before_the_rename(tmp_path, monkeypatch):

@@ -119,5 +119,5 @@ def main(argv=None):
         print(f"ff-analyse: {e}", file=sys.stderr)
         return 2
     except OSError as e:
-        print(f"ff-analyse: {e.filename or ''}: {e.strerror}", file=sys.stderr)
+        print(f"ff-analyse: {ff_files.error_text(e)}", file=sys.stderr)
         return 2

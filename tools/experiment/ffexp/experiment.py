@@ -7,6 +7,8 @@ import os
 import sys
 import time
 
+import ff_files
+
 from . import VERSION, design, device as devices, exclusions, geometry, logs, protocol
 
 REPO_ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
@@ -444,5 +446,5 @@ def main(argv=None, device_factory=None):
               file=sys.stderr)
         return 1
     except OSError as e:
-        print(f"ff-experiment: {e.filename + ': ' if e.filename else ''}{e.strerror or e}", file=sys.stderr)
+        print(f"ff-experiment: {ff_files.error_text(e)}", file=sys.stderr)
         return 2
