@@ -32,10 +32,10 @@ bool OutputFile::commit() {
 }
 
 bool write_file_atomically(const std::string& path, const std::string& content) {
-  OutputFile file(path);
-  if (!file.open()) return false;
-  file.stream() << content;
-  return file.commit();
+  ToolOutput out(path);  // not an OutputFile alone: as root, its rename would replace /dev/null with a file
+  if (!out.open()) return false;
+  out.stream() << content;
+  return out.commit();
 }
 
 ToolOutput::ToolOutput(std::string path) : path_(std::move(path)), out_(&std::cout) {}

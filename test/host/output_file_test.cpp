@@ -11,6 +11,10 @@
 #include <iostream>
 #include <sstream>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace ff::host {
 namespace {
 
@@ -56,6 +60,25 @@ TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
   }
   EXPECT_EQ(read(path), "x\n");
   EXPECT_FALSE(std::filesystem::exists(partial));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(OutputFile, AWholeFileWrittenToAFifoGoesIntoItNotOverIt) {
+  // Found writing --profile-out /dev/full as root: the rename replaced the device with a regular file.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ff_output_fifo_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path fifo = dir / "fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const int reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // so that opening it to write does not wait
+  ASSERT_GE(reader, 0);
+  EXPECT_TRUE(write_file_atomically(fifo.string(), "profile\n"));
+  char buf[64];
+  const ssize_t n = ::read(reader, buf, sizeof buf);
+  close(reader);
+  EXPECT_EQ(std::string(buf, n > 0 ? static_cast<size_t>(n) : 0), "profile\n");
+  EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+  EXPECT_FALSE(std::filesystem::exists(dir / "fifo.partial"));
   std::filesystem::remove_all(dir);
 }
 

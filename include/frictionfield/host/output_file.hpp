@@ -26,7 +26,8 @@ class OutputFile {
   std::ofstream file_;
 };
 
-// `content` to `path` through an OutputFile: false (and no file) on failure.
+// `content` to `path` as a ToolOutput writes it (a file whole through an
+// OutputFile; "-", a device or a FIFO straight into): false (and no file) on failure.
 bool write_file_atomically(const std::string& path, const std::string& content);
 
 // A tool's -o PATH: "-" is standard output; a device or a FIFO (/dev/null, a
