@@ -250,6 +250,12 @@ Calibration calibrate_rows(const std::vector<host::TraceRow>& rows, const Calibr
   return c;
 }
 
+TEST(SensorCalibration, ASteadyClockHasNoJitterAtAll) {
+  const Calibration c = calibrate_rows(by_hand(every_us(5000, 2001), 1.0));
+  EXPECT_EQ(c.profile.jitter_us, 0.0f);  // not a rounding error's 1e-10, which --profile-out would print
+  EXPECT_EQ(c.profile.report_rate_hz, 200.0f);
+}
+
 TEST(SensorCalibration, TheMedianIntervalIsTheMiddleOneOrTheMeanOfTheMiddleTwo) {
   // Intervals of 4000 + k us, every k in 0..n-1 once, in a shuffled order:
   // their median is 4000 + (n - 1) / 2 exactly, whatever the order.

@@ -197,11 +197,11 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   SkippedReports skipped;
   const std::vector<ReportRun> runs =
       touch_runs(rows, rows.empty() ? 0 : rows.front().t_us, options.max_gap_s, &skipped);
-  std::vector<double> intervals;
+  std::vector<double> intervals_us;  // whole microseconds, as stamped: their sums are exact
   for (const ReportRun& r : runs) {
     cal.reports += r.t.size();
     cal.duration_s += r.t.back() - r.t.front();
-    for (size_t i = 1; i < r.t.size(); ++i) intervals.push_back(r.t[i] - r.t[i - 1]);
+    for (size_t i = 1; i < r.t.size(); ++i) intervals_us.push_back(std::round((r.t[i] - r.t[i - 1]) * 1e6));
   }
   cal.runs = runs.size();
   char line[200];
@@ -217,7 +217,7 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
     }
     return false;
   }
-  if (intervals.empty()) {
+  if (intervals_us.empty()) {
     std::snprintf(line, sizeof line,
                   "no two of its %zu touch reports lie within %.2f s of each other (a longer gap or a lift splits "
                   "a recording): record a resting finger at the sensor's own rate",
@@ -232,15 +232,17 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
     return false;
   }
 
-  // Timing.
-  const double median_interval = median_of(intervals);
+  // Timing, in microseconds: a steady clock's jitter is then 0, not the 1e-10
+  // of seconds' rounding.
+  const double median_us = median_of(intervals_us);
+  const double median_interval = median_us * 1e-6;
   // Symmetric about the median, so that cutting the tails of a wide jitter
   // does not move the mean.
-  const double longest = options.max_interval_factor * median_interval;
-  const double shortest = (2.0 - options.max_interval_factor) * median_interval;
+  const double longest = options.max_interval_factor * median_us;
+  const double shortest = (2.0 - options.max_interval_factor) * median_us;
   auto normal = [&](double dt) { return dt >= shortest && dt <= longest; };
   double sum = 0.0, sum2 = 0.0;
-  for (double dt : intervals) {
+  for (double dt : intervals_us) {
     if (!normal(dt)) {
       ++cal.dropped_intervals;
       continue;
@@ -248,20 +250,20 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
     ++cal.intervals;
     sum += dt;
   }
-  const double mean_interval = sum / static_cast<double>(cal.intervals);
-  for (double dt : intervals)
-    if (normal(dt)) sum2 += (dt - mean_interval) * (dt - mean_interval);
-  cal.median_interval_us = median_interval * 1e6;
-  const double median_rate_hz = 1.0 / median_interval;
+  const double mean_us = sum / static_cast<double>(cal.intervals);
+  for (double dt : intervals_us)
+    if (normal(dt)) sum2 += (dt - mean_us) * (dt - mean_us);
+  cal.median_interval_us = median_us;
+  const double median_rate_hz = 1e6 / median_us;
   if (median_rate_hz > double{SensorProfileLimits::kMaxRateHz} || median_rate_hz < double{SensorProfileLimits::kMinRateHz}) {
-    std::snprintf(line, sizeof line, "reports every %.0f us: not a sensor at %.0f-%.0f Hz", median_interval * 1e6,
+    std::snprintf(line, sizeof line, "reports every %.0f us: not a sensor at %.0f-%.0f Hz", median_us,
                   double{SensorProfileLimits::kMinRateHz}, double{SensorProfileLimits::kMaxRateHz});
     error = line;
     return false;
   }
-  cal.profile.report_rate_hz = static_cast<float>(1.0 / mean_interval);
+  cal.profile.report_rate_hz = static_cast<float>(1e6 / mean_us);
   cal.profile.jitter_us =
-      static_cast<float>(cal.intervals > 1 ? std::sqrt(sum2 / static_cast<double>(cal.intervals - 1)) * 1e6 : 0.0);
+      static_cast<float>(cal.intervals > 1 ? std::sqrt(sum2 / static_cast<double>(cal.intervals - 1)) : 0.0);
 
   // The residual of each run after its slow part.
   std::vector<Residual> residuals;
