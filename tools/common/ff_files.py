@@ -2,6 +2,7 @@
 disk, then renamed over NAME, so a killed or failed run leaves the old file
 (or none), never half a new one (docs/tools.md#files). The C++ tools do the
 same through host::OutputFile."""
+import contextlib
 import os
 
 # savefig's metadata keys differ per format; these two say what made the file and from what.
@@ -16,7 +17,7 @@ def write_whole(path, write, binary=False):
     straight into: renaming over it would replace the device, not fill it."""
     mode, text_args = ("wb", {}) if binary else ("w", {"newline": "", "encoding": "utf-8"})
     if os.path.exists(path) and not os.path.isfile(path):
-        with open(path, mode, **text_args) as f:
+        with _naming(path), open(path, mode, **text_args) as f:
             write(f)
         return
     folder = os.path.dirname(path)
@@ -24,23 +25,33 @@ def write_whole(path, write, binary=False):
         os.makedirs(folder, exist_ok=True)
     partial = path + ".partial"
     try:
-        with open(partial, mode, **text_args) as f:
+        with _naming(partial), open(partial, mode, **text_args) as f:
             write(f)
             f.flush()
             os.fsync(f.fileno())
         os.replace(partial, path)
-    except OSError as e:
-        if e.filename is None:  # a failed write or sync names no file: this one
-            e.filename = partial
-        raise
     finally:
         if os.path.exists(partial):
             os.remove(partial)
 
 
+@contextlib.contextmanager
+def _naming(path):
+    """A failed write or sync raises an OSError that names no file: this one."""
+    try:
+        yield
+    except OSError as e:
+        if e.filename is None:
+            e.filename = path
+        raise
+
+
 def error_text(e):
-    """An OSError as a tool's one line says it: the file (if it names one) and why."""
-    return f"{e.filename}: {e.strerror or e}" if e.filename else str(e.strerror or e)
+    """An error as a tool's one line says it: the file (if it names one) and
+    why (an OSError's reason without its '[Errno N]')."""
+    why = getattr(e, "strerror", None) or e
+    filename = getattr(e, "filename", None)
+    return f"{filename}: {why}" if filename else str(why)
 
 
 def save_figure(fig, path, software=None, description=None, **savefig_args):

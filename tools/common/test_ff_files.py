@@ -53,6 +53,10 @@ def test_a_failed_write_names_the_file_it_was_writing(tmp_path):
     assert ff_files.error_text(e.value) == f"{path}.partial: No space left on device"
     assert ff_files.error_text(OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))) == "No space left on device"
     assert ff_files.error_text(OSError("no errno")) == "no errno"
+    assert ff_files.error_text(ValueError("not a number")) == "not a number"
+    with pytest.raises(OSError) as e:  # a device is written straight into, and named too
+        ff_files.write_whole("/dev/full", lambda f: f.write("x" * 100000))
+    assert ff_files.error_text(e.value) == "/dev/full: No space left on device"
     with pytest.raises(OSError) as e:  # one that names its file keeps it
         ff_files.write_whole(str(path), lambda f: open(tmp_path / "nowhere" / "x"))
     assert ff_files.error_text(e.value) == f"{tmp_path / 'nowhere' / 'x'}: No such file or directory"

@@ -266,8 +266,7 @@ def main():
         print(f"plot_replay: {e}", file=sys.stderr)
         sys.exit(2)
     except (OSError, ValueError, UnicodeDecodeError) as e:
-        print(f"plot_replay: {getattr(e, 'filename', None) or ''}{': ' if getattr(e, 'filename', None) else ''}"
-              f"{getattr(e, 'strerror', None) or e}", file=sys.stderr)
+        print(f"plot_replay: {ff_files.error_text(e)}", file=sys.stderr)
         sys.exit(2)
     print(f"wrote {args.output}")
 

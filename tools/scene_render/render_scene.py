@@ -105,7 +105,7 @@ def main():
     try:
         direction, title = render(args, words)
     except (ToolError, OSError, ValueError) as e:
-        print(f"render_scene: {e}", file=sys.stderr)
+        print(f"render_scene: {ff_files.error_text(e)}", file=sys.stderr)
         sys.exit(2)
     print(f"wrote {args.output}: {title}, moving {direction:.0f}°")
 
