@@ -46,7 +46,6 @@ class LogWriteError(Exception):
 
     def __init__(self, path, error):
         super().__init__(f"cannot write {path}: {error.strerror or error}")
-        self.path = path
 
 
 # ---------------------------------------------------------------- writing
