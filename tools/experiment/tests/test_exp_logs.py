@@ -1,5 +1,6 @@
 """The participant folder's writer and readers: what a kill leaves, what a
 power cut leaves, and every refusal naming its file and line."""
+import errno
 import json
 import math
 import os
@@ -187,3 +188,73 @@ def test_a_torn_last_row_is_no_row_in_every_reader(tmp_path):
     assert list(logs.read_frames(str(tmp_path))["late_ms"]) == [0.0]  # '1' may be the start of '12'
     (tmp_path / "events.csv").write_text("t,trial,event,detail\n1,2,device-lost,a\n2,2,device-ba")
     assert [e["event"] for e in logs.read_events(str(tmp_path))] == ["device-lost"]
+
+
+class DiskFull:
+    """A log file on a disk that fills up, as Python's buffered files behave on
+    one: a write waits in the buffer, and every flush fails and keeps it."""
+
+    def __init__(self, f):
+        self._f, self.name, self.pending, self.full = f, f.name, "", False
+
+    def write(self, text):
+        self.pending += text
+        return len(text)
+
+    def flush(self):
+        if self.full and self.pending:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        self._f.write(self.pending)
+        self.pending = ""
+        self._f.flush()
+
+    def close(self):
+        try:
+            self.flush()
+        finally:
+            self._f.close()
+
+    def __getattr__(self, name):  # fileno, closed: the real file's
+        return getattr(self._f, name)
+
+
+def test_a_log_that_cannot_be_written_says_so_once(tmp_path, monkeypatch):
+    disks = []
+
+    def open_on_a_disk(path, *args, **kw):
+        disks.append(DiskFull(open(path, *args, **kw)))
+        return disks[-1]
+
+    monkeypatch.setattr(logs, "open", open_on_a_disk, raising=False)
+    log = logs.ParticipantLog(str(tmp_path))
+    for d in disks:
+        d.full = True
+    with pytest.raises(logs.LogWriteError) as e:
+        log.frame(1, 0.5, 10, 20, 1, 0.3, 0)
+    assert str(e.value) == f"cannot write {tmp_path / 'frames.csv'}: No space left on device"
+    log.close()  # said once: closing the file that failed does not say it again
+    assert all(a._file.closed for a in (log.frames, log.trials, log.events))
+
+
+def test_a_sync_that_fails_is_said_once_and_every_file_is_closed(tmp_path, monkeypatch):
+    real = os.fsync
+    failing = []
+
+    def fsync(fd):
+        if os.path.basename(os.readlink(f"/proc/self/fd/{fd}")) in failing:
+            raise OSError(errno.EIO, os.strerror(errno.EIO))
+        real(fd)
+
+    monkeypatch.setattr(logs.os, "fsync", fsync)
+    log = logs.ParticipantLog(str(tmp_path))
+    failing.append("trials.csv")
+    with pytest.raises(logs.LogWriteError) as e:
+        log.trial(TRIAL)  # the trial's end syncs every file
+    assert str(e.value) == f"cannot write {tmp_path / 'trials.csv'}: Input/output error"
+    log.close()
+    again = logs.ParticipantLog(str(tmp_path))
+    failing[:] = ["frames.csv"]  # first of the three to close: the others are closed all the same
+    with pytest.raises(logs.LogWriteError) as e:
+        again.close()
+    assert str(e.value) == f"cannot write {tmp_path / 'frames.csv'}: Input/output error"
+    assert all(a._file.closed for a in (again.frames, again.trials, again.events))
