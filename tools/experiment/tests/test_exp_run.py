@@ -104,6 +104,24 @@ def test_a_full_disk_stops_the_study_and_resume_goes_on(tmp_path, capsys, monkey
     assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1, 2, 3, 4, 5, 6]
 
 
+def test_a_log_that_fails_as_it_closes_says_so_and_exits_1(tmp_path, capsys, monkeypatch):
+    real, frames_syncs = os.fsync, []
+
+    def fsync(fd):  # frames.csv's second sync, when the log closes after trial 1, fails
+        if os.readlink(f"/proc/self/fd/{fd}").endswith("frames.csv"):
+            frames_syncs.append(fd)
+            if len(frames_syncs) > 1:
+                raise OSError(errno.EIO, os.strerror(errno.EIO))
+        real(fd)
+
+    monkeypatch.setattr(logs.os, "fsync", fsync)
+    assert run_fake(tmp_path, "--trials", "1") == 1
+    assert capsys.readouterr().err == (f"ff-experiment: cannot write {tmp_path / 'P04' / 'frames.csv'}: "
+                                       "Input/output error; the log holds every finished trial before it; "
+                                       "continue with --resume\n")
+    assert [t["trial"] for t in logs.read_trials(str(tmp_path / "P04"))] == [1]
+
+
 def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
     # as from a shell: not told to hide pygame's greeting (in-process runs set that for this process)
     env = {k: v for k, v in os.environ.items() if k != "PYGAME_HIDE_SUPPORT_PROMPT"}
