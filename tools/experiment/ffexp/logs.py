@@ -94,8 +94,9 @@ class CsvAppender:
 
 
 def _drop_torn_tail(path):
-    """A kill can leave half a row at the end: cut it off before appending
-    (its trial was unfinished and runs again on --resume)."""
+    """A power cut or a full disk can leave half a row at the end (torn_line):
+    cut it off before appending (its trial was unfinished and runs again on
+    --resume)."""
     with open(path, "rb+") as f:
         data = f.read()
         if data and not data.endswith(b"\n"):
