@@ -21,7 +21,7 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
   std::istringstream in(text);
   std::string line;
   uint32_t base = 0;  // extended segment (type 02) or linear (type 04) address
-  int line_no = 0;
+  int line_no = 0, records = 0;
   bool ended = false;
   auto fail = [&](const std::string& why) {
     error = "line " + std::to_string(line_no) + ": " + why;
@@ -33,6 +33,7 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
     if (line.empty()) continue;
     if (ended) return fail("data after the end-of-file record");
     if (line[0] != ':' || line.size() < 11 || (line.size() - 1) % 2 != 0) return fail("not an Intel HEX record");
+    ++records;
     std::vector<uint8_t> rec;
     for (size_t i = 1; i + 1 < line.size(); i += 2) {
       const int hi = hex_value(line[i]), lo = hex_value(line[i + 1]);
@@ -72,8 +73,11 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
         return fail("unknown record type " + std::to_string(type));
     }
   }
-  if (!ended) return fail("no end-of-file record (truncated file?)");
-  if (image.highest == 0) return fail("no data");
+  // Whole-file faults: no line to name.
+  if (records == 0) return error = "no Intel HEX records (an empty file?)", false;
+  if (!ended)
+    return error = "no end-of-file record after line " + std::to_string(line_no) + " (a truncated file?)", false;
+  if (image.highest == 0) return error = "an end-of-file record but no data", false;
   return true;
 }
 

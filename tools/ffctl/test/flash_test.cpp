@@ -32,7 +32,12 @@ TEST(IntelHex, ParsesWithExtendedAddressesAndRejectsBadRecords) {
   EXPECT_FALSE(parse_intel_hex(":00000007F9\n", bad, error));
   EXPECT_NE(error.find("unknown record type 7"), std::string::npos) << error;
   EXPECT_FALSE(parse_intel_hex(":020000000102FB\n", bad, error));
-  EXPECT_NE(error.find("no end-of-file"), std::string::npos) << error;
+  EXPECT_EQ(error, "no end-of-file record after line 1 (a truncated file?)");
+  FlashImage empty;
+  EXPECT_FALSE(parse_intel_hex("\r\n\n", empty, error));
+  EXPECT_EQ(error, "no Intel HEX records (an empty file?)");
+  EXPECT_FALSE(parse_intel_hex(":00000001FF\n", empty, error));
+  EXPECT_EQ(error, "an end-of-file record but no data");
 }
 
 TEST(IntelHex, LowerCaseDigitsBlankLinesAndCrLfAreRead) {
@@ -59,7 +64,7 @@ TEST(IntelHex, EachMalformedRecordIsRefusedWithItsLineAndReason) {
       {":030000000102FA\n" + end, "line 1: byte count does not match the record length"},  // 3 said, 2 there
       {hex_record(0, 0x02, {0x10}) + end, "line 1: extended segment address needs 2 bytes"},
       {hex_record(0, 0x04, {0x00, 0x00, 0x00}) + end, "line 1: extended linear address needs 2 bytes"},
-      {hex_record(0, 0x04, {0x00, 0x01}) + end, "line 2: no data"},
+      {hex_record(0, 0x04, {0x00, 0x01}) + end, "an end-of-file record but no data"},
   };
   for (const auto& c : cases) {
     FlashImage image;
