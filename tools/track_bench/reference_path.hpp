@@ -57,8 +57,8 @@ struct ReportRun {
   std::vector<double> t, x, y;
 };
 struct SkippedReports {
-  size_t off_screen = 0;     // not finite or outside 0..kScreenMax
-  size_t not_after = 0;      // stamped at or before the report before it
+  size_t off_screen = 0;  // not finite or outside 0..kScreenMax
+  size_t not_after = 0;   // stamped at or before the report before it
 };
 std::vector<ReportRun> touch_runs(const std::vector<host::TraceRow>& rows, uint64_t t0_us, double max_gap_s,
                                   SkippedReports* skipped = nullptr);
