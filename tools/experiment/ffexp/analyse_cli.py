@@ -94,11 +94,9 @@ def run(argv):
                                 f"participant {p.number} is also {seen[p.number]}")
         seen[p.number] = folder
         participants.append(p)
-        trials = os.path.join(folder, "trials.csv")
-        torn = logs.torn_line(trials)
+        torn = logs.torn_note(os.path.join(folder, "trials.csv"))
         if torn:  # left out by the reader; said here, so that an edited file's last trial is not lost unseen
-            print(f"ff-analyse: {trials}:{torn}: the last line has no end (a write cut short): "
-                  "left out as an unfinished trial", file=sys.stderr)
+            print(f"ff-analyse: {torn}: left out as an unfinished trial", file=sys.stderr)
     group = analysis.group_statistics(participants)
     names = figures.group_figures(participants, group, args.output)
     if not args.no_participant_pages:

@@ -330,10 +330,9 @@ def prepare_folder(args):
         done = logs.read_trials(folder) if os.path.exists(trials) else []
         finished = {t["trial"] for t in done}
         first = next((t["trial"] for t in plan if t["trial"] not in finished), design.TRIALS + 1)
-        torn = logs.torn_line(trials) if os.path.exists(trials) else None
+        torn = logs.torn_note(trials)
         if torn:  # the appender cuts it off when the log reopens
-            print(f"ff-experiment: {trials}:{torn}: the last line has no end (a write cut short): "
-                  f"trial {first} runs again", file=sys.stderr)
+            print(f"ff-experiment: {torn}: trial {first} runs again", file=sys.stderr)
         return folder, plan, first, sum(t["hit"] for t in done), session
     if os.path.exists(os.path.join(folder, "session.json")):
         raise logs.LogError(folder, 0, "already has a session: continue it with --resume, or choose another folder")

@@ -98,9 +98,9 @@ def _drop_torn_tail(path):
     cut it off before appending (its trial was unfinished and runs again on
     --resume)."""
     with open(path, "rb+") as f:
-        data = f.read()
-        if data and not data.endswith(b"\n"):
-            f.truncate(data.rfind(b"\n") + 1)
+        start = _torn_start(f.read())
+        if start is not None:
+            f.truncate(start)
 
 
 def _cell(v):
@@ -180,13 +180,26 @@ def read_session(folder):
     return data
 
 
+def _torn_start(data):
+    """Where a last line without its end starts in data (our writer ends every
+    row with one, so it is a write cut short), or None."""
+    return data.rfind(b"\n") + 1 if data and not data.endswith(b"\n") else None
+
+
 def torn_line(path):
     """The number of the file's last line if it has no end: a write cut short
     (a power cut, a full disk), which the appender cuts off before appending
     and the readers leave out, as a trial that did not finish; else None."""
     with open(path, "rb") as f:
         data = f.read()
-    return data.count(b"\n") + 1 if data and not data.endswith(b"\n") else None
+    return None if _torn_start(data) is None else data.count(b"\n") + 1
+
+
+def torn_note(path):
+    """'PATH:N: the last line has no end (...)' for a tool to finish with what
+    becomes of that trial, or None (no such line, or no file)."""
+    line = torn_line(path) if os.path.exists(path) else None
+    return f"{path}:{line}: the last line has no end (a write cut short)" if line else None
 
 
 def _rows(path, columns):
