@@ -113,7 +113,7 @@ class M4Accuracy(unittest.TestCase):
         missing = os.path.join(self.tmp, "missing", "m4accuracy.csv")
         res = run(TOOL, trace, "--csv", missing)
         self.assertEqual(res.returncode, 2)
-        self.assertEqual(res.stderr.strip(), "ff-m4accuracy: cannot write " + missing)
+        self.assertEqual(res.stderr.strip(), "ff-m4accuracy: cannot write %s: No such file or directory" % missing)
         self.assertEqual(os.listdir(self.tmp), ["m4accuracy.txt"])
 
 

@@ -204,9 +204,10 @@ int main(int argc, char** argv) {
   for (int i = 0; i < kTrackerConfigCount; ++i) {
     trackers << tracker_config_name(i) << ',' << lookup(costs.tracker_ns, tracker_config_name(i), "%.2f") << '\n';
   }
-  if (!ff::host::write_file_atomically(cases_path, cases.str()) ||
-      !ff::host::write_file_atomically(trackers_path, trackers.str())) {
-    std::fprintf(stderr, "ff-bench: cannot write into %s\n", out_dir.c_str());
+  std::string error;
+  if (!ff::host::write_file_atomically(cases_path, cases.str(), error) ||
+      !ff::host::write_file_atomically(trackers_path, trackers.str(), error)) {
+    std::fprintf(stderr, "ff-bench: %s\n", error.c_str());
     return ff::host::kExitBadUsage;
   }
   std::fprintf(stderr, "wrote %s (%zu cases) and %s; %d failed\n", cases_path.c_str(), results.size(),

@@ -162,7 +162,8 @@ bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string&
     Message m;
     const ReceiveResult r = client.next(m, 1000);
     if (r == ReceiveResult::Disconnected) {
-      sink.flush();
+      std::string ignored;  // close() reports a failed write
+      sink.flush(ignored);
       error = "the device disconnected while recording";
       return false;  // no StopStream: there is nobody to tell
     }
@@ -196,8 +197,7 @@ bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string&
       p.last_tick = d;
       ++p.ticks;
     }
-    if (!sink.flush()) {
-      error = "writing the recording failed (disk full?)";
+    if (!sink.flush(error)) {
       ok = false;
       break;
     }
@@ -222,8 +222,7 @@ bool record(DeviceClient& client, double seconds, RecordSink& sink, std::string&
   stop.type = MessageType::StopStream;
   std::string ignored;
   client.request(stop, reply, ignored);
-  sink.flush();
-  return ok;
+  return sink.flush(error) && ok;
 }
 
 std::string describe(const protocol::ConditionMessage& c) {
@@ -257,9 +256,12 @@ TrackerConfig tracker_config_of(const Recording& r) {
 
 namespace {
 
+// run1.csv -> run1; a name without the suffix is its own stem (a ".csv" inside a folder's name is not the suffix).
 std::string stem_of(const std::string& trace_path) {
-  const size_t dot = trace_path.rfind(".csv");
-  return dot == std::string::npos ? trace_path : trace_path.substr(0, dot);
+  const std::string suffix = ".csv";
+  const bool has_suffix = trace_path.size() > suffix.size() &&
+                          trace_path.compare(trace_path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return has_suffix ? trace_path.substr(0, trace_path.size() - suffix.size()) : trace_path;
 }
 
 // `m` as a hex frame line after `# ` comment lines: exact, and the codec checks it on the way back.
@@ -277,7 +279,8 @@ bool write_frame_file(const std::string& path, const Message& m, const std::vect
     out << hex;
   }
   out << "\n";
-  return (n > 0 && host::write_file_atomically(path, out.str())) || (error = "cannot write " + path, false);
+  if (n == 0) return error = "cannot encode the frame for " + path, false;  // a message the codec refuses: a bug
+  return host::write_file_atomically(path, out.str(), error);
 }
 
 // The frame line of a file write_frame_file() wrote, which must hold a message of `type`.
@@ -350,9 +353,16 @@ std::string sensor_profile_path_for(const std::string& trace_path) { return stem
 
 bool check_output_path(const std::string& trace_path, std::string& error) {
   if (trace_path.empty()) return error = "-o: no file name", false;
+  const std::string several_files =
+      ": a recording is several files named after it (NAME.csv, NAME.ticks.csv, NAME.force.csv); give a file name "
+      "such as run1.csv";
+  if (trace_path == "-") return error = "-o -" + several_files, false;
   struct stat st{};
   if (::stat(trace_path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
     return error = "-o " + trace_path + ": is a folder; give a file name such as " + trace_path + "/run1.csv", false;
+  }
+  if (::stat(trace_path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    return error = "-o " + trace_path + ": not a regular file" + several_files, false;  // /dev/null.ticks.csv in /dev
   }
   const size_t slash = trace_path.rfind('/');
   const std::string folder = slash == std::string::npos ? "." : trace_path.substr(0, slash == 0 ? 1 : slash);
@@ -364,33 +374,36 @@ bool check_output_path(const std::string& trace_path, std::string& error) {
 }
 
 RecordingWriter::~RecordingWriter() {
-  for (std::FILE* f : {trace_, ticks_, force_}) {
+  for (std::FILE* f : files_) {
     if (f) std::fclose(f);
   }
 }
 
+bool RecordingWriter::note_failure(File f) {
+  if (failure_.empty()) {
+    failure_ = "cannot write " + names_[f] + ": " + (errno != 0 ? std::strerror(errno) : "a write failed");
+  }
+  return false;
+}
+
 bool RecordingWriter::open(const std::string& path, const std::vector<std::string>& metadata, const Recording& r,
                            std::string& error) {
-  path_ = path;
-  trace_ = std::fopen(path.c_str(), "w");
-  ticks_ = std::fopen(ticks_path_for(path).c_str(), "w");
-  force_ = std::fopen(force_path_for(path).c_str(), "w");
-  if (!trace_ || !ticks_ || !force_) {
-    return error = "cannot write " + path + ", " + ticks_path_for(path) + " or " + force_path_for(path) + ": " +
-                   std::strerror(errno),
-           false;
-  }
-  // Large buffers, flushed explicitly after whole rows: a kill never leaves half a row.
-  std::FILE* const files[] = {trace_, ticks_, force_};
-  for (size_t i = 0; i < 3; ++i) {
+  names_[kTrace] = path;
+  names_[kTicks] = ticks_path_for(path);
+  names_[kForce] = force_path_for(path);
+  static const char* const kHeaders[kFiles] = {"t_us,x,y,touch,taken_us\n", "t_us,amplitude,dac,present\n",
+                                               "t_us,force_mN,over_force\n"};
+  for (int i = 0; i < kFiles; ++i) {
+    errno = 0;
+    files_[i] = std::fopen(names_[i].c_str(), "w");
+    if (!files_[i]) return note_failure(static_cast<File>(i)), error = failure_, false;
+    // Large buffers, flushed explicitly after whole rows: a kill never leaves half a row.
     buffers_[i] = std::make_unique<char[]>(kBufferBytes);
-    std::setvbuf(files[i], buffers_[i].get(), _IOFBF, kBufferBytes);
-    for (const std::string& line : metadata) std::fprintf(files[i], "# %s\n", line.c_str());
+    std::setvbuf(files_[i], buffers_[i].get(), _IOFBF, kBufferBytes);
+    for (const std::string& line : metadata) std::fprintf(files_[i], "# %s\n", line.c_str());
+    std::fputs(kHeaders[i], files_[i]);
   }
-  std::fputs("t_us,x,y,touch,taken_us\n", trace_);
-  std::fputs("t_us,amplitude,dac,present\n", ticks_);
-  std::fputs("t_us,force_mN,over_force\n", force_);
-  if (!flush()) return error = "writing " + path + " failed", false;
+  if (!flush(error)) return false;
   // A stale one would mislead verify.
   if (!r.has_condition) std::remove(condition_path_for(path).c_str());
   if (!r.has_sensor_profile) std::remove(sensor_profile_path_for(path).c_str());
@@ -399,35 +412,37 @@ bool RecordingWriter::open(const std::string& path, const std::vector<std::strin
 }
 
 void RecordingWriter::sample(const DeviceSample& s) {
-  std::fprintf(trace_, "%llu,%.9g,%.9g,%d,%lld\n", static_cast<unsigned long long>(s.row.t_us),
+  std::fprintf(files_[kTrace], "%llu,%.9g,%.9g,%d,%lld\n", static_cast<unsigned long long>(s.row.t_us),
                static_cast<double>(s.row.x), static_cast<double>(s.row.y), s.row.touch ? 1 : 0,
                s.taken_known ? static_cast<long long>(s.taken_us) : -1LL);
 }
 
 void RecordingWriter::tick(const DeviceTick& t) {
-  std::fprintf(ticks_, "%llu,%.9g,%u,%d\n", static_cast<unsigned long long>(t.t_us), static_cast<double>(t.amplitude),
-               static_cast<unsigned>(t.dac), t.present ? 1 : 0);
+  std::fprintf(files_[kTicks], "%llu,%.9g,%u,%d\n", static_cast<unsigned long long>(t.t_us),
+               static_cast<double>(t.amplitude), static_cast<unsigned>(t.dac), t.present ? 1 : 0);
 }
 
 void RecordingWriter::force(const DeviceForce& f) {
-  std::fprintf(force_, "%llu,%.9g,%d\n", static_cast<unsigned long long>(f.t_us), static_cast<double>(f.force_mN),
-               f.over_force ? 1 : 0);
+  std::fprintf(files_[kForce], "%llu,%.9g,%d\n", static_cast<unsigned long long>(f.t_us),
+               static_cast<double>(f.force_mN), f.over_force ? 1 : 0);
 }
 
-bool RecordingWriter::flush() {
-  for (std::FILE* f : {trace_, ticks_, force_}) {
-    if (f && (std::fflush(f) != 0 || std::ferror(f))) failed_ = true;
+bool RecordingWriter::flush(std::string& error) {
+  for (int i = 0; i < kFiles; ++i) {
+    errno = 0;  // a row's fprintf never fills the 1 MiB buffer: the write, and its errno, happen here
+    if (files_[i] && (std::fflush(files_[i]) != 0 || std::ferror(files_[i]))) note_failure(static_cast<File>(i));
   }
-  return !failed_;
+  return failure_.empty() || (error = failure_, false);
 }
 
 bool RecordingWriter::close(std::string& error) {
-  bool ok = flush();
-  for (std::FILE** f : {&trace_, &ticks_, &force_}) {
-    if (*f && std::fclose(*f) != 0) ok = false;
-    *f = nullptr;
+  flush(error);
+  for (int i = 0; i < kFiles; ++i) {
+    errno = 0;
+    if (files_[i] && std::fclose(files_[i]) != 0) note_failure(static_cast<File>(i));
+    files_[i] = nullptr;
   }
-  return ok || (error = "writing " + path_ + " failed (disk full?)", false);
+  return failure_.empty() || (error = failure_, false);
 }
 
 bool write_recording(const std::string& path, const Recording& r, std::string& error,

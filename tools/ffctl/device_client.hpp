@@ -93,8 +93,8 @@ class RecordSink {
   virtual void sample(const DeviceSample& s) = 0;
   virtual void tick(const DeviceTick& t) = 0;
   virtual void force(const DeviceForce& f) = 0;
-  // After each streamed message: make what arrived so far durable. false: stop (e.g. disk full).
-  virtual bool flush() { return true; }
+  // After each streamed message: make what arrived so far durable. false: stop, `error` says why (a full disk).
+  virtual bool flush(std::string& error) { return static_cast<void>(error), true; }
 };
 
 // Keeps everything in memory (tests, verify).
@@ -153,21 +153,22 @@ class RecordingWriter final : public RecordSink {
   void sample(const DeviceSample& s) override;
   void tick(const DeviceTick& t) override;
   void force(const DeviceForce& f) override;
-  bool flush() override;
+  bool flush(std::string& error) override;  // error: "cannot write FILE: REASON", the first failure
   bool close(std::string& error);  // flushes and closes
 
  private:
-  std::FILE* trace_ = nullptr;
-  std::FILE* ticks_ = nullptr;
-  std::FILE* force_ = nullptr;
+  enum File { kTrace, kTicks, kForce, kFiles };
+  std::FILE* files_[kFiles] = {};
+  std::string names_[kFiles];
   // Each file's stdio buffer, ours: glibc ignores setvbuf's size without one.
   static constexpr size_t kBufferBytes = size_t{1} << 20;
-  std::unique_ptr<char[]> buffers_[3];
-  std::string path_;
-  bool failed_ = false;
+  std::unique_ptr<char[]> buffers_[kFiles];
+  std::string failure_;  // the first failed write, kept: later ones would only repeat it
+  bool note_failure(File f);
 };
 
-// Whether `trace_path` can be written (its folder exists, it is not a folder): checked before the device is touched.
+// Whether `trace_path` can be written (its folder exists; it is not a folder, a device or "-", since a recording
+// is several files named after it): checked before the device is touched.
 bool check_output_path(const std::string& trace_path, std::string& error);
 
 bool write_recording(const std::string& trace_path, const Recording& r, std::string& error,

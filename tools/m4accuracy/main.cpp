@@ -141,8 +141,9 @@ int main(int argc, char** argv) {
     total += e.points;
     worst_code = std::fmax(worst_code, e.code_max);
   }
-  if (!csv_path.empty() && !ff::host::write_file_atomically(csv_path, csv.str())) {
-    std::fprintf(stderr, "ff-m4accuracy: cannot write %s\n", csv_path.c_str());
+  std::string error;
+  if (!csv_path.empty() && !ff::host::write_file_atomically(csv_path, csv.str(), error)) {
+    std::fprintf(stderr, "ff-m4accuracy: %s\n", error.c_str());
     return 2;
   }
   std::printf("\n%d points; worst DAC code %.3f LSB from the exact code (0.5 is rounding alone)\n", total, worst_code);

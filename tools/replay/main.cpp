@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
 
   ff::host::ToolOutput output_file(output);
   if (!output_file.open()) {
-    std::cerr << "ff-replay: cannot write " << output << "\n";
+    std::cerr << "ff-replay: " << output_file.error() << "\n";
     return kExitBadUsage;
   }
   std::ostream* out = &output_file.stream();
@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(summary.rows_after_time_jump));
   ff::host::write_metadata(*out, {{"summary", line}});
   if (!output_file.commit()) {
-    std::cerr << "ff-replay: cannot write " << output << "\n";
+    std::cerr << "ff-replay: " << output_file.error() << "\n";
     return kExitBadUsage;
   }
 

@@ -375,7 +375,7 @@ int main(int argc, char** argv) {
   const std::string command = command_line(argc, argv);
   ff::host::ToolOutput out(cli.output);
   if (!out.open()) {
-    std::fprintf(stderr, "ff-tracegen: cannot write %s\n", cli.output.c_str());
+    std::fprintf(stderr, "ff-tracegen: %s\n", out.error().c_str());
     return ff::host::kExitBadUsage;
   }
   ff::host::write_metadata(out.stream(), metadata(o, cli.trace_class, command));
@@ -385,14 +385,14 @@ int main(int argc, char** argv) {
   if (trace.tremor.enabled()) summary += format(" tremor_hz=%.2f", trace.tremor.frequency_hz());  // drawn per trace
   ff::host::write_metadata(out.stream(), {{"summary", summary}});
   if (!out.commit()) {
-    std::fprintf(stderr, "ff-tracegen: writing %s failed\n", cli.output.c_str());
+    std::fprintf(stderr, "ff-tracegen: %s\n", out.error().c_str());
     return ff::host::kExitBadUsage;
   }
 
   if (!cli.truth_ticks.empty()) {
     ff::host::ToolOutput ticks(cli.truth_ticks);
     if (!ticks.open()) {
-      std::fprintf(stderr, "ff-tracegen: cannot write %s\n", cli.truth_ticks.c_str());
+      std::fprintf(stderr, "ff-tracegen: %s\n", ticks.error().c_str());
       return ff::host::kExitBadUsage;
     }
     ff::host::Metadata m = metadata(o, cli.trace_class, command);
@@ -402,7 +402,7 @@ int main(int argc, char** argv) {
     if (show_progress) progress = [](double f) { print_progress("truth at ticks", f); };
     const uint64_t rows = write_truth_ticks(ticks.stream(), trace, progress);
     if (!ticks.commit()) {
-      std::fprintf(stderr, "ff-tracegen: writing %s failed\n", cli.truth_ticks.c_str());
+      std::fprintf(stderr, "ff-tracegen: %s\n", ticks.error().c_str());
       return ff::host::kExitBadUsage;
     }
     if (!cli.quiet) std::fprintf(stderr, "ff-tracegen: %llu tick rows in %s\n", static_cast<unsigned long long>(rows),

@@ -109,9 +109,7 @@ bool replace_marked_section(const std::string& path, const std::string& text, st
     }
   }
   // Atomically: a killed or failed run leaves the document as it was.
-  if (host::write_file_atomically(path, replace_marked_text(document, text, marker))) return true;
-  error = "cannot write " + path;
-  return false;
+  return host::write_file_atomically(path, replace_marked_text(document, text, marker), error);
 }
 
 }  // namespace ff::bench

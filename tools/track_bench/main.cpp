@@ -281,7 +281,7 @@ bool write_tick_dump(const std::string& path, const Tuned& tuned, const SensorPr
     dump_ticks(out.stream(), proposed_tracker(tuned, profile), c);
     if (out.commit()) return true;
   }
-  std::fprintf(stderr, "ff-track-bench: cannot write %s\n", path.c_str());
+  std::fprintf(stderr, "ff-track-bench: %s\n", out.error().c_str());
   return false;
 }
 
@@ -380,8 +380,9 @@ int emit_class_run(const ClassRunOutput& run, const std::string& table, const st
                                {"moving_above_px_s", moving.str()},
                                {"what", run.what}});
     csv << csv_body;
-    if (!host::write_file_atomically(csv_path, csv.str())) {
-      std::fprintf(stderr, "ff-track-bench: cannot write %s\n", csv_path.c_str());
+    std::string error;
+    if (!host::write_file_atomically(csv_path, csv.str(), error)) {
+      std::fprintf(stderr, "ff-track-bench: %s\n", error.c_str());
       return host::kExitBadUsage;
     }
     std::fprintf(stderr, "ff-track-bench: figures written to %s\n", csv_path.c_str());
@@ -498,9 +499,7 @@ bool write_profile_file(const std::string& path, const std::string& input, const
                              {"what", "a SensorProfile estimated from a resting finger (docs/tracking.md#calibration); "
                                       "latency_us is not measurable from a recording: as given by --latency-us"}});
   out << host::sensor_profile_flags(profile) << "\n";
-  if (host::write_file_atomically(path, out.str())) return true;
-  error = "cannot write " + path;
-  return false;
+  return host::write_file_atomically(path, out.str(), error);
 }
 
 // --calibrate REST.csv [STROKES.csv]: 0, or 2 with one line for a recording that gives no profile.

@@ -172,10 +172,10 @@ class ReplayOutput(Case):
         res = run(REPLAY, trace, "--screen", "800")
         self.assertEqual(res.returncode, 2)
         self.assertIn("--screen '800': expected WxH", res.stderr)
-        for out in (self.tmp, self.path("missing/r.csv")):  # a folder; a file in a missing one
+        for out, why in ((self.tmp, "Is a directory"), (self.path("missing/r.csv"), "No such file or directory")):
             res = run(REPLAY, trace, "-o", out)
             self.assertEqual(res.returncode, 2, out)
-            self.assertIn(f"cannot write {out}", res.stderr)
+            self.assertIn(f"cannot write {out}: {why}\n", res.stderr)
         res = run(REPLAY, trace, "--tracker", "psychic")
         self.assertEqual(res.returncode, 2)
         self.assertIn("unknown tracker 'psychic': recommended, thesis", res.stderr)
@@ -208,7 +208,7 @@ class ReplayOutput(Case):
 
         res = run(REPLAY, "-q", trace, "-o", out, preexec_fn=disk_of_4_kb)
         self.assertEqual(res.returncode, 2)
-        self.assertIn(f"cannot write {out}", res.stderr)
+        self.assertIn(f"cannot write {out}: File too large\n", res.stderr)  # EFBIG: the limit stands in for ENOSPC
         self.assertFalse(os.path.exists(out))
         self.assertFalse(os.path.exists(out + ".partial"))
 

@@ -159,7 +159,7 @@ class Calibrate(unittest.TestCase):
         nowhere = os.path.join(self.tmp, "no-such-folder", "profile.txt")
         res = run(BENCH, "--calibrate", self.rest, "--profile-out", nowhere)
         self.assertEqual(res.returncode, 2, res.stderr)
-        self.assertIn("cannot write " + nowhere, res.stderr)
+        self.assertIn("cannot write %s: No such file or directory" % nowhere, res.stderr)
         self.assertIn("ffctl sensor-profile ", res.stdout)
         # A recording that is not a trace, at rest or as the strokes: its line and field, one line.
         bad = os.path.join(self.tmp, "bad.csv")

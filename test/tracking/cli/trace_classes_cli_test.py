@@ -233,17 +233,19 @@ class TrackBenchClasses(unittest.TestCase):
                       "--dump-ticks", os.path.join(tmp, "missing", "d.csv"))
             self.assertEqual(res.returncode, 2)
             self.assertEqual(res.stderr.strip().splitlines()[-1],
-                             "ff-track-bench: cannot write %s" % os.path.join(tmp, "missing", "d.csv"))
+                             "ff-track-bench: cannot write %s: No such file or directory"
+                             % os.path.join(tmp, "missing", "d.csv"))
             self.assertEqual(res.stdout, "")  # refused before the class is evaluated
             # The CSV is written after the tables are printed.
             res = run(BENCH, "--class", "latency", "--duration", "2", "--csv", os.path.join(tmp, "missing", "c.csv"))
             self.assertEqual(res.returncode, 2)
             self.assertEqual(res.stderr.splitlines()[-1],
-                             "ff-track-bench: cannot write %s" % os.path.join(tmp, "missing", "c.csv"))
+                             "ff-track-bench: cannot write %s: No such file or directory"
+                             % os.path.join(tmp, "missing", "c.csv"))
             self.assertIn("| latency | thesis |", res.stdout)
             res = run(BENCH, "--class", "latency", "--duration", "2", "--write-doc", tmp)  # a folder
             self.assertEqual(res.returncode, 2)
-            self.assertIn("cannot write " + tmp, res.stderr)
+            self.assertIn("cannot write %s: Is a directory" % tmp, res.stderr)
             self.assertEqual(os.listdir(tmp), [])
             # The doc is written whole through doc.md.partial, then renamed: where the partial
             # file cannot be made (a folder in its way here), the doc stays as it was.
@@ -442,27 +444,29 @@ class TracegenClasses(unittest.TestCase):
 
     def test_an_output_that_cannot_be_written_is_refused_and_a_device_is_written_into(self):
         with tempfile.TemporaryDirectory() as tmp:
-            res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "no-such-folder", "t.csv"))
+            missing = os.path.join(tmp, "no-such-folder", "t.csv")
+            res = run(TRACEGEN, "-q", "--duration", "1", "-o", missing)
             self.assertEqual(res.returncode, 2)
-            self.assertIn("cannot write", res.stderr)
+            self.assertEqual(res.stderr, "ff-tracegen: cannot write %s: No such file or directory\n" % missing)
             res = run(TRACEGEN, "-q", "--duration", "1", "-o", tmp)  # a folder
             self.assertEqual(res.returncode, 2)
-            self.assertIn("cannot write", res.stderr)
+            self.assertEqual(res.stderr, "ff-tracegen: cannot write %s: Is a directory\n" % tmp)
             self.assertEqual(os.listdir(tmp), [])
         res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.devnull)
         self.assertEqual(res.returncode, 0, res.stderr)
         self.assertFalse(os.path.exists(os.devnull + ".partial"))
         res = run(TRACEGEN, "-q", "--duration", "1", "-o", "/dev/full")  # every write fails: a full disk
         self.assertEqual(res.returncode, 2)
-        self.assertIn("writing /dev/full failed", res.stderr)
+        self.assertEqual(res.stderr, "ff-tracegen: cannot write /dev/full: No space left on device\n")
         with tempfile.TemporaryDirectory() as tmp:
             res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "t.csv"),
                       "--truth-ticks", os.path.join(tmp, "no-such-folder", "ticks.csv"))
             self.assertEqual(res.returncode, 2)
-            self.assertIn("cannot write " + os.path.join(tmp, "no-such-folder", "ticks.csv"), res.stderr)
+            missing = os.path.join(tmp, "no-such-folder", "ticks.csv")
+            self.assertIn("cannot write %s: No such file or directory" % missing, res.stderr)
             res = run(TRACEGEN, "-q", "--duration", "1", "-o", os.path.join(tmp, "t.csv"), "--truth-ticks", "/dev/full")
             self.assertEqual(res.returncode, 2)
-            self.assertIn("writing /dev/full failed", res.stderr)
+            self.assertIn("ff-tracegen: cannot write /dev/full: No space left on device\n", res.stderr)
 
     def test_truth_ticks_carry_the_traces_metadata_and_show_progress(self):
         with tempfile.TemporaryDirectory() as tmp:

@@ -101,7 +101,7 @@ class TrackBenchTrace(TraceFiles):
         self.assertEqual(sorted(os.listdir(self.tmp)), ["ticks.csv"])
         res = run(BENCH, "--trace", self.generated, "--dump-ticks", self.tmp)  # a folder
         self.assertEqual(res.returncode, 2)
-        self.assertIn("ff-track-bench: cannot write " + self.tmp, res.stderr)
+        self.assertIn("ff-track-bench: cannot write %s: Is a directory" % self.tmp, res.stderr)
 
     def test_bad_files_exit_2_with_one_line(self):
         missing = run(BENCH, "--trace", os.path.join(self.tmp, "nope.csv"))
@@ -199,7 +199,7 @@ class GeneratedSet(WithScratchFolder):
         self.assertEqual({b - a for a, b in zip(stamps, stamps[1:])}, {500})
         res = run(BENCH, "--duration", 2, "--dump-ticks", self.tmp)
         self.assertEqual(res.returncode, 2)
-        self.assertIn("cannot write " + self.tmp, res.stderr)
+        self.assertIn("cannot write %s: Is a directory" % self.tmp, res.stderr)
 
     def test_profile_out_needs_calibrate(self):
         res = run(BENCH, "--profile-out", os.path.join(self.tmp, "p.txt"))

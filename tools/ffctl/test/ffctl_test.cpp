@@ -6,14 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <csignal>
 #include <deque>
 #include <filesystem>
 #include <functional>
 #include <fstream>
 #include <memory>
 #include <sstream>
-#include <sys/resource.h>
 
 #include "device_client.hpp"
 #include "firmware/app/firmware_app.hpp"
@@ -29,6 +27,7 @@
 #include "emulated_firmware.hpp"
 #include "hid_transport.hpp"
 #include "support/file_contents.hpp"
+#include "support/file_size_limit.hpp"
 #include "support/scratch_path.hpp"
 
 namespace ff::ffctl {
@@ -530,9 +529,9 @@ struct DurableCount final : RecordSink {
   void sample(const DeviceSample&) override { ++samples; }
   void tick(const DeviceTick&) override { ++ticks; }
   void force(const DeviceForce&) override {}
-  bool flush() override {
+  bool flush(std::string& error) override {
     durable = samples;
-    return !disk_full;
+    return !disk_full || (error = "cannot write run.csv: No space left on device", false);
   }
   size_t samples = 0, ticks = 0, durable = 0;
   bool disk_full = false;
@@ -616,7 +615,7 @@ TEST(Ffctl, AFullDiskEndsTheRecordingWithItsReason) {
   device.replies.push_back(streams({ticks_at(1000), ticks_at(1500), ticks_at(2000)}));
   std::string error;
   EXPECT_FALSE(record(client, 0.0, sink, error));
-  EXPECT_EQ(error, "writing the recording failed (disk full?)");
+  EXPECT_EQ(error, "cannot write run.csv: No space left on device");  // the sink's own words
   EXPECT_EQ(sink.ticks, 1u);  // nothing read after the failed write
 }
 
@@ -754,14 +753,14 @@ TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
   std::filesystem::remove_all(condition_path_for(blocked));
   std::filesystem::create_directory(condition_path_for(blocked));
   EXPECT_FALSE(write_recording(blocked, r, error));
-  EXPECT_EQ(error, "cannot write " + condition_path_for(blocked));
+  EXPECT_EQ(error, "cannot write " + condition_path_for(blocked) + ": Is a directory");
   std::filesystem::remove_all(condition_path_for(blocked));
   // The condition file is written whole through NAME.condition.partial: where that cannot be
   // made (a folder in its way), the file already there is left as it was.
   std::ofstream(condition_path_for(blocked)) << "kept\n";
   std::filesystem::create_directory(condition_path_for(blocked) + ".partial");
   EXPECT_FALSE(write_recording(blocked, r, error));
-  EXPECT_EQ(error, "cannot write " + condition_path_for(blocked));
+  EXPECT_EQ(error, "cannot write " + condition_path_for(blocked) + ": Is a directory");  // its .partial is
   std::stringstream kept;
   kept << std::ifstream(condition_path_for(blocked)).rdbuf();
   EXPECT_EQ(kept.str(), "kept\n");
@@ -870,6 +869,26 @@ TEST(Ffctl, AnOutputPathIsCheckedBeforeTheDeviceIsTouched) {
   EXPECT_FALSE(check_output_path(folder + "/missing/run1.csv", error));
   EXPECT_EQ(error, "-o " + folder + "/missing/run1.csv: the folder " + folder + "/missing does not exist");
   EXPECT_TRUE(check_output_path(folder + "/run1.csv", error)) << error;
+  // A recording is several files named after -o: not standard output, not a device (as root, /dev/null.ticks.csv
+  // would be made in /dev).
+  const std::string several = "a recording is several files named after it (NAME.csv, NAME.ticks.csv, "
+                              "NAME.force.csv); give a file name such as run1.csv";
+  EXPECT_FALSE(check_output_path("-", error));
+  EXPECT_EQ(error, "-o -: " + several);
+  EXPECT_FALSE(check_output_path("/dev/null", error));
+  EXPECT_EQ(error, "-o /dev/null: not a regular file: " + several);
+  std::ofstream(folder + "/old.csv") << "t_us,x,y,touch\n";
+  EXPECT_TRUE(check_output_path(folder + "/old.csv", error)) << error;  // a file there is replaced, as asked
+}
+
+TEST(Ffctl, TheSideFilesOfARecordingAreNamedAfterItsSuffixOnly) {
+  EXPECT_EQ(ticks_path_for("runs/p01.csv"), "runs/p01.ticks.csv");
+  EXPECT_EQ(force_path_for("runs/p01.csv"), "runs/p01.force.csv");
+  EXPECT_EQ(condition_path_for("runs/p01.csv"), "runs/p01.condition");
+  EXPECT_EQ(sensor_profile_path_for("runs/p01.csv"), "runs/p01.sensor-profile");
+  // A ".csv" elsewhere in the name is not the suffix: the side files stay beside the trace.
+  EXPECT_EQ(ticks_path_for("runs.csv.d/p01"), "runs.csv.d/p01.ticks.csv");
+  EXPECT_EQ(ticks_path_for("p01.csv.bak"), "p01.csv.bak.ticks.csv");
 }
 
 DeviceSample sample_at(uint64_t i) {
@@ -887,50 +906,38 @@ TEST(Ffctl, ARecordingReachesTheDiskInWholeRowsWhenFlushed) {
   EXPECT_EQ(support::file_contents(path), header);
   for (uint64_t i = 0; i < 3000; ++i) w.sample(sample_at(i));  // ~80 kB, several stdio buffers' worth
   EXPECT_EQ(support::file_contents(path), header);
-  ASSERT_TRUE(w.flush());
+  ASSERT_TRUE(w.flush(error)) << error;
   const std::string flushed = support::file_contents(path);
   EXPECT_EQ(std::count(flushed.begin(), flushed.end(), '\n'), 3002);
   EXPECT_EQ(flushed.back(), '\n');
   EXPECT_TRUE(w.close(error)) << error;
 }
 
-// Files may grow to `bytes` while it lives (RLIMIT_FSIZE): a full disk on demand.
-class FileSizeLimit {
- public:
-  explicit FileSizeLimit(rlim_t bytes) {
-    previous_signal_ = std::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead of killing us
-    getrlimit(RLIMIT_FSIZE, &previous_);
-    rlimit limit = previous_;
-    limit.rlim_cur = bytes;
-    setrlimit(RLIMIT_FSIZE, &limit);
-  }
-  ~FileSizeLimit() {
-    setrlimit(RLIMIT_FSIZE, &previous_);
-    std::signal(SIGXFSZ, previous_signal_);
-  }
-
- private:
-  rlimit previous_{};
-  void (*previous_signal_)(int) = nullptr;
-};
-
 TEST(Ffctl, AWriteThatFailsIsReportedWithTheFilesName) {
   const std::string path = support::scratch_path("ffctl_disk_full.csv");
   std::string error;
   {
-    FileSizeLimit full(8);  // not even the header fits
+    support::FileSizeLimit full(8);  // not even the header fits
     RecordingWriter w;
     EXPECT_FALSE(w.open(path, {"ffctl record"}, Recording{}, error));
   }
-  EXPECT_EQ(error, "writing " + path + " failed");
+  EXPECT_EQ(error, "cannot write " + path + ": File too large");  // EFBIG: the limit stands in for a full disk
   {
-    FileSizeLimit full(16384);  // the header fits, the rows do not
+    support::FileSizeLimit full(16384);  // the header fits, the rows do not
     RecordingWriter w;
     ASSERT_TRUE(w.open(path, {"ffctl record"}, Recording{}, error)) << error;
     for (uint64_t i = 0; i < 3000; ++i) w.sample(sample_at(i));
     EXPECT_FALSE(w.close(error));
   }
-  EXPECT_EQ(error, "writing " + path + " failed (disk full?)");
+  EXPECT_EQ(error, "cannot write " + path + ": File too large");
+  std::filesystem::remove(ticks_path_for(path));
+  std::filesystem::create_directory(ticks_path_for(path));  // a side file that cannot be made is the one named
+  {
+    RecordingWriter w;
+    EXPECT_FALSE(w.open(path, {"ffctl record"}, Recording{}, error));
+  }
+  EXPECT_EQ(error, "cannot write " + ticks_path_for(path) + ": Is a directory");
+  std::filesystem::remove(ticks_path_for(path));
 }
 
 }  // namespace
