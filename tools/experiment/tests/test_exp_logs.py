@@ -8,6 +8,7 @@ import os
 import pytest
 
 from ffexp import logs
+from full_disk import DiskThatFills
 
 TRIAL = dict(trial=1, rendering="heightmap", strength=0.66, target="top", choice="middle", hit=False,
              t_enter_start=1.0, t_leave_start=1.25, t_cross=3.125, movement_time=1.875, crossing_y=250.0,
@@ -190,45 +191,17 @@ def test_a_torn_last_row_is_no_row_in_every_reader(tmp_path):
     assert [e["event"] for e in logs.read_events(str(tmp_path))] == ["device-lost"]
 
 
-class DiskFull:
-    """A log file on a disk that fills up, as Python's buffered files behave on
-    one: a write waits in the buffer, and every flush fails and keeps it."""
-
-    def __init__(self, f):
-        self._f, self.name, self.pending, self.full = f, f.name, "", False
-
-    def write(self, text):
-        self.pending += text
-        return len(text)
-
-    def flush(self):
-        if self.full and self.pending:
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-        self._f.write(self.pending)
-        self.pending = ""
-        self._f.flush()
-
-    def close(self):
-        try:
-            self.flush()
-        finally:
-            self._f.close()
-
-    def __getattr__(self, name):  # fileno, closed: the real file's
-        return getattr(self._f, name)
-
-
 def test_a_log_that_cannot_be_written_says_so_once(tmp_path, monkeypatch):
     disks = []
 
     def open_on_a_disk(path, *args, **kw):
-        disks.append(DiskFull(open(path, *args, **kw)))
+        disks.append(DiskThatFills(open(path, *args, **kw)))
         return disks[-1]
 
     monkeypatch.setattr(logs, "open", open_on_a_disk, raising=False)
     log = logs.ParticipantLog(str(tmp_path))
     for d in disks:
-        d.full = True
+        d.room = 0
     with pytest.raises(logs.LogWriteError) as e:
         log.frame(1, 0.5, 10, 20, 1, 0.3, 0)
     assert str(e.value) == f"cannot write {tmp_path / 'frames.csv'}: No space left on device"

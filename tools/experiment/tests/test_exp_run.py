@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from ffexp import design, device, experiment, geometry, logs
+from full_disk import DiskThatFills
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.join(HERE, "..", "ff-experiment")
@@ -71,26 +72,10 @@ def test_a_torn_trial_row_runs_that_trial_again(tmp_path, capsys):
     assert any(e["event"] == "resume" and int(float(e["trial"])) == 3 for e in events)
 
 
-class FillsUp:
-    """A log file on a disk that fills after `room` characters."""
-
-    def __init__(self, f, room):
-        self._f, self.room, self.name = f, room, f.name
-
-    def write(self, text):
-        if len(text) > self.room:
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-        self.room -= len(text)
-        return self._f.write(text)
-
-    def __getattr__(self, name):  # flush, fileno, closed, close: the real file's
-        return getattr(self._f, name)
-
-
 def test_a_full_disk_stops_the_study_and_resume_goes_on(tmp_path, capsys, monkeypatch):
     def frames_fill_up(path, *args, **kw):
         f = open(path, *args, **kw)
-        return FillsUp(f, 25000) if path.endswith("frames.csv") else f
+        return DiskThatFills(f, room=25000) if path.endswith("frames.csv") else f
     monkeypatch.setattr(logs, "open", frames_fill_up, raising=False)
     assert run_fake(tmp_path, "--trials", "6") == 1
     out, err = capsys.readouterr()
