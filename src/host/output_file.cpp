@@ -52,8 +52,9 @@ bool OutputFile::open() {
 }
 
 bool OutputFile::commit() {
-  const bool closed = buffer_.close() != nullptr;  // writes what is buffered: a failure is kept by overflow()
-  if (!closed) buffer_.note_failure();  // unless kept already: close(2) itself failed (EIO on a full NFS server)
+  // Writes what is buffered: a failure is kept by overflow(). (If only close(2) fails, as on a full NFS
+  // server, no write kept a reason: "a write failed".)
+  const bool closed = buffer_.close() != nullptr;
   error_ = buffer_.first_error();
   if (!closed || !stream_) {  // !stream_: a write failed earlier, even if the space has been freed since
     if (written_ != path_) std::remove(written_.c_str());

@@ -67,6 +67,16 @@ TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
   }
   EXPECT_EQ(read(path), "x\n");
   EXPECT_FALSE(std::filesystem::exists(partial));
+  const std::filesystem::path folder = dir / "taken";  // a folder with a file in it: the rename fails
+  std::filesystem::create_directories(folder / "inside");
+  {
+    OutputFile f(folder.string());
+    ASSERT_TRUE(f.open());
+    f.stream() << "z\n";
+    EXPECT_FALSE(f.commit());
+    EXPECT_EQ(f.error(), "cannot write " + folder.string() + ": Is a directory");
+  }
+  EXPECT_FALSE(std::filesystem::exists(folder.string() + ".partial"));
   std::filesystem::remove_all(dir);
 }
 
@@ -157,7 +167,7 @@ TEST(ToolOutput, AWriteThatFailsMidwayKeepsItsReasonNotALaterErrno) {
     support::FileSizeLimit full(4096);
     ToolOutput out(path);
     ASSERT_TRUE(out.open());
-    for (int i = 0; i < 10000 && out.stream(); ++i) out.stream() << i << ",row\n";  // small writes: overflow()
+    for (int i = 0; i < 10000 && out.stream(); ++i) out.stream() << i << ",row\n";  // small writes, buffered
     EXPECT_FALSE(out.stream());
     errno = ENOTTY;  // what a later isatty() leaves: not the reason
     EXPECT_FALSE(out.commit());
@@ -166,7 +176,7 @@ TEST(ToolOutput, AWriteThatFailsMidwayKeepsItsReasonNotALaterErrno) {
   std::string error;
   {
     support::FileSizeLimit full(4096);
-    EXPECT_FALSE(write_file_atomically(path, std::string(100000, 'x'), error));  // one large write: xsputn()
+    EXPECT_FALSE(write_file_atomically(path, std::string(100000, 'x'), error));  // one large write, past the buffer
   }
   EXPECT_EQ(error, "cannot write " + path + ": File too large");
   EXPECT_FALSE(std::filesystem::exists(path));
@@ -176,7 +186,9 @@ TEST(ToolOutput, AWriteThatFailsMidwayKeepsItsReasonNotALaterErrno) {
     ASSERT_TRUE(out.open());
     {
       support::FileSizeLimit full(4096);
-      for (int i = 0; i < 10000 && out.stream(); ++i) out.stream() << i << ",row\n";
+      // put(): a character at a time, so the buffer's overflow() is what writes and fails (operator<< goes
+      // through xsputn).
+      for (int i = 0; i < 100000 && out.stream(); ++i) out.stream().put('x');
     }
     // Space freed before the commit (another job's files deleted): the file lacks what failed all the same.
     EXPECT_FALSE(out.commit());

@@ -394,7 +394,6 @@ bool RecordingWriter::open(const std::string& path, const std::vector<std::strin
   static const char* const kHeaders[kFiles] = {"t_us,x,y,touch,taken_us\n", "t_us,amplitude,dac,present\n",
                                                "t_us,force_mN,over_force\n"};
   for (int i = 0; i < kFiles; ++i) {
-    errno = 0;
     files_[i] = std::fopen(names_[i].c_str(), "w");
     if (!files_[i]) return note_failure(static_cast<File>(i)), error = failure_, false;
     // Large buffers, flushed explicitly after whole rows: a kill never leaves half a row.
@@ -429,16 +428,15 @@ void RecordingWriter::force(const DeviceForce& f) {
 
 bool RecordingWriter::flush(std::string& error) {
   for (int i = 0; i < kFiles; ++i) {
-    errno = 0;  // a row's fprintf never fills the 1 MiB buffer: the write, and its errno, happen here
+    // ferror: a write when a row filled the buffer failed (between flushes, more than 1 MiB of rows).
     if (files_[i] && (std::fflush(files_[i]) != 0 || std::ferror(files_[i]))) note_failure(static_cast<File>(i));
   }
   return failure_.empty() || (error = failure_, false);
 }
 
 bool RecordingWriter::close(std::string& error) {
-  flush(error);
+  flush(error);  // fclose() would flush too, but not report an earlier failed write (ferror)
   for (int i = 0; i < kFiles; ++i) {
-    errno = 0;
     if (files_[i] && std::fclose(files_[i]) != 0) note_failure(static_cast<File>(i));
     files_[i] = nullptr;
   }

@@ -13,6 +13,8 @@
 #include <memory>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "device_client.hpp"
 #include "firmware/app/firmware_app.hpp"
 #include "frictionfield/core/scenes.hpp"
@@ -531,10 +533,12 @@ struct DurableCount final : RecordSink {
   void force(const DeviceForce&) override {}
   bool flush(std::string& error) override {
     durable = samples;
-    return !disk_full || (error = "cannot write run.csv: No space left on device", false);
+    if (failing_flushes == 0) return true;
+    --failing_flushes;
+    return error = "cannot write run.csv: No space left on device", false;
   }
   size_t samples = 0, ticks = 0, durable = 0;
-  bool disk_full = false;
+  int failing_flushes = 0;  // the next ones fail (a full disk), the rest succeed (space freed)
 };
 
 TEST(Ffctl, ARecordingLongerThanHalfTheClocksRangeKeepsItsTimes) {
@@ -609,7 +613,7 @@ TEST(Ffctl, ReportsReadAfterTheLastTickAreMadeDurableToo) {
 
 TEST(Ffctl, AFullDiskEndsTheRecordingWithItsReason) {
   DurableCount sink;
-  sink.disk_full = true;
+  sink.failing_flushes = 1;  // space freed right after: the recording has lost rows all the same
   ScriptedDevice device;
   DeviceClient client(device);
   device.replies.push_back(streams({ticks_at(1000), ticks_at(1500), ticks_at(2000)}));
@@ -930,6 +934,28 @@ TEST(Ffctl, AWriteThatFailsIsReportedWithTheFilesName) {
     EXPECT_FALSE(w.close(error));
   }
   EXPECT_EQ(error, "cannot write " + path + ": File too large");
+  {
+    RecordingWriter w;  // rows past the 1 MiB buffer without a flush (write_recording): a write fails mid-way
+    ASSERT_TRUE(w.open(path, {"ffctl record"}, Recording{}, error)) << error;
+    {
+      support::FileSizeLimit full(16384);
+      for (uint64_t i = 0; i < 60000; ++i) w.sample(sample_at(i));  // ~1.6 MB
+    }
+    EXPECT_FALSE(w.close(error));  // space freed before the close: the rows lost are still said
+  }
+  EXPECT_EQ(error, "cannot write " + path + ": File too large");
+  {
+    RecordingWriter w;  // close(2) itself fails (as on a full NFS server): the ticks file's descriptor is pulled
+    ASSERT_TRUE(w.open(path, {"ffctl record"}, Recording{}, error)) << error;
+    for (const auto& fd : std::filesystem::directory_iterator("/proc/self/fd")) {
+      std::error_code ec;
+      if (std::filesystem::read_symlink(fd.path(), ec) == std::filesystem::absolute(ticks_path_for(path))) {
+        ::close(std::stoi(fd.path().filename().string()));
+      }
+    }
+    EXPECT_FALSE(w.close(error));
+  }
+  EXPECT_EQ(error, "cannot write " + ticks_path_for(path) + ": Bad file descriptor");
   std::filesystem::remove(ticks_path_for(path));
   std::filesystem::create_directory(ticks_path_for(path));  // a side file that cannot be made is the one named
   {
