@@ -1,14 +1,13 @@
 #include "frictionfield/host/scene_file.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
+
+#include "frictionfield/host/input_file.hpp"
 
 namespace ff::host {
 
@@ -227,14 +226,10 @@ bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string
 }
 
 bool read_scene_file(const std::string& path, SceneDefinition& out, std::string& error) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    error = path + ": is a directory, not a scene file";
-    return false;
-  }
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot open: " + std::strerror(errno);
+  std::ifstream in;
+  std::string why;
+  if (!open_input_file(path, in, why)) {
+    error = path + ": " + why;
     return false;
   }
   std::stringstream buf;

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <algorithm>
 
+#include "frictionfield/host/input_file.hpp"
+
 namespace ff::host {
 
 namespace {
@@ -174,9 +176,10 @@ bool read_sensor_trace(std::istream& in, std::vector<TraceRow>& rows, TraceError
 }
 
 bool read_sensor_trace_file(const std::string& path, std::vector<TraceRow>& rows, TraceError& error) {
-  std::ifstream in(path);
-  if (!in) {
-    error = {0, 0, std::string("cannot open: ") + std::strerror(errno)};
+  std::ifstream in;
+  std::string why;
+  if (!open_input_file(path, in, why)) {
+    error = {0, 0, why};
     return false;
   }
   return read_sensor_trace(in, rows, error);

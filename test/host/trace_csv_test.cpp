@@ -53,6 +53,9 @@ TEST(TraceCsv, AMissingFileSaysWhy) {
   EXPECT_FALSE(read_sensor_trace_file(::testing::TempDir() + "/ff_no_such_trace.csv", rows, err));
   EXPECT_EQ(err.message, "cannot open: No such file or directory");
   EXPECT_EQ(err.line, 0u);  // the file, not a line of it
+  // A folder opens on Linux and reads as nothing: it was called an empty file with no header.
+  EXPECT_FALSE(read_sensor_trace_file(::testing::TempDir(), rows, err));
+  EXPECT_EQ(err.message, "is a folder, not a file");
 }
 
 TEST(TraceCsv, TakesStampsUpTo2To53) {

@@ -88,7 +88,7 @@ TEST(LoadTraceCase, NamesTheCaseByItsPathAndJudgesItOnTheTargetAsked) {
 
   std::remove(path.c_str());
   EXPECT_FALSE(load_trace_case(path, options, c, error));
-  EXPECT_EQ(error, path + ": cannot open");
+  EXPECT_EQ(error, path + ": cannot open: No such file or directory");
 }
 
 // evaluate(A, ..., &B) judges A's position with B's direction: its position

@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "frictionfield/host/input_file.hpp"
 #include "frictionfield/host/output_file.hpp"
 #include "frictionfield/host/scene_file.hpp"
 #include "frictionfield/host/sensor_profile_options.hpp"
@@ -285,7 +286,9 @@ bool write_frame_file(const std::string& path, const Message& m, const std::vect
 
 // The frame line of a file write_frame_file() wrote, which must hold a message of `type`.
 bool read_frame_file(const std::string& path, MessageType type, const char* what, Message& m, std::string& error) {
-  std::ifstream in(path);
+  std::ifstream in;
+  std::string why;
+  if (!host::open_input_file(path, in, why)) return error = path + ": " + why, false;
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("frame ", 0) != 0) continue;
     std::vector<uint8_t> frame;
@@ -458,8 +461,9 @@ namespace {
 // The sensor trace of a recording, with the device's taken_us where ffctl
 // wrote it (-1: unknown; a plain sensor trace has no such column).
 bool read_samples(const std::string& path, std::vector<DeviceSample>& samples, std::string& error) {
-  std::ifstream in(path);
-  if (!in) return error = path + ": cannot open: " + std::strerror(errno), false;
+  std::ifstream in;
+  std::string why;
+  if (!host::open_input_file(path, in, why)) return error = path + ": " + why, false;
   host::SensorTraceReader reader(in);
   host::TraceError terr;
   if (!reader.read_header(terr)) return error = terr.to_string(path), false;
@@ -484,8 +488,11 @@ bool read_samples(const std::string& path, std::vector<DeviceSample>& samples, s
 // NAME.ticks.csv: a header, then t_us,amplitude,dac,present per row; '#' and
 // blank lines anywhere are skipped, as in every trace file.
 bool read_ticks(const std::string& path, std::vector<DeviceTick>& ticks, std::string& error) {
-  std::ifstream in(path);
-  if (!in) return error = path + ": cannot open (ffctl record writes it next to the trace)", false;
+  std::ifstream in;
+  std::string why;
+  if (!host::open_input_file(path, in, why)) {
+    return error = path + ": " + why + " (ffctl record writes it next to the trace)", false;
+  }
   bool header_seen = false;
   std::string line;
   for (int line_no = 1; std::getline(in, line); ++line_no) {

@@ -15,6 +15,7 @@
 #include "device_client.hpp"
 #include "frictionfield/drivers/zforce_sensor.hpp"
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/input_file.hpp"
 #include "frictionfield/host/scene_spec.hpp"
 #include "frictionfield/host/sensor_profile_options.hpp"
 #include "halfkay.hpp"
@@ -226,9 +227,11 @@ void print_verify(const ff::ffctl::VerifyResult& v) {
   if (v.run_count > v.runs.size()) std::printf("  ... and %zu more runs\n", v.run_count - v.runs.size());
 }
 
-bool read_file(const std::string& path, std::string& text) {
-  std::ifstream in(path);
-  if (!in) return false;
+// false with `error` "PATH: why".
+bool read_file(const std::string& path, std::string& text, std::string& error) {
+  std::ifstream in;
+  std::string why;
+  if (!ff::host::open_input_file(path, in, why)) return error = path + ": " + why, false;
   std::stringstream s;
   s << in.rdbuf();
   text = s.str();
@@ -427,7 +430,7 @@ int main(int argc, char** argv) {
     }
     if (*flash) {
       std::string text, error;
-      if (!read_file(hex, text)) return usage("cannot open " + hex);
+      if (!read_file(hex, text, error)) return usage(error);
       ff::ffctl::FlashImage image;
       // Checked before anything touches USB.
       if (!ff::ffctl::parse_intel_hex(text, image, error)) return usage(hex + ": " + error);

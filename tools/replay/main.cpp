@@ -10,6 +10,7 @@
 
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/host/cli_conventions.hpp"
+#include "frictionfield/host/input_file.hpp"
 #include "frictionfield/host/output_file.hpp"
 #include "frictionfield/host/replay.hpp"
 #include "frictionfield/host/scene_hash.hpp"
@@ -121,11 +122,10 @@ int main(int argc, char** argv) {
     std::cerr << "ff-replay: the output " << output << " is the input trace itself: choose another -o\n";
     return kExitBadUsage;
   }
-  std::ifstream in(input);
-  std::error_code ec;
-  if (!in || std::filesystem::is_directory(input, ec)) {
-    std::cerr << "ff-replay: " << input << ": cannot read"
-              << (std::filesystem::is_directory(input, ec) ? " (a directory)" : "") << "\n";
+  std::ifstream in;
+  std::string why;
+  if (!ff::host::open_input_file(input, in, why)) {
+    std::cerr << "ff-replay: " << input << ": " << why << "\n";
     return kExitBadUsage;
   }
   ff::host::SensorTraceReader reader(in);
@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
     return kExitBadUsage;
   }
   std::ostream* out = &output_file.stream();
+  std::error_code ec;
   const uint64_t input_bytes = std::filesystem::file_size(input, ec);
   ff::host::write_metadata(
       *out, {{"tool", std::string("ff-replay ") + ff::host::project_version()},

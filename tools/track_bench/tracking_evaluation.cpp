@@ -12,6 +12,7 @@
 #include "support/statistics.hpp"
 #include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scenes.hpp"
+#include "frictionfield/host/input_file.hpp"
 
 namespace ff::bench {
 
@@ -183,9 +184,10 @@ std::vector<PreparedCase> prepare_cases(const std::vector<TrackCase>& specs) {
 }
 
 bool load_trace_case(const std::string& path, const TraceFileOptions& options, PreparedCase& out, std::string& error) {
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot open";
+  std::ifstream in;
+  std::string why;
+  if (!host::open_input_file(path, in, why)) {
+    error = path + ": " + why;
     return false;
   }
   host::SensorTraceReader reader(in);

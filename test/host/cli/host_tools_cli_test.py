@@ -167,8 +167,12 @@ class ReplayOutput(Case):
         self.assertEqual(run(REPLAY, "--help").returncode, 0)
         self.assertEqual(run(REPLAY, trace, "--no-such-option").returncode, 2)
         self.assertEqual(run(REPLAY).returncode, 2)
-        self.assertEqual(run(REPLAY, self.path("missing.csv")).returncode, 2)
-        self.assertEqual(run(REPLAY, self.tmp).returncode, 2)
+        res = run(REPLAY, self.path("missing.csv"))
+        self.assertEqual(res.returncode, 2)
+        self.assertEqual(res.stderr, "ff-replay: %s: cannot open: No such file or directory\n" % self.path("missing.csv"))
+        res = run(REPLAY, self.tmp)
+        self.assertEqual(res.returncode, 2)
+        self.assertEqual(res.stderr, "ff-replay: %s: is a folder, not a file\n" % self.tmp)
         res = run(REPLAY, trace, "--screen", "800")
         self.assertEqual(res.returncode, 2)
         self.assertIn("--screen '800': expected WxH", res.stderr)
@@ -323,7 +327,7 @@ class SceneWords(Case):
         cases = [
             (["--scene", "heightmap", "--scene-file", good], "drop one"),
             (["--scene-file", good, "--scene", "neutral"], "drop one"),
-            (["--scene-file", self.tmp], "directory"),
+            (["--scene-file", self.tmp], "is a folder, not a file"),
             (["--scene-file", empty], "no directives"),
             (["--scene-file", seven], "constant 7 is outside [0, 1]"),
             (["--strength", "1.5"], "strength must be in (0, 1], got 1.5"),

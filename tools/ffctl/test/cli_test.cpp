@@ -223,6 +223,17 @@ TEST(FfctlCli, BadUsageIsExitTwoBeforeAnyDeviceIsTouched) {
   EXPECT_NE(r.err.find("1..65535"), std::string::npos) << r.err;
   r = ffctl("verify " + support::scratch_path("no_such_recording.csv"));
   EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no_such_recording.csv: cannot open: No such file or directory"), std::string::npos) << r.err;
+  // A folder reads as an empty file on Linux: it was "expected a header row" and "no Intel HEX records".
+  r = ffctl("verify " + ::testing::TempDir());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(": is a folder, not a file"), std::string::npos) << r.err;
+  r = ffctl("flash " + ::testing::TempDir());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(": is a folder, not a file"), std::string::npos) << r.err;
+  r = ffctl("flash " + support::scratch_path("no_such_firmware.hex"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no_such_firmware.hex: cannot open: No such file or directory"), std::string::npos) << r.err;
   r = ffctl("--version");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.out.rfind("ffctl ", 0), 0u) << r.out;

@@ -282,7 +282,9 @@ int run_sim(const std::string& args, std::string& stderr_text) {
 TEST(FfSim, RefusesABadTraceWithExitCode2) {
   std::string err;
   EXPECT_EQ(run_sim("--trace /nonexistent.csv -q", err), 2);
-  EXPECT_EQ(err.rfind("ff-sim: /nonexistent.csv", 0), 0u) << err;
+  EXPECT_EQ(err.rfind("ff-sim: /nonexistent.csv: cannot open: No such file or directory", 0), 0u) << err;
+  EXPECT_EQ(run_sim("--trace / -q", err), 2);  // a folder: not "an empty file"
+  EXPECT_EQ(err.rfind("ff-sim: /: is a folder, not a file", 0), 0u) << err;
 }
 
 TEST(FfSim, BadUsageExitsWith2AndHelpWith0) {
