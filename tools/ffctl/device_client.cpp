@@ -280,7 +280,7 @@ bool write_frame_file(const std::string& path, const Message& m, const std::vect
     out << hex;
   }
   out << "\n";
-  if (n == 0) return error = "cannot encode the frame for " + path, false;  // a message the codec refuses: a bug
+  if (n == 0) return error = "cannot encode the frame for " + path, false;  // a guard: what came over the protocol fits
   return host::write_file_atomically(path, out.str(), error);
 }
 

@@ -2,7 +2,7 @@
 // An output file written as NAME.partial and renamed to NAME only when the
 // tool commits it, so a failed or killed run never leaves a half file under
 // the real name (docs/tools.md). Uncommitted, the partial file is removed.
-// A failure keeps its reason (the errno of the first write, close or rename
+// A failure keeps its reason (the errno of the first write, or of the rename,
 // that failed) for the tool's message: "cannot write out.csv: No space left on device".
 #include <fstream>
 #include <memory>

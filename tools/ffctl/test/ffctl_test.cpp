@@ -846,8 +846,8 @@ TEST(Ffctl, ATicksFileReadsLikeEveryTraceFile) {
   std::filesystem::remove(ticks_path_for(path));
   Recording no_ticks;
   EXPECT_FALSE(read_recording(path, no_ticks, error));
-  EXPECT_EQ(error, ticks_path_for(path) + ": cannot open: No such file or directory (ffctl record writes it next to the "
-                   "trace)");
+  EXPECT_EQ(error, ticks_path_for(path) +
+                       ": cannot open: No such file or directory (ffctl record writes it next to the trace)");
   std::filesystem::remove(path);
   Recording nothing;
   EXPECT_FALSE(read_recording(path, nothing, error));
