@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "support/file_size_limit.hpp"
+#include "support/scratch_path.hpp"
 
 namespace ff::host {
 namespace {
@@ -30,7 +31,7 @@ std::string read(const std::filesystem::path& p) {
 }
 
 TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ff_output_file_test";
+  const std::filesystem::path dir = support::scratch_path("output_file_test");
   std::filesystem::create_directories(dir);
   const std::filesystem::path path = dir / "out.csv", partial = dir / "out.csv.partial";
   std::filesystem::remove(path);
@@ -82,7 +83,7 @@ TEST(OutputFile, AppearsUnderItsNameOnlyWhenCommitted) {
 
 TEST(OutputFile, AWholeFileWrittenToAFifoGoesIntoItNotOverIt) {
   // Found writing --profile-out /dev/full as root: the rename replaced the device with a regular file.
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ff_output_fifo_test";
+  const std::filesystem::path dir = support::scratch_path("output_fifo_test");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::filesystem::path fifo = dir / "fifo";
@@ -101,7 +102,7 @@ TEST(OutputFile, AWholeFileWrittenToAFifoGoesIntoItNotOverIt) {
 }
 
 TEST(ToolOutput, AFileIsCommittedAtomicallyADeviceWrittenIntoAFolderRefused) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ff_tool_output_test";
+  const std::filesystem::path dir = support::scratch_path("tool_output_test");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::filesystem::path path = dir / "out.csv";
@@ -159,7 +160,7 @@ TEST(ToolOutput, AFileIsCommittedAtomicallyADeviceWrittenIntoAFolderRefused) {
 }
 
 TEST(ToolOutput, AWriteThatFailsMidwayKeepsItsReasonNotALaterErrno) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ff_tool_output_full";
+  const std::filesystem::path dir = support::scratch_path("tool_output_full");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "out.csv").string();
@@ -199,7 +200,7 @@ TEST(ToolOutput, AWriteThatFailsMidwayKeepsItsReasonNotALaterErrno) {
 }
 
 TEST(ReasonedFileBuffer, KeepsTheFirstReasonNotALaterOne) {
-  const std::string path = (std::filesystem::temp_directory_path() / "ff_reasoned_buffer").string();
+  const std::string path = support::scratch_path("reasoned_buffer");
   ReasonedFileBuffer buffer;
   ASSERT_NE(buffer.open(path, std::ios::out), nullptr);
   EXPECT_EQ(buffer.first_error(), 0);
