@@ -10,13 +10,9 @@
 
 namespace ff::host {
 
-namespace {
-
 std::string cannot_write(const std::string& path, int error) {
   return "cannot write " + path + ": " + (error != 0 ? std::strerror(error) : "a write failed");
 }
-
-}  // namespace
 
 void ReasonedFileBuffer::note_failure() {
   if (first_error_ == 0) first_error_ = errno;

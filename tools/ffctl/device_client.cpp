@@ -383,9 +383,7 @@ RecordingWriter::~RecordingWriter() {
 }
 
 bool RecordingWriter::note_failure(File f) {
-  if (failure_.empty()) {
-    failure_ = "cannot write " + names_[f] + ": " + (errno != 0 ? std::strerror(errno) : "a write failed");
-  }
+  if (failure_.empty()) failure_ = host::cannot_write(names_[f], errno);
   return false;
 }
 

@@ -11,6 +11,9 @@
 
 namespace ff::host {
 
+// "cannot write PATH: REASON", the reason from an errno (0: "a write failed"): every tool's words for it.
+std::string cannot_write(const std::string& path, int error);
+
 // A std::filebuf that keeps the errno of its first failed write: a stream
 // only keeps badbit, and errno is overwritten long before the tool reports
 // (and a later write may fail for another reason, or succeed once space is freed).
