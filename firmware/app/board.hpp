@@ -22,6 +22,8 @@ class Board {
   virtual bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size, UdpEndpoint& from) = 0;
   // False: the send timed out (no ARP answer), after a bounded wait (host_link_limits.hpp).
   virtual bool udp_send(const UdpEndpoint& to, const uint8_t* data, size_t size) = 0;
+  // False: no network chip answered at start-up; UDP is off until reset.
+  virtual bool udp_available() const { return true; }
   // One 64-byte report of the USB HID host channel, if one is waiting.
   virtual bool hid_receive(uint8_t* report64) = 0;
   virtual void hid_send(const uint8_t* report64) = 0;

@@ -104,6 +104,7 @@ protocol::DeviceCounts FirmwareApp::device_counts(const FirmwareCounters& c) con
   d[DeviceCount::ForceRezeros] = load_cells_.rezeros();
   d[DeviceCount::ForceRezerosRefused] = load_cells_.rezeros_refused();
   d[DeviceCount::ForcePeriodsMissed] = load_cells_.missed_periods();
+  d[DeviceCount::UdpUnavailable] = board_.udp_available() ? 0 : 1;
   return d;
 }
 
@@ -138,6 +139,7 @@ void FirmwareApp::loop(uint32_t now_us) {
   if (sweep_.running()) sweep_.step(now_us, step);
 
   if (streaming_.load(std::memory_order_relaxed)) stream(now_us, false);
+  hid_out_.drain(board_);  // what the SEREMU queue had no room for last pass
   if (ticking) board_.watchdog_kick();
 }
 
@@ -298,9 +300,8 @@ bool FirmwareApp::send(Channel channel) {
     if (udp_peer_.reachable() && !board_.udp_send(udp_peer_.endpoint(), frame_, n)) udp_peer_.send_failed();
     return true;  // datagrams are not queued: a lost one is the network's
   }
-  const size_t count = protocol::split_into_reports(frame_, n, reports_, protocol::kMaxHidReports);
-  if (board_.hid_tx_room() < count) return false;  // whole frames or nothing: the host reassembles
-  for (size_t i = 0; i < count; ++i) board_.hid_send(reports_[i]);
+  if (!hid_out_.push(frame_, n)) return false;  // whole frames or nothing: the host reassembles
+  hid_out_.drain(board_);
   return true;
 }
 

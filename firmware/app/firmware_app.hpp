@@ -15,6 +15,7 @@
 
 #include "firmware/app/board.hpp"
 #include "firmware/app/cycle_histogram.hpp"
+#include "firmware/app/hid_outbox.hpp"
 #include "firmware/app/tick_ring.hpp"
 #include "firmware/app/udp_peer.hpp"
 #include "frictionfield/bus/adc.hpp"
@@ -180,7 +181,7 @@ class FirmwareApp {
   protocol::Message in_;   // large: members, not on the loop's stack
   protocol::Message out_;
   uint8_t frame_[protocol::kMaxFrame];  // a datagram in, then any frame out
-  uint8_t reports_[protocol::kMaxHidReports][protocol::kHidReportBytes];
+  HidOutbox hid_out_;
 };
 
 }  // namespace ff::firmware

@@ -117,20 +117,27 @@ class TeensyBoard final : public ff::firmware::Board {
     Mouse.moveTo(static_cast<uint16_t>(x), static_cast<uint16_t>(y));
     return true;
   }
+  // Without a W5200 (absent, unpowered, or hung: it needs a reset pulse this
+  // board cannot give, w5100.cpp) udp.begin() finds no socket, and every later
+  // EthernetUDP call would index the library's socket state past its end
+  // (socket.cpp socketRecvAvailable): the socket is left alone until reset.
+  void open_udp() { udp_open_ = udp.begin(kUdpPort) == 1; }
+  bool udp_available() const override { return udp_open_; }
   bool udp_receive(uint8_t* buffer, size_t capacity, size_t& size, ff::firmware::UdpEndpoint& from) override {
+    if (!udp_open_) return false;
     const int n = udp.parsePacket();
     if (n <= 0) return false;
     const IPAddress ip = udp.remoteIP();
     from = {static_cast<uint32_t>(ip), udp.remotePort()};
-    if (static_cast<size_t>(n) > capacity) {  // too long for any message: read and drop
-      while (udp.available()) udp.read();
-      size = 0;
+    if (static_cast<size_t>(n) > capacity) {  // too long for any message: dropped by the next parsePacket()
+      size = 0;  // in one SPI transaction (EthernetUdp.cpp read(NULL, remaining)), not a byte at a time
       return true;  // an empty frame: answered as malformed
     }
     size = static_cast<size_t>(udp.read(buffer, capacity));
     return true;
   }
   bool udp_send(const ff::firmware::UdpEndpoint& to, const uint8_t* data, size_t size) override {
+    if (!udp_open_) return false;
     if (!udp.beginPacket(IPAddress(to.ip), to.port)) return false;
     udp.write(data, size);
     return udp.endPacket() == 1;  // bounded by Ethernet.setRetransmissionTimeout/Count (setup)
@@ -165,6 +172,7 @@ class TeensyBoard final : public ff::firmware::Board {
 
  private:
   uint32_t last_kick_ms_ = 0;
+  bool udp_open_ = false;
 };
 
 TeensySpi spi_bus;
@@ -234,7 +242,7 @@ void setup() {
   Ethernet.begin(kMac, kIp);
   Ethernet.setRetransmissionTimeout(ff::firmware::kW5200RetransmissionMs);
   Ethernet.setRetransmissionCount(ff::firmware::kW5200Retries);
-  udp.begin(kUdpPort);
+  board.open_udp();
   Mouse.screenSize(static_cast<uint16_t>(ff::kScreenWidthPx), static_cast<uint16_t>(ff::kScreenHeightPx));
   pipeline.set_clock(micros_for_core);
   app.begin(micros(), ff::firmware::wiring_calibration());

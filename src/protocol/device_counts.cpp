@@ -17,6 +17,7 @@ const char* to_string(DeviceCount c) {
     case DeviceCount::ForceRezeros: return "force_rezeros";
     case DeviceCount::ForceRezerosRefused: return "force_rezeros_refused";
     case DeviceCount::ForcePeriodsMissed: return "force_periods_missed";
+    case DeviceCount::UdpUnavailable: return "udp_unavailable";
     case DeviceCount::kCount: break;
   }
   return "?";

@@ -4,17 +4,19 @@
 
 namespace ff::protocol {
 
+void fill_report(const uint8_t* frame, size_t size, size_t index, uint8_t* report) {
+  const size_t offset = index * kHidChunkBytes;
+  const size_t chunk = size - offset < kHidChunkBytes ? size - offset : kHidChunkBytes;
+  std::memset(report, 0, kHidReportBytes);
+  report[0] = static_cast<uint8_t>((index + 1 == reports_for(size) ? 0x80u : 0u) | index);
+  std::memcpy(&report[1], frame + offset, chunk);
+}
+
 size_t split_into_reports(const uint8_t* frame, size_t size, uint8_t (*reports)[kHidReportBytes],
                           size_t max_reports) {
-  const size_t n = (size + kHidChunkBytes - 1) / kHidChunkBytes;
+  const size_t n = reports_for(size);
   if (frame == nullptr || size == 0 || n > max_reports || n > 0x7F) return 0;
-  for (size_t i = 0; i < n; ++i) {
-    const size_t offset = i * kHidChunkBytes;
-    const size_t chunk = size - offset < kHidChunkBytes ? size - offset : kHidChunkBytes;
-    std::memset(reports[i], 0, kHidReportBytes);
-    reports[i][0] = static_cast<uint8_t>((i + 1 == n ? 0x80u : 0u) | i);
-    std::memcpy(&reports[i][1], frame + offset, chunk);
-  }
+  for (size_t i = 0; i < n; ++i) fill_report(frame, size, i, reports[i]);
   return n;
 }
 

@@ -478,6 +478,44 @@ TEST(FirmwareApp, QueryConditionAnswersWhatRendersNow) {
   EXPECT_FLOAT_EQ(echoes[1].condition.strength, 0.66f);
 }
 
+// Over USB, where the SEREMU queue takes 6 reports: a scene of 8 elements
+// with 16-point paths and a 16-point calibration is 22 reports long.
+TEST(FirmwareApp, QueryConditionOverUsbAnswersWithTheLargestScene) {
+  Device d;
+  Message set = condition(protocol::ConditionKind::General, 1.0f, 4);
+  set.condition.scene.rendering = Rendering::Directional;
+  set.condition.scene.evaluation = Evaluation::Table;
+  set.condition.scene.table = {16.0f, TableStorage::Float32, TableSource::TabulatedGradient};
+  for (int e = 0; e < kMaxSceneElements; ++e) {
+    Vec2 points[kMaxPolylinePoints];
+    for (int i = 0; i < kMaxPolylinePoints; ++i) points[i] = {50.0f * i, 100.0f + 40.0f * e + (i % 2) * 10.0f};
+    ASSERT_TRUE(set.condition.scene.add(FieldElement::path_sink(PathCurve::polyline(points, kMaxPolylinePoints), 0.1f)));
+  }
+  DacCalibration& cal = set.condition.calibration;
+  cal.count = kMaxCalibrationPoints;
+  for (int i = 0; i < kMaxCalibrationPoints; ++i) {
+    cal.amplitude[i] = static_cast<float>(i) / (kMaxCalibrationPoints - 1);
+    cal.code[i] = 200.0f * static_cast<float>(i);
+  }
+  d.board.send_hid(set);
+  d.run_until(2000000);  // prepared
+  d.board.send_hid(command(MessageType::QueryCondition, 5));
+  d.run_until(2100000);
+  const std::vector<Message> acks = d.board.hid_of(MessageType::Ack);
+  ASSERT_EQ(acks.size(), 1u);
+  ASSERT_EQ(acks[0].ack.status, protocol::AckStatus::Ok);
+  uint8_t frame[protocol::kMaxFrame];
+  Message echo_of_set = set;
+  echo_of_set.type = MessageType::Condition;
+  ASSERT_EQ(protocol::reports_for(protocol::encode(echo_of_set, frame, sizeof frame)), 22u);
+  const std::vector<Message> echoes = d.board.hid_of(MessageType::Condition);
+  ASSERT_EQ(echoes.size(), 1u);
+  EXPECT_EQ(echoes[0].sequence, 5);
+  EXPECT_EQ(echoes[0].condition.scene.element_count, kMaxSceneElements);
+  EXPECT_EQ(echoes[0].condition.calibration.count, kMaxCalibrationPoints);
+  EXPECT_EQ(d.counters().hid_frames_dropped, 0u);
+}
+
 TEST(FirmwareApp, NoForceBeforeAHostHasSpoken) {
   Device d;
   d.run_until(500000);
@@ -705,7 +743,7 @@ TEST(FirmwareApp, StreamsEveryTickAndReportWithoutLossWhileTheHostReads) {
 TEST(FirmwareApp, AStreamedRecordWaitsAtMostTheFlushTime) {
   // Every 40th tick (50 per second): a Ticks message of 32 would take 0.64 s
   // to fill; a record goes out within kStreamFlushUs instead, also after the
-  // host stopped reading for 50 ms.
+  // host stopped reading for 0.6 s (long enough to fill the device's outbox).
   Device d;
   d.zforce_model.load_trace(stroke());
   Message start = command(MessageType::StartStream);
@@ -713,14 +751,14 @@ TEST(FirmwareApp, AStreamedRecordWaitsAtMostTheFlushTime) {
   d.board.send_hid(start);
   d.run_until(1300000);
   d.host_reads = false;
-  d.run_until(1350000);
+  d.run_until(1900000);
   d.host_reads = true;
-  d.run_until(1600000);
+  d.run_until(2200000);
   size_t records = 0;
   for (size_t i = 0; i < d.board.hid_out.size(); ++i) {
     const Message& m = d.board.hid_out[i];
     const uint32_t sent = d.board.hid_out_us[i];
-    if (sent >= 1300000 && sent < 1360000) continue;  // waited for the host
+    if (sent >= 1300000 && sent < 1960000) continue;  // waited for the host, then in the outbox
     if (m.type == MessageType::Ticks) {
       for (int k = 0; k < m.ticks.count; ++k, ++records) {
         ASSERT_LE(sent - m.ticks.ticks[k].t_us, kStreamFlushUs + 100u) << sent;
@@ -742,20 +780,48 @@ TEST(FirmwareApp, AStreamedRecordWaitsAtMostTheFlushTime) {
   EXPECT_EQ(d.counters().hid_frames_dropped, missing);
 }
 
+// A host that stops reading for 0.6 s, long enough to fill the outbox: then
+// 24 reports with their taken times wait, a Samples message of 7 reports
+// (more than the SEREMU queue's 6).
+TEST(FirmwareApp, SamplesFlowAgainAfterTheHostPausedReading) {
+  Device d;
+  d.zforce_model.load_trace(stroke());
+  start_stream(d, 1100000, 40);
+  d.run_until(1200000);
+  d.host_reads = false;
+  d.run_until(1800000);
+  d.host_reads = true;
+  const uint32_t reports_at_resume = d.app->sensor().count(ZforceCount::Samples);
+  d.run_until(2600000);
+  const uint32_t reports_since = d.app->sensor().count(ZforceCount::Samples) - reports_at_resume;
+  ASSERT_GT(reports_since, 100u);
+  size_t samples_after = 0;
+  bool a_full_message = false;
+  const std::vector<Message>& out = d.board.hid_out;
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (out[i].type != MessageType::Samples) continue;
+    a_full_message |= out[i].samples.count == protocol::kMaxSamplesPerMessage && out[i].samples.has_taken_times;
+    for (int k = 0; k < out[i].samples.count; ++k) samples_after += out[i].samples.samples[k].t_us >= 1800000;
+  }
+  EXPECT_TRUE(a_full_message);
+  // Lost at most while the outbox drains (~25 ms, 1 report per ms): counted as overruns.
+  EXPECT_GE(samples_after + 10, reports_since) << "the stream stalled: " << d.counters().stream_overruns << " overruns";
+}
+
 TEST(FirmwareApp, StoppingWhileTheHostIsNotReadingCountsWhatIsDroppedOnce) {
   Device d;
   d.zforce_model.load_trace(stroke());
   const uint32_t reports_before = start_stream(d, 1100000, 1);
   d.run_until(1200000);
-  d.host_reads = false;
-  const uint32_t reports_streamed = stop_stream(d, 1250000) - reports_before;
+  d.host_reads = false;  // long enough to fill the device's outbox too
+  const uint32_t reports_streamed = stop_stream(d, 1300000) - reports_before;
   d.board.send_hid(command(MessageType::StopStream));  // asked again: nothing is counted twice
-  d.run_until(1260000);
+  d.run_until(1310000);
   d.host_reads = true;
   d.run_until(1400000);
-  // Ticks 1.1 .. 1.2495 s (300) and every report: each sent or counted.
+  // Ticks 1.1 .. 1.2995 s (400) and every report: each sent or counted.
   EXPECT_GT(d.counters().stream_overruns, 0u);
-  EXPECT_EQ(ticks_received(d).size() + samples_received(d) + d.counters().stream_overruns, 300u + reports_streamed);
+  EXPECT_EQ(ticks_received(d).size() + samples_received(d) + d.counters().stream_overruns, 400u + reports_streamed);
 
   // A new stream starts clean: its reports arrive, each with the tick that took it.
   const size_t messages_before = d.board.hid_out.size();

@@ -308,20 +308,22 @@ TEST(Codec, StatusEndsWithTheDeviceCountsTheSensorStateAndItsCounts) {
   m.type = MessageType::Status;
   m.status.device[DeviceCount::ConditionsSet] = 0x01020304;
   m.status.device[DeviceCount::ForcePeriodsMissed] = 0xA0B0C0D0;
+  m.status.device[DeviceCount::UdpUnavailable] = 1;
   m.status.sensor_state = SensorState::Failed;
   m.status.sensor_count_n = 2;
   m.status.sensor_counts[0] = 5;
   m.status.sensor_counts[1] = 0x0100;
   m.status.sensor_counts[2] = 77;  // beyond the count: not sent
   const std::vector<uint8_t> f = frame_of(m);
-  std::vector<uint8_t> tail = {13, 0x04, 0x03, 0x02, 0x01};
+  std::vector<uint8_t> tail = {14, 0x04, 0x03, 0x02, 0x01};
   tail.insert(tail.end(), 11 * 4, 0);
-  for (uint8_t b : {0xD0, 0xC0, 0xB0, 0xA0, 3, 2, 5, 0, 0, 0, 0, 1, 0, 0}) tail.push_back(b);
+  for (uint8_t b : {0xD0, 0xC0, 0xB0, 0xA0, 1, 0, 0, 0, 3, 2, 5, 0, 0, 0, 0, 1, 0, 0}) tail.push_back(b);
   ASSERT_GT(f.size(), tail.size() + 2);
   EXPECT_EQ(std::vector<uint8_t>(f.end() - 2 - tail.size(), f.end() - 2), tail);
   const Message out = round_trip(m);
   EXPECT_EQ(out.status.device[DeviceCount::ConditionsSet], 0x01020304u);
   EXPECT_EQ(out.status.device[DeviceCount::ForcePeriodsMissed], 0xA0B0C0D0u);
+  EXPECT_EQ(out.status.device[DeviceCount::UdpUnavailable], 1u);
   EXPECT_EQ(out.status.sensor_state, SensorState::Failed);
   ASSERT_EQ(out.status.sensor_count_n, 2);
   EXPECT_EQ(out.status.sensor_counts[1], 0x0100u);

@@ -140,6 +140,50 @@ TEST(Binding, AReplyAddressThatNeverAnswersKeepsTheLoopUnderTheWatchdog) {
   EXPECT_EQ(st.status.watchdog_trips, 0u);
 }
 
+TEST(Binding, WithoutAW5200TheSocketIsLeftAloneAndUsbStillAnswers) {
+  Options no_chip;
+  no_chip.w5200_present = false;
+  BindingRig rig(no_chip);
+  rig.devices.zforce.load_trace(back_and_forth(900000, 2500000));
+  rig.boot();
+  rig.run_until(1000000);
+  Message q;
+  q.type = MessageType::QueryStatus;
+  rig.udp_send(q);  // nobody can hear it
+  rig.usb_send(q);
+  rig.run_until(1300000);
+  EXPECT_EQ(udp_calls_without_socket(), 0u) << "EthernetUDP called on no socket: socket.cpp indexes past its state";
+  std::vector<Message> status;
+  for (const Message& m : rig.usb_received()) {
+    if (m.type == MessageType::Status) status.push_back(m);
+  }
+  ASSERT_EQ(status.size(), 1u);
+  EXPECT_EQ(status[0].status.device[ff::protocol::DeviceCount::UdpUnavailable], 1u);
+  EXPECT_TRUE(rig.udp_received().empty());
+}
+
+TEST(Binding, WithAW5200UdpIsAvailable) {
+  BindingRig rig;
+  rig.boot();
+  rig.run_until(1000000);
+  const Message st = rig.udp_status();
+  ASSERT_EQ(st.type, MessageType::Status);
+  EXPECT_EQ(st.status.device[ff::protocol::DeviceCount::UdpUnavailable], 0u);
+}
+
+TEST(Binding, ADatagramTooLongForAnyMessageIsDroppedWithoutReadingItByteByByte) {
+  BindingRig rig;
+  rig.boot();
+  rig.run_until(1000000);
+  rig.network.host_send(std::vector<uint8_t>(2000, 0x46));  // a W5200 socket buffer's worth
+  rig.run_until(1100000);
+  EXPECT_LT(longest_loop_pass_us(), 2000u) << "one SPI transaction per byte: ~5 us each";
+  const std::vector<Message> replies = rig.udp_received();
+  ASSERT_FALSE(replies.empty());
+  EXPECT_EQ(replies[0].type, MessageType::Error);  // an empty frame: malformed
+  EXPECT_EQ(rig.udp_status().type, MessageType::Status);  // and the next datagram is read whole
+}
+
 TEST(Binding, TheLoadCellsReadTheirOwnPins) {
   BindingRig rig;
   rig.devices.use_pin_counts = true;

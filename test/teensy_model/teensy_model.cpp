@@ -101,6 +101,8 @@ struct State {
   uint16_t rtr_ms = 200;
   uint8_t rcr = 8;
   UdpNetwork* network = nullptr;
+  bool udp_socket = false;  // EthernetUDP::begin() found one
+  uint32_t udp_calls_without_socket = 0;
   std::vector<uint8_t> udp_in;
   size_t udp_in_pos = 0;
   uint32_t udp_in_ip = 0;
@@ -345,6 +347,7 @@ uint64_t longest_loop_pass_us() { return s().longest_pass; }
 uint32_t ethernet_chip_select() { return s().eth_cs; }
 uint16_t retransmission_timeout_ms() { return s().rtr_ms; }
 uint8_t retransmission_count() { return s().rcr; }
+uint32_t udp_calls_without_socket() { return s().udp_calls_without_socket; }
 uint8_t timer_priority() { return s().timer_priority; }
 uint32_t serial_available_calls() { return s().serial_available_calls; }
 std::vector<uint8_t> output_pins() {
@@ -626,46 +629,73 @@ int TwoWire::read() {
 // ---- Ethernet ----
 void EthernetClass::init(uint8_t sspin) { s().eth_cs = sspin; }
 void EthernetClass::begin(uint8_t*, IPAddress) {
+  delay(560);  // w5100.cpp init(): for the reset chip on many shields, chip or not
   pinMode(static_cast<uint8_t>(s().eth_cs), OUTPUT);  // w5100.h initSS()
   digitalWriteFast(static_cast<uint8_t>(s().eth_cs), HIGH);
-  delay(560);  // w5100.cpp init(): for the reset chip on many shields
 }
 void EthernetClass::setRetransmissionTimeout(uint16_t milliseconds) { s().rtr_ms = milliseconds; }
 void EthernetClass::setRetransmissionCount(uint8_t num) { s().rcr = num; }
 
-uint8_t EthernetUDP::begin(uint16_t) { return 1; }
+namespace {
+// socket.cpp indexes its socket state with the socket number, unchecked: a
+// call without a socket reads and writes past the array on the board.
+bool udp_socket_or_count() {
+  if (s().udp_socket) return true;
+  ++s().udp_calls_without_socket;
+  return false;
+}
+}  // namespace
+
+uint8_t EthernetUDP::begin(uint16_t) {
+  s().udp_socket = s().options.w5200_present;  // socket.cpp socketBegin: none without a chip
+  return s().udp_socket ? 1 : 0;
+}
 int EthernetUDP::parsePacket() {
   auto& st = s();
+  if (!udp_socket_or_count()) return 0;
   spend(5);
+  if (st.udp_in_pos < st.udp_in.size()) spend(5);  // the rest of the last datagram dropped: read(NULL, remaining)
   st.udp_in.clear();
   st.udp_in_pos = 0;
   if (!st.network || !st.network->receive(st.udp_in, st.udp_in_ip, st.udp_in_port)) return 0;
   return static_cast<int>(st.udp_in.size());
 }
-int EthernetUDP::available() { return static_cast<int>(s().udp_in.size() - s().udp_in_pos); }
-int EthernetUDP::read() { return available() > 0 ? s().udp_in[s().udp_in_pos++] : -1; }
+int EthernetUDP::available() {
+  if (!udp_socket_or_count()) return 0;
+  return static_cast<int>(s().udp_in.size() - s().udp_in_pos);
+}
+int EthernetUDP::read() {
+  if (available() <= 0) return -1;
+  spend(5);  // one socketRecv of one byte: a whole SPI transaction
+  return s().udp_in[s().udp_in_pos++];
+}
 int EthernetUDP::read(uint8_t* buffer, size_t len) {
-  const size_t n = std::min(len, static_cast<size_t>(available()));
-  std::copy(s().udp_in.begin() + static_cast<long>(s().udp_in_pos),
-            s().udp_in.begin() + static_cast<long>(s().udp_in_pos + n), buffer);
+  const size_t n = std::min(len, static_cast<size_t>(std::max(available(), 0)));
+  if (buffer != nullptr) {  // NULL: skipped (socket.cpp socketRecv)
+    std::copy(s().udp_in.begin() + static_cast<long>(s().udp_in_pos),
+              s().udp_in.begin() + static_cast<long>(s().udp_in_pos + n), buffer);
+  }
   s().udp_in_pos += n;
   spend(n / 8 + 1);
-  return static_cast<int>(n);
+  return n > 0 ? static_cast<int>(n) : -1;
 }
 IPAddress EthernetUDP::remoteIP() { return IPAddress(s().udp_in_ip); }
 uint16_t EthernetUDP::remotePort() { return s().udp_in_port; }
 int EthernetUDP::beginPacket(IPAddress ip, uint16_t port) {
+  if (!udp_socket_or_count()) return 0;
   s().udp_out_ip = ip;
   s().udp_out_port = port;
   s().udp_out.clear();
   return 1;
 }
 size_t EthernetUDP::write(const uint8_t* buffer, size_t size) {
+  if (!udp_socket_or_count()) return 0;
   s().udp_out.insert(s().udp_out.end(), buffer, buffer + size);
   return size;
 }
 int EthernetUDP::endPacket() {  // socket.cpp socketSendUDP
   auto& st = s();
+  if (!udp_socket_or_count()) return 0;
   spend(20 + st.udp_out.size() / 8);
   if (st.network && st.network->deliver(st.udp_out_ip, st.udp_out_port, st.udp_out)) return 1;
   // No ARP answer: the W5200 retries RCR times every RTR while the library busy-waits, yielding.

@@ -20,6 +20,7 @@ enum class DeviceCount : uint8_t {
   ForceRezeros,           // the zero re-taken while no finger was on the plate
   ForceRezerosRefused,    // drift over the limit: something rests on the plate, left visible
   ForcePeriodsMissed,     // readings later than their period (the main loop was busy)
+  UdpUnavailable,         // 1: no network chip answered at start-up, so no UDP until reset
   kCount
 };
 

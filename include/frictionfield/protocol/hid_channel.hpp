@@ -22,6 +22,12 @@ constexpr size_t kHidReportBytes = 64;
 constexpr size_t kHidChunkBytes = kHidReportBytes - 1;
 constexpr size_t kMaxHidReports = (kMaxFrame + kHidChunkBytes - 1) / kHidChunkBytes;
 
+// How many reports a frame of `size` bytes takes.
+constexpr size_t reports_for(size_t size) { return (size + kHidChunkBytes - 1) / kHidChunkBytes; }
+
+// Report `index` of `frame` (index < reports_for(size) <= 0x7F).
+void fill_report(const uint8_t* frame, size_t size, size_t index, uint8_t* report);
+
 // Splits `frame` into reports; returns how many were written to `reports`.
 size_t split_into_reports(const uint8_t* frame, size_t size, uint8_t (*reports)[kHidReportBytes],
                           size_t max_reports);

@@ -29,7 +29,14 @@
 // - yield() (yield.cpp): Serial.available() while YIELD_CHECK_USB_SERIAL is set.
 // - Ethernet (w5100.cpp init: delay(560); socket.cpp socketSendUDP: waits
 //   for SEND_OK or TIMEOUT, calling yield()): an unanswered ARP costs
-//   RTR x (RCR + 1), defaults 200 ms x 9.
+//   RTR x (RCR + 1), defaults 200 ms x 9. Without a chip (w5200_present
+//   false) Ethernet.begin() returns after w5100.cpp's delay and
+//   EthernetUDP::begin() returns 0 (socket.cpp socketBegin: no socket); any
+//   later call on that socket would index the library's socket state past its
+//   end (socketRecvAvailable), so the model counts them instead.
+//   parsePacket() discards what the last datagram left unread in one SPI
+//   transaction (read(NULL, remaining)); read() of one byte is one SPI
+//   transaction (~5 us at 30 MHz with its address phase).
 // - Wire at 416 kHz (WireKinetis.cpp, F_BUS 60 MHz): 9 bit times a byte.
 // - analogRead on a pin the firmware drives as an output reads that level.
 #include <cstddef>
@@ -65,6 +72,7 @@ struct Options {
   uint32_t usb_host_attach_ms = 150; // when the host configures the device (usb_configuration)
   bool host_polls = true;            // the USB host reads IN endpoints every 1 ms
   bool keep_dac_history = true;      // false (ff-sim): only the latest state, memory bounded
+  bool w5200_present = true;         // false: no WIZ820io answers on the SPI bus
 };
 
 // ---- set-up ----
@@ -103,6 +111,7 @@ uint64_t longest_loop_pass_us();          // the longest loop() call, interrupts
 uint32_t ethernet_chip_select();
 uint16_t retransmission_timeout_ms();
 uint8_t retransmission_count();
+uint32_t udp_calls_without_socket();    // EthernetUDP calls after begin() found no socket
 uint8_t timer_priority();
 uint32_t serial_available_calls();       // from anywhere: yield() or the binding
 std::vector<uint8_t> output_pins();       // pins set to OUTPUT

@@ -36,7 +36,7 @@ FAULT_NAMES = ["non_finite_coordinate", "off_screen", "non_increasing_time", "ju
 DEVICE_COUNT_NAMES = ["conditions_set", "conditions_refused", "sensor_profiles_set", "sensor_profiles_refused",
                       "tick_stalls", "hid_frames_dropped", "sensor_restarts", "mouse_moves_skipped",
                       "udp_send_failures", "force_read_errors", "force_rezeros", "force_rezeros_refused",
-                      "force_periods_missed"]
+                      "force_periods_missed", "udp_unavailable"]
 SENSOR_STATES = ["booting", "configuring", "running", "failed", "unknown"]
 ZFORCE_COUNT_NAMES = ["frames_read", "samples", "wrong_header", "length_over_max", "truncated", "malformed_tag",
                       "unknown_tag", "impossible_value", "bus_error", "resync_bytes", "other_finger_ignored",

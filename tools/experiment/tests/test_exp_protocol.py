@@ -63,7 +63,7 @@ def test_status_tail_round_trips_and_a_firmware_1_0_status_has_none():
     m = protocol.decode(protocol.status(2, faults=[], device=device, sensor_state=3, sensor_counts=sensor))[1]
     assert m.device == device and m.sensor_state == "failed" and m.sensor_counts == sensor
     c = m.counters()
-    assert c["conditions_refused"] == 2 and c["force_periods_missed"] == len(device)
+    assert c["conditions_refused"] == 2 and c["force_periods_missed"] == 13 and c["udp_unavailable"] == len(device)
     assert "conditions_set" not in c and "force_rezeros" not in c  # routine, not news
     assert c["zforce_bus_error"] == 3 and "zforce_frames_read" not in c and "zforce_samples" not in c
 
