@@ -229,7 +229,7 @@ FF_TICK_INLINE void Tracker::accept(const SensorSample& s, bool need_filter) {
     direction_ = position_;  // its estimate and its uncertainty, this report included
   } else {
     if (widen > 1.0f) {
-      direction_.widen(widen);
+      direction_.widen(widen, noise_);
       s_variance = direction_.innovation_variance(noise_);
     }
     direction_.update(z, 1.0f / s_variance);

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -117,9 +118,11 @@ struct Reference {
     for (int i = 0; i < kN; ++i)
       for (int j = 0; j < kN; ++j) P[i][j] = FPFt[i][j] + Q[i][j];
   }
-  // The finger's and the wander's variances times w, the tremor's own left alone.
+  // The finger's variances times w, the wander's up to 100 times its
+  // stationary variance at most, the tremor's own left alone.
   void widen(double w) {
-    const double f[kN] = {w, w, w, 1.0, 1.0};
+    const double wander_factor = has_wander ? std::clamp(100.0 * wander / P[2][2], 1.0, w) : w;
+    const double f[kN] = {w, w, wander_factor, 1.0, 1.0};
     for (int i = 0; i < kN; ++i)
       for (int j = 0; j < kN; ++j) P[i][j] *= std::sqrt(f[i] * f[j]);
   }
@@ -196,7 +199,7 @@ TEST_P(FingerKalmanAgainstReference, StatesAndCovariancesAgree) {
     ref.predict(dt, phi);
     ref_y.predict(dt, phi);
     if (i % 37 == 0) {  // a change of motion now and then
-      k.widen(8.0f);
+      k.widen(8.0f, noise);
       ref.widen(8.0);
       ref_y.widen(8.0);
     }
@@ -235,6 +238,35 @@ INSTANTIATE_TEST_SUITE_P(Noise, FingerKalmanAgainstReference,
                                            Case{"measured_tremor", 1.5f, 1.2f, 9.3f}),
                          [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
+// Widened, the wander's variance stops at 100 times its stationary value
+// (here 4 px^2: at most 400), its covariances by the square roots of the
+// factors; the finger's variances take the whole factor.
+TEST(FingerKalman, TheWanderIsWidenedUpTo100TimesItsStationaryVarianceAtMost) {
+  SensorProfile wandering;
+  wandering.white_noise_px = 0.5f;
+  wandering.correlated_noise_px = 2.0f;
+  wandering.correlation_time_ms = 5000.0f;
+  const ReportNoise n = ReportNoise::with_tremor(wandering);
+  FingerKalman k;
+  k.start({0.0f, 0.0f}, n, 100.0f);
+  k.P00 = 3.0f, k.P01 = 1.0f, k.P11 = 50.0f, k.P02 = -2.0f, k.P12 = 0.5f, k.P22 = 2.0f;
+  k.widen(10.0f, n);  // 20 of at most 400: the whole factor
+  EXPECT_FLOAT_EQ(k.P22, 20.0f);
+  EXPECT_FLOAT_EQ(k.P02, -20.0f);
+  EXPECT_FLOAT_EQ(k.P12, 5.0f);
+  k.widen(100.0f, n);  // 2,000 would be over 400: the wander's factor is 20, sqrt(100 x 20) its covariances'
+  EXPECT_FLOAT_EQ(k.P22, 400.0f);
+  EXPECT_NEAR(k.P02, -20.0f * std::sqrt(2000.0f), 1e-3f);
+  EXPECT_NEAR(k.P12, 5.0f * std::sqrt(2000.0f), 1e-4f);
+  EXPECT_FLOAT_EQ(k.P00, 3000.0f);
+  EXPECT_FLOAT_EQ(k.P01, 1000.0f);
+  EXPECT_FLOAT_EQ(k.P11, 50000.0f);
+  k.widen(100.0f, n);  // at the cap: the wander stays
+  EXPECT_FLOAT_EQ(k.P22, 400.0f);
+  EXPECT_NEAR(k.P02, -200.0f * std::sqrt(2000.0f), 1e-2f);
+  EXPECT_FLOAT_EQ(k.P00, 300000.0f);
+}
+
 // Every field of the filter, for comparing two of them exactly.
 std::vector<float> fields_of(const FingerKalman& k) {
   return {k.p.x,  k.p.y,  k.v.x,  k.v.y,  k.e.x,  k.e.y,  k.c.x,  k.c.y,  k.u.x,  k.u.y,
@@ -259,7 +291,7 @@ TEST(FingerKalman, StartedAgainItIsAFreshFilter) {
     support::Random rng(5, support::Stream::Noise);
     for (int i = 1; i < 40; ++i) {  // a stroke that leaves every state and covariance non-zero
       k.predict(0.005f, 2025.0f, used);
-      if (i % 9 == 0) k.widen(8.0f);
+      if (i % 9 == 0) k.widen(8.0f, used);
       const Vec2 z{10.0f + 2.0f * i + 0.8f * static_cast<float>(rng.gaussian()),
                    20.0f - 1.0f * i + 0.8f * static_cast<float>(rng.gaussian())};
       k.update(z, k.inverse_innovation(used));

@@ -120,5 +120,45 @@ TEST(Maneuver, AReversalIsFollowedSooner) {
   EXPECT_GE(without, with + 30) << "15 ms sooner";
 }
 
+// A sensor whose wander changes slowly (10 s) at 1 kHz, with tremor: each
+// change of motion widens the direction filter, and the reports see only the
+// finger plus the wander. Widened without bound, the two grew together
+// (covariances ~5e7) until the innovation's variance, their difference, was
+// rounded to 0 or below: velocities of 1e28 px/s and NaN directions, from
+// one profile that is_valid() accepts. Strokes of 2 s and rests of 1 s for a
+// minute, the speed a sinusoid's (up to 380 px/s).
+TEST(Maneuver, RepeatedWideningsStayBoundedWithASlowWander) {
+  SensorProfile slow_wander;
+  slow_wander.white_noise_px = 0.52f;
+  slow_wander.correlated_noise_px = 1.5f;
+  slow_wander.correlation_time_ms = 10000.0f;
+  slow_wander.report_rate_hz = 1000.0f;
+  slow_wander.tremor_px = 1.0f;
+  ASSERT_TRUE(is_valid(slow_wander));
+  Tracker tracker(TrackerConfig::recommended(slow_wander));
+  std::mt19937_64 rng{7};
+  std::normal_distribution<double> unit{0.0, 1.0};
+  double x = 100.0, wander = 0.0, heading = 1.0;
+  uint32_t widenings_before = 0;
+  for (uint32_t k = 0; k < 60000; ++k) {  // a report every ms
+    const double t = k * 1e-3, phase = std::fmod(t, 3.0);
+    const double speed = phase < 2.0 ? 380.0 * std::sin(M_PI * phase / 2.0) : 0.0;
+    if (phase >= 2.0 && phase < 2.001) heading = -heading;  // back and forth
+    x += heading * speed * 1e-3;
+    wander = wander * std::exp(-1e-3 / 10.0) + 1.5 * std::sqrt(1.0 - std::exp(-2e-3 / 10.0)) * unit(rng);
+    const double tremor = std::sin(2.0 * M_PI * 10.0 * t);
+    const uint32_t t_us = 1000000 + k * 1000;
+    tracker.on_sample({t_us, static_cast<float>(x + wander + tremor + 0.52 * unit(rng)),
+                       static_cast<float>(240.0 + wander + 0.52 * unit(rng)), true});
+    if (k == 1000) widenings_before = tracker.maneuvers() + tracker.stroke_ends();
+    if (k % 2 == 0) continue;
+    const TrackState& s = tracker.on_tick(t_us + 500);
+    const double v = std::hypot(s.velocity.x, s.velocity.y), d = std::hypot(s.direction.x, s.direction.y);
+    ASSERT_TRUE(std::isfinite(v) && v < 2000.0) << "report " << k << ": |v| " << v;
+    ASSERT_TRUE(std::isfinite(d) && d <= 1.0 + 1e-5) << "report " << k << ": |direction| " << d;
+  }
+  EXPECT_GT(tracker.maneuvers() + tracker.stroke_ends() - widenings_before, 40u) << "the widening this is about";
+}
+
 }  // namespace
 }  // namespace ff

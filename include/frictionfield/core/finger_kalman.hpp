@@ -109,23 +109,35 @@ struct FingerKalman {
 
   // Scales the covariance: a filter told it knows less catches up faster.
   // Not the tremor's own: a change of the finger's motion says nothing new
-  // of it (its covariance with the rest scaled by sqrt(w), which keeps the
-  // whole positive definite).
-  inline __attribute__((always_inline)) void widen(float w) {
+  // of it. The wander's only up to kMaxWanderWidening times its stationary
+  // variance, what one widening from there may reach: the reports see only
+  // the finger plus the wander, so repeated widenings would inflate both
+  // without bound (with a long correlation time nothing pulls them back)
+  // until the innovation's variance, their difference, rounds to 0 or below
+  // and the filter diverges. Each state i is scaled by f_i, each covariance
+  // by sqrt(f_i f_j): still positive definite.
+  static constexpr float kMaxWanderWidening = 100.0f;
+  inline __attribute__((always_inline)) void widen(float w, const ReportNoise& n) {
+    float w_wander = w;
+    const float wander_cap = kMaxWanderWidening * n.wander_variance;
+    if (wander && P22 * w > wander_cap) {
+      w_wander = P22 < wander_cap ? wander_cap / P22 : 1.0f;
+    }
+    const float finger_wander = std::sqrt(w * w_wander);
     P00 *= w;
     P01 *= w;
-    P02 *= w;
     P11 *= w;
-    P12 *= w;
-    P22 *= w;
+    P02 *= finger_wander;
+    P12 *= finger_wander;
+    P22 *= w_wander;
     if (tremor) {
-      const float r = std::sqrt(w);
+      const float r = std::sqrt(w), r_wander = std::sqrt(w_wander);
       P03 *= r;
       P04 *= r;
       P13 *= r;
       P14 *= r;
-      P23 *= r;
-      P24 *= r;
+      P23 *= r_wander;
+      P24 *= r_wander;
     }
   }
 
