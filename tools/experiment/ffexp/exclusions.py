@@ -26,7 +26,8 @@ def read_exclusions(folder):
     if not os.path.isfile(path):
         return {}
     out = {}
-    for line, row, idx, _ in logs._rows(path, EXCLUSION_COLUMNS):  # the reason may be left out
+    # the reason may be left out; a last row without its end is a row (editors save so)
+    for line, row, idx, _ in logs._rows(path, EXCLUSION_COLUMNS, written_by_hand=True):
         if len(row) <= idx["trial"]:
             raise logs.LogError(path, line, "no trial number")
         text = row[idx["trial"]].strip()

@@ -202,13 +202,14 @@ def torn_note(path):
     return f"{path}:{line}: the last line has no end (a write cut short)" if line else None
 
 
-def _rows(path, columns):
+def _rows(path, columns, written_by_hand=False):
     """Yields (line number, row, column index, complete) for each row, complete
     when it reaches the last column read; checks the column header. A torn last
-    line is not a row."""
+    line is not a row, unless the file is written_by_hand: an editor may save
+    the last row without its end."""
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing")
-    torn = torn_line(path)
+    torn = None if written_by_hand else torn_line(path)
     with open(path, newline="", encoding="utf-8") as f:
         reader = csv.reader(f)
         try:

@@ -68,6 +68,12 @@ def test_the_persons_file(tmp_path):
     assert exclusions.read_exclusions(str(tmp_path)) == {3: "sneezed", 180: "", 7: ""}
 
 
+def test_a_persons_file_saved_without_a_final_newline_keeps_its_last_row(tmp_path):
+    # many editors save so; it is not a write cut short, as in the program's own logs
+    (tmp_path / "exclusions.csv").write_bytes(b"trial,reason\n3,jump\n12,two-finger")
+    assert exclusions.read_exclusions(str(tmp_path)) == {3: "jump", 12: "two-finger"}
+
+
 @pytest.mark.parametrize("rows, line, what", [
     ("0,x\n", 2, "'0' is not a trial number 1..180"),
     ("1,x\n181,y\n", 3, "'181' is not a trial number 1..180"),
