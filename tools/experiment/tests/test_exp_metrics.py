@@ -121,6 +121,16 @@ def test_hit_rate_and_blocks():
     assert math.isnan(metrics.hit_rate([]))
 
 
+def test_blocks_follow_the_trial_numbers_when_trials_are_excluded():
+    # block 1 (trials 1-45) all hits, block 2 (46-90) all misses; 5 block-1 trials excluded:
+    # still 40/40 and 0/45, not the first 45 remaining trials (40 hits + 5 misses = 0.889)
+    tr = [t for t in trials_with([True] * 45 + [False] * 45) if t["trial"] not in (3, 10, 20, 30, 40)]
+    assert metrics.block_hit_rates(tr, "heightmap") == [1.0, 0.0]
+    # the second half: trials 91-135 and 136-180, here with block 2's first 9 trials excluded
+    tr = [t for t in trials_with([True] * 45 + [False] * 45, start=91) if not 136 <= t["trial"] <= 144]
+    assert metrics.block_hit_rates(tr, "heightmap") == [1.0, 0.0]
+
+
 def test_movement_samples_take_the_trial_interval_only():
     frames = dict(trial=np.array([1, 1, 1, 1, 2.0]), t=np.array([0, 1, 2, 3, 4.0]),
                   x=np.arange(5.0), y=np.arange(5.0), touch=np.array([1, 1, 0, 1, 1.0]))
