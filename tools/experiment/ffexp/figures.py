@@ -58,8 +58,11 @@ def angles(ax, participants):
         a = np.concatenate([t["angles"] for p in participants for t in p.trials if t["rendering"] == r] or [np.array([])])
         edges, h = metrics.angle_histogram(a)
         ax.step(edges[:-1], h, where="post", color=COLOURS[r], label=r)
-    for ang in metrics.PATH_ANGLES_DEG:
-        ax.axvline(ang, color="grey", ls="--", lw=0.8)
+    # the paths start and end at 0 deg and are steepest (top +, bottom -) mid-way
+    ends, up, down = metrics.PATH_ANGLES_DEG
+    ax.axvline(ends, color="grey", ls="--", lw=0.8, label="paths' ends, 0°")
+    ax.axvline(up, color="grey", ls="--", lw=0.8, label=f"paths' steepest, ±{up:.1f}°")
+    ax.axvline(down, color="grey", ls="--", lw=0.8)
     ax.set_xlim(-180, 180)
     ax.set_xlabel("movement angle (deg, 0 = right, + = up)")
     ax.set_ylabel("fraction")

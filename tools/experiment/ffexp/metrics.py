@@ -8,7 +8,7 @@ import math
 import numpy as np
 from scipy import optimize, signal
 
-from . import design
+from . import design, geometry
 
 FRAME_RATE_HZ = 80.0
 FILTER_CUTOFF_HZ = 2.0
@@ -18,7 +18,11 @@ MERGE_DISTANCE_PX = 15.0   # an x and a y reversal this close (~3 mm) are one di
 BLOCK_TRIALS = 45
 HALF_TRIALS = design.TRIALS // len(design.RENDERINGS)  # one rendering's trials: 90
 MOVING_AVERAGE_WINDOW = 10
-PATH_ANGLES_DEG = (0.0, math.degrees(math.atan2(200.0, 600.0)), -math.degrees(math.atan2(200.0, 600.0)))
+# The paths' directions (geometry.path_y: y' = 6T u (L - u) / L^3): every path
+# starts and ends at 0 deg; the top and bottom ones are steepest mid-way, at
+# +-atan(1.5 |T| / L) = +-26.6 deg (atan(|T| / L) = 18.4 deg is only their chord).
+PATH_STEEPEST_DEG = math.degrees(math.atan(1.5 * abs(geometry.RISE["top"]) / geometry.PATH_LENGTH))
+PATH_ANGLES_DEG = (0.0, PATH_STEEPEST_DEG, -PATH_STEEPEST_DEG)  # Fig. 14's reference lines
 MIN_SPEED_PX_S = 20.0      # slower frames have no meaningful direction
 
 

@@ -95,9 +95,10 @@ def test_angle_histograms_are_normalised_with_the_paths_marked(two, ax):
         np.testing.assert_allclose(line.get_xdata(), edges[:-1])
         np.testing.assert_allclose(line.get_ydata(), counts / counts.sum())
     marks = sorted(l.get_xdata()[0] for l in ax.get_lines() if l.get_linestyle() == "--")
-    rise = math.degrees(math.atan(200 / 600))
-    np.testing.assert_allclose(marks, [-rise, 0.0, rise])
-    assert ax.get_xlim() == (-180, 180) and _labels(ax) == ["heightmap", "frictionmap"]
+    steepest = math.degrees(math.atan(0.5))  # the top path's slope mid-way: 6 * 200 * 300 * 300 / 600^3
+    np.testing.assert_allclose(marks, [-steepest, 0.0, steepest])
+    assert ax.get_xlim() == (-180, 180)
+    assert _labels(ax) == ["heightmap", "frictionmap", "paths' ends, 0°", "paths' steepest, ±26.6°"]
     assert ax.get_ylabel() == "fraction" and ax.get_xlabel().startswith("movement angle (deg")
 
 
