@@ -9,7 +9,7 @@ import numpy as np  # noqa: E402
 
 import ff_files  # noqa: E402
 
-from . import VERSION, analysis, geometry, metrics  # noqa: E402
+from . import VERSION, analysis, geometry, metrics, stats  # noqa: E402
 
 SOFTWARE = "ff-analyse " + VERSION
 
@@ -73,7 +73,9 @@ def blocks(ax, participants):
     """Fig. 15 top: hit rate per 45-trial block."""
     for r in analysis.RENDERINGS:
         b = np.array([(metrics.block_hit_rates(p.trials, r) + [math.nan] * 2)[:2] for p in participants])
-        ax.errorbar([1, 2], np.nanmean(b, axis=0), yerr=np.nanstd(b, axis=0), color=COLOURS[r], marker="o", label=r, capsize=3)
+        # the sample SD over participants: no bar for one participant
+        ax.errorbar([1, 2], np.nanmean(b, axis=0), yerr=stats.sample_sd(b, axis=0), color=COLOURS[r], marker="o",
+                    label=r, capsize=3)
     ax.set_xticks([1, 2])
     ax.set_xlabel("block of 45 trials")
     ax.set_ylabel("hit rate")
@@ -81,7 +83,7 @@ def blocks(ax, participants):
 
 
 def learning(ax, learning_stats):
-    """Fig. 15 bottom: 10-trial moving average of movement time, mean +- SD, power-law fit
+    """Fig. 15 bottom: 10-trial moving average of movement time, mean +- sample SD, power-law fit
     (analysis.group_statistics' "learning")."""
     for r, d in learning_stats.items():
         ax.plot(d["x"], d["mean"], color=COLOURS[r], label=r)
