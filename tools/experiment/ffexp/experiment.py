@@ -388,14 +388,18 @@ def run_on(dev, args, folder, plan, first, score, session, clock):
         print("ff-experiment: the device's tracker uses the default sensor profile, not one measured on this "
               "sensor (docs/tracking.md#calibration, ffctl sensor-profile)")
     if session is None:
-        logs.write_session(folder, dict(
-            participant=args.participant_number, age=args.age, gender=args.gender, handedness=args.handedness,
-            seed=args.participant_number, order=design.order_name(args.participant_number),
-            program_version=VERSION, firmware_version=status.firmware, protocol_version=protocol.VERSION,
-            device=dev.name, participant_kind=args.participant, speed=args.speed,
-            started=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            scene_hashes=scene_hashes(), plan=[[t["rendering"], t["strength"], t["target"]] for t in plan],
-            sensor_profile=profile))
+        try:
+            logs.write_session(folder, dict(
+                participant=args.participant_number, age=args.age, gender=args.gender, handedness=args.handedness,
+                seed=args.participant_number, order=design.order_name(args.participant_number),
+                program_version=VERSION, firmware_version=status.firmware, protocol_version=protocol.VERSION,
+                device=dev.name, participant_kind=args.participant, speed=args.speed,
+                started=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+                scene_hashes=scene_hashes(), plan=[[t["rendering"], t["strength"], t["target"]] for t in plan],
+                sensor_profile=profile))
+        except logs.LogWriteError as e:  # a full disk: nothing was logged, so there is nothing to resume
+            print(f"ff-experiment: {e}", file=sys.stderr)
+            return 1
     participant = None
     if args.participant == "sim":
         from .participant import SimParticipant

@@ -112,7 +112,8 @@ def _cell(v):
 
 
 def write_session(folder, header):
-    """Writes session.json whole (ff_files.write_whole: partial file, fsync, rename)."""
+    """Writes session.json whole (ff_files.write_whole: partial file, fsync,
+    rename); LogWriteError if it cannot be written."""
     data = dict(header)
     data["format"] = FORMAT
     data["format_version"] = FORMAT_VERSION
@@ -120,7 +121,12 @@ def write_session(folder, header):
     def write(f):
         json.dump(data, f, indent=2, sort_keys=True)
         f.write("\n")
-    ff_files.write_whole(os.path.join(folder, "session.json"), write)
+    os.makedirs(folder, exist_ok=True)  # a folder that cannot be made is bad input, not a write that failed
+    path = os.path.join(folder, "session.json")
+    try:
+        ff_files.write_whole(path, write)
+    except OSError as e:  # a full disk, a lost drive: LogWriteError
+        raise LogWriteError(path, e) from None
 
 
 class ParticipantLog:

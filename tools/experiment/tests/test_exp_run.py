@@ -330,6 +330,23 @@ def test_an_output_folder_that_cannot_be_made_is_one_line_and_closes_the_device(
     assert made[0].closed == 1
 
 
+def test_a_full_disk_as_the_session_is_created_exits_1(tmp_path, capsys, monkeypatch):
+    import ff_files
+    real = ff_files.write_whole
+
+    def disk_full(path, write, binary=False):
+        def fill(f):
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return real(path, fill, binary)
+    monkeypatch.setattr(ff_files, "write_whole", disk_full)
+    made = []
+    assert run_fake(tmp_path, factory=_one(made)) == 1  # a log that cannot be written: 1, not bad input
+    session = tmp_path / "P04" / "session.json"
+    assert capsys.readouterr().err == f"ff-experiment: cannot write {session}: No space left on device\n"
+    assert not session.exists() and not (tmp_path / "P04" / "session.json.partial").exists()
+    assert made[0].closed == 1
+
+
 def test_a_sim_that_does_not_start_is_one_line(tmp_path, capsys):
     def factory(spec, root, speed, clock):
         raise device.DeviceLost("ff-sim did not start: no ready line within 10 s")
