@@ -8,10 +8,14 @@ One folder per participant (P07/):
   exclusions.csv  trials a person decided to drop (trial,reason); see exclusions.py
 
 Rows are appended and flushed one by one and the files fsync'ed at each
-trial's end, so a killed program loses at most the unfinished trial, which
---resume runs again. Readers raise LogError naming the file and line.
+trial's end (frames and events first, then the trial's row, so a row never
+reaches the disk before its frames), so a killed program loses at most the
+unfinished trial, which --resume runs again. A new file, folder or rename is
+made durable by fsync'ing the folder that holds it. Readers raise LogError
+naming the file and line.
 """
 import csv
+import errno
 import json
 import math
 import os
@@ -93,6 +97,36 @@ class CsvAppender:
                 pass  # the failed write's rest, already reported
 
 
+def sync_folder(folder):
+    """fsync a folder: the names in it (a new file, a rename) survive a power
+    cut. A file system that cannot sync a folder is left as it is."""
+    if os.name != "posix":
+        return
+    try:
+        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError as e:
+        raise LogWriteError(folder, e) from None
+    try:
+        os.fsync(fd)
+    except OSError as e:
+        if e.errno not in (errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+            raise LogWriteError(folder, e) from None
+    finally:
+        os.close(fd)
+
+
+def make_folder(folder):
+    """os.makedirs, then syncs the parent of each folder it made (parents first)."""
+    new = []
+    path = os.path.abspath(folder)
+    while not os.path.isdir(path) and os.path.dirname(path) != path:
+        new.append(path)
+        path = os.path.dirname(path)
+    os.makedirs(folder, exist_ok=True)
+    for made in reversed(new):
+        sync_folder(os.path.dirname(made))
+
+
 def _drop_torn_tail(path):
     """A power cut or a full disk can leave half a row at the end (torn_line):
     cut it off before appending (its trial was unfinished and runs again on
@@ -121,22 +155,31 @@ def write_session(folder, header):
     def write(f):
         json.dump(data, f, indent=2, sort_keys=True)
         f.write("\n")
-    os.makedirs(folder, exist_ok=True)  # a folder that cannot be made is bad input, not a write that failed
+    make_folder(folder)  # a folder that cannot be made is bad input, not a write that failed
     path = os.path.join(folder, "session.json")
     try:
         ff_files.write_whole(path, write)
     except OSError as e:  # a full disk, a lost drive: LogWriteError
         raise LogWriteError(path, e) from None
+    sync_folder(folder)  # the rename
 
 
 class ParticipantLog:
     """The writer side: frames, trials and events of one participant."""
 
     def __init__(self, folder):
-        os.makedirs(folder, exist_ok=True)
-        self.frames = CsvAppender(os.path.join(folder, "frames.csv"), FRAME_COLUMNS)
-        self.trials = CsvAppender(os.path.join(folder, "trials.csv"), TRIAL_COLUMNS)
-        self.events = CsvAppender(os.path.join(folder, "events.csv"), EVENT_COLUMNS)
+        make_folder(folder)
+        names = [os.path.join(folder, n) for n in ("frames.csv", "trials.csv", "events.csv")]
+        new = not all(os.path.exists(n) for n in names)
+        self.frames = CsvAppender(names[0], FRAME_COLUMNS)
+        self.trials = CsvAppender(names[1], TRIAL_COLUMNS)
+        self.events = CsvAppender(names[2], EVENT_COLUMNS)
+        if new:
+            try:
+                sync_folder(folder)
+            except LogWriteError:
+                self.close()
+                raise
 
     def frame(self, trial, t, x, y, touch, force_n, late_ms):
         self.frames.append([trial, t, x, y, int(bool(touch)), force_n, late_ms])
@@ -145,8 +188,12 @@ class ParticipantLog:
         self.events.append([t, trial, event, detail])
 
     def trial(self, row):
+        """The trial's row, once its frames and events are on disk: a power
+        cut never leaves a finished trial without them."""
+        self.frames.fsync()
+        self.events.fsync()
         self.trials.append([row[c] for c in TRIAL_COLUMNS])
-        self.sync()
+        self.trials.fsync()
 
     def sync(self):
         for a in (self.frames, self.trials, self.events):
