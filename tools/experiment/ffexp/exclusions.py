@@ -31,7 +31,7 @@ def read_exclusions(folder):
         if len(row) <= idx["trial"]:
             raise logs.LogError(path, line, "no trial number")
         text = row[idx["trial"]].strip()
-        if not text.isdigit() or not 1 <= int(text) <= 180:
+        if not (text.isascii() and text.isdigit()) or not 1 <= int(text) <= 180:  # not '²' or '٣'
             raise logs.LogError(path, line, f"'{text}' is not a trial number 1..180")
         out[int(text)] = row[idx["reason"]] if len(row) > idx["reason"] else ""
     return out
@@ -42,10 +42,12 @@ def propose(folder):
     trials = logs.read_trials(folder)
     frames = logs.read_frames(folder)
     events = logs.read_events(folder)
+    events_path = os.path.join(folder, "events.csv")
     device = {}  # trial -> the first thing the device did wrong in it
     for e in events:
         if e["event"] in ("device-lost", "device-error") and e["trial"] not in ("", None):
-            device.setdefault(int(float(e["trial"])), "device lost during the trial" if e["event"] == "device-lost"
+            n = logs._whole(events_path, e["line"], "trial", e["trial"])
+            device.setdefault(n, "device lost during the trial" if e["event"] == "device-lost"
                               else f"device error during the trial: {e['detail']}")
     out = []
     for tr in trials:

@@ -16,6 +16,7 @@ naming the file and line.
 """
 import csv
 import errno
+import io
 import json
 import math
 import os
@@ -217,9 +218,10 @@ def read_session(folder):
     path = os.path.join(folder, "session.json")
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing: not a participant folder of ff-experiment")
+    with open(path, "rb") as f:
+        text = _text(path, f.read())
     try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
+        data = json.loads(text)
     except json.JSONDecodeError as e:
         raise LogError(path, e.lineno, f"not valid JSON ({e.msg})") from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
@@ -230,7 +232,22 @@ def read_session(folder):
     for key in ("participant", "seed", "order"):
         if key not in data:
             raise LogError(path, 1, f"header has no '{key}'")
+    for key in ("participant", "seed"):
+        if not isinstance(data[key], int) or isinstance(data[key], bool) or data[key] < 1:
+            raise LogError(path, 1, f"header's '{key}' is {json.dumps(data[key])}, not a positive whole number")
+    if not isinstance(data["order"], str):
+        raise LogError(path, 1, f"header's 'order' is {json.dumps(data['order'])}, not a text")
     return data
+
+
+def _text(path, data):
+    """The bytes of a log file as text; LogError on the line of the first byte
+    that is not UTF-8 (a file saved in another encoding, or damaged)."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise LogError(path, data.count(b"\n", 0, e.start) + 1,
+                       f"not UTF-8 text (byte 0x{data[e.start]:02x}; save it as UTF-8)") from None
 
 
 def _torn_start(data):
@@ -262,22 +279,33 @@ def _rows(path, columns, written_by_hand=False):
     the last row without its end."""
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing")
-    torn = None if written_by_hand else torn_line(path)
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.reader(f)
+    with open(path, "rb") as f:
+        data = f.read()
+    torn = None if written_by_hand or _torn_start(data) is None else data.count(b"\n") + 1
+    reader = csv.reader(io.StringIO(_text(path, data), newline=""))
+
+    def next_row():
         try:
-            head = next(reader)
+            return next(reader)
+        except csv.Error as e:  # a field over the csv module's size limit, a NUL byte
+            raise LogError(path, reader.line_num, f"not a CSV row ({e})") from None
+    try:
+        head = next_row()
+    except StopIteration:
+        raise LogError(path, 1, "empty file (no column header)") from None
+    missing = [c for c in columns if c not in head]
+    if missing:
+        raise LogError(path, 1, f"missing column(s): {', '.join(missing)}")
+    index = {c: head.index(c) for c in columns}
+    last = max(index.values())
+    while True:
+        try:
+            row = next_row()
         except StopIteration:
-            raise LogError(path, 1, "empty file (no column header)") from None
-        missing = [c for c in columns if c not in head]
-        if missing:
-            raise LogError(path, 1, f"missing column(s): {', '.join(missing)}")
-        index = {c: head.index(c) for c in columns}
-        last = max(index.values())
-        for row in reader:
-            if not row or reader.line_num == torn:
-                continue
-            yield reader.line_num, row, index, len(row) > last
+            return
+        if not row or reader.line_num == torn:
+            continue
+        yield reader.line_num, row, index, len(row) > last
 
 
 def _number(path, line, name, text):
@@ -360,5 +388,5 @@ def read_events(folder):
     for line, row, idx, complete in _rows(path, EVENT_COLUMNS):
         if not complete:
             continue
-        out.append({c: row[i] for c, i in idx.items()})
+        out.append(dict({c: row[i] for c, i in idx.items()}, line=line))
     return out

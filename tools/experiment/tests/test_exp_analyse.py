@@ -109,6 +109,43 @@ def test_bad_input_names_file_and_line(planted_folders, tmp_path, capsys, damage
     assert expect in err and "Traceback" not in err and err.count("\n") == 1
 
 
+def with_line(path, number, text):
+    """Replaces line `number` (1 = the header) of a file by the bytes `text`."""
+    lines = path.read_bytes().split(b"\n")
+    lines[number - 1] = text
+    path.write_bytes(b"\n".join(lines))
+
+
+@pytest.mark.parametrize("damage, expect", [
+    (lambda f: (f / "exclusions.csv").write_bytes(b"trial,reason\n3,\xe9ternu\xe9\n"),  # saved as Latin-1
+     "exclusions.csv:2: not UTF-8 text (byte 0xe9; save it as UTF-8)"),
+    (lambda f: (f / "exclusions.csv").write_bytes("trial,reason\n4,x\n²,sneezed\n".encode()),
+     "exclusions.csv:3: '²' is not a trial number 1..180"),
+    (lambda f: with_line(f / "trials.csv", 3, (f / "trials.csv").read_bytes().split(b"\n")[2] + b"\xff"),
+     "trials.csv:3: not UTF-8 text (byte 0xff; save it as UTF-8)"),
+    (lambda f: with_line(f / "frames.csv", 7, b"1,0.3,\x80,240,1,0.3,0"),
+     "frames.csv:7: not UTF-8 text (byte 0x80; save it as UTF-8)"),
+    (lambda f: with_line(f / "frames.csv", 5, b'1,"' + b"9" * 200000 + b'",240,1,0.3,0'),
+     "frames.csv:5: not a CSV row (field larger than field limit (131072))"),
+    (lambda f: (f / "session.json").write_text(json.dumps(dict(json.loads((f / "session.json").read_text()),
+                                                                participant=[1]))),
+     "session.json:1: header's 'participant' is [1], not a positive whole number"),
+    (lambda f: (f / "session.json").write_text(json.dumps(dict(json.loads((f / "session.json").read_text()),
+                                                                order=3))),
+     "session.json:1: header's 'order' is 3, not a text"),
+    (lambda f: (f / "session.json").write_bytes((f / "session.json").read_bytes().replace(b'"x"', b'"\xe9"')),
+     "session.json:5: not UTF-8 text (byte 0xe9; save it as UTF-8)"),  # {, age, format, format_version, gender
+], ids=["latin-1-exclusions", "superscript-trial", "bad-byte-trials", "bad-byte-frames", "huge-field",
+        "participant-list", "order-number", "bad-byte-session"])
+def test_malformed_files_are_one_line_and_exit_2(planted_folders, tmp_path, capsys, damage, expect):
+    f = copy_folder(planted_folders[0], tmp_path / "P01")
+    damage(f)
+    assert run_bad(f, tmp_path) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"ff-analyse: {f / expect}") and err.count("\n") == 1, err[:300]
+    assert "Traceback" not in err
+
+
 def test_a_torn_last_trial_is_left_out_and_said(planted_folders, tmp_path, capsys):
     f = copy_folder(planted_folders[0], tmp_path / "P01")
     trials = f / "trials.csv"

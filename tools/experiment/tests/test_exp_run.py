@@ -249,6 +249,25 @@ def test_propose_exclusions_needs_no_participant_number(tmp_path, capsys):
     assert open(path).read().splitlines()[1] == "7,device,device lost during the trial"
 
 
+def test_propose_exclusions_on_an_events_file_with_a_bad_trial_is_one_line(tmp_path, capsys):
+    from exp_synthetic import write_participant
+    folder = write_participant(str(tmp_path), 3, lambda r, s: 0.5)
+    with open(os.path.join(folder, "events.csv"), "a") as f:
+        f.write("10.0,seven,device-lost,test\n")  # line 2, under the header
+    assert experiment.main(["--propose-exclusions", folder]) == 2
+    assert capsys.readouterr().err == (f"ff-experiment: {os.path.join(folder, 'events.csv')}:2: "
+                                       "column 'trial': 'seven' is not a number\n")
+
+
+def test_resume_on_a_log_that_is_not_utf8_is_one_line(tmp_path, capsys):
+    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation") == 0
+    trials = tmp_path / "P04" / "trials.csv"
+    trials.write_bytes(trials.read_bytes().replace(b"ok\n", b"\xe9\n", 1))  # line 2
+    capsys.readouterr()
+    assert run_fake(tmp_path, "--trials", "3", "--resume") == 2
+    assert capsys.readouterr().err == f"ff-experiment: {trials}:2: not UTF-8 text (byte 0xe9; save it as UTF-8)\n"
+
+
 @pytest.mark.parametrize("argv, why", [
     (["--device", "udp:10.0.0.7", "--speed", "2"], "--speed is for --device sim"),
     (["--speed", "0"], "--speed is for --device sim"),
