@@ -43,12 +43,16 @@ def propose(folder):
     frames = logs.read_frames(folder)
     events = logs.read_events(folder)
     events_path = os.path.join(folder, "events.csv")
+    for e in events:
+        e["t"] = logs._number(events_path, e["line"], "t", e["t"])
+    windows = event_windows(trials, [e["t"] for e in events if e["event"] == "resume"])
     device = {}  # trial -> the first thing the device did wrong in it
     for e in events:
         if e["event"] in ("device-lost", "device-error") and e["trial"] not in ("", None):
             n = logs._whole(events_path, e["line"], "trial", e["trial"])
-            device.setdefault(n, "device lost during the trial" if e["event"] == "device-lost"
-                              else f"device error during the trial: {e['detail']}")
+            if n in windows and windows[n][0] < e["t"] <= windows[n][1]:
+                device.setdefault(n, "device lost during the trial" if e["event"] == "device-lost"
+                                  else f"device error during the trial: {e['detail']}")
     out = []
     for tr in trials:
         n = tr["trial"]
@@ -76,6 +80,19 @@ def propose(folder):
             out.append((n, "two-finger", f"jump of {step[j]:.0f} px at t={t[j + 1]:.3f} s and back"))
         else:
             out.append((n, "jump", f"jump of {step[j]:.0f} px in {dt[j] * 1000:.0f} ms at t={t[j + 1]:.3f} s"))
+    return out
+
+
+def event_windows(trials, resumes):
+    """{trial: (after, until)}: a finished trial's events are those logged
+    after the previous finished trial's crossing or the last resume before
+    it began, whichever is later (not those of a run killed during it), up to
+    its own crossing (a device lost and back before a restart counts)."""
+    crossings = sorted(t["t_cross"] for t in trials)
+    out = {}
+    for tr in trials:
+        before = [c for c in crossings if c < tr["t_enter_start"]] + [r for r in resumes if r <= tr["t_enter_start"]]
+        out[tr["trial"]] = (max(before, default=-np.inf), tr["t_cross"])
     return out
 
 

@@ -15,6 +15,7 @@ REPO_ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", 
 FEEDBACK_S = 1.5
 SIM_FEEDBACK_S = 0.4
 STATUS_RETRY_S = 0.5
+RESUME_GAP_S = 1.0  # a resumed run's clock starts this long after the last time logged
 
 EPILOG = """\
 examples:
@@ -357,9 +358,12 @@ def run(argv, device_factory=None):
         os.environ["SDL_AUDIODRIVER"] = "dummy"
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
     speed = args.speed
+    # A resumed run's clock starts 1 s after the last time logged: times never go back, so a killed
+    # run's frames (same trial number) cannot fall into the re-run trial's interval.
+    start = logs.last_time(folder) + RESUME_GAP_S if args.resume else 0.0
     origin = time.monotonic()
     def clock():
-        return (time.monotonic() - origin) * speed
+        return start + (time.monotonic() - origin) * speed
     try:
         dev = (device_factory or devices.open_device)(args.device, REPO_ROOT, speed, clock)
     except ValueError as e:

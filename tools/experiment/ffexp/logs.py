@@ -380,6 +380,20 @@ def read_frames(folder):
     return {c: np.asarray(v, dtype=float) for c, v in cols.items()}
 
 
+def last_time(folder):
+    """The latest time in frames.csv and events.csv (0 if none): a resumed
+    run's clock starts after it, so times never go back across runs and a
+    killed run's frames cannot fall into a re-run trial's interval."""
+    last = 0.0
+    for name in ("frames.csv", "events.csv"):
+        path = os.path.join(folder, name)
+        if not os.path.isfile(path) or os.path.getsize(path) == 0:
+            continue
+        for line, row, idx, _ in _rows(path, ["t"]):
+            last = max(last, _number(path, line, "t", row[idx["t"]]))
+    return last
+
+
 def read_events(folder):
     path = os.path.join(folder, "events.csv")
     if not os.path.isfile(path):
