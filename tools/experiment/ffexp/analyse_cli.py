@@ -48,11 +48,14 @@ def summary_text(participants, group, figure_names):
             for k in range(3):
                 v = y[:, i, k]
                 v = v[[not math.isnan(a) for a in v]]
-                cells.append(f"{v.mean():.2f} ± {v.std():.2f}" if len(v) else "–")
+                # the sample SD; one participant's value is shown alone
+                cells.append(f"{v.mean():.2f} ± {stats.sample_sd(v):.2f}" if len(v) > 1 else
+                             f"{v.mean():.2f}" if len(v) else "–")
             L.append(f"| {m.replace('_', ' ')} | {r} | " + " | ".join(cells) + " |")
     L.append("")
     L.append("Hit rate over all trials of a cell (30 per participant, chance 1/3); movement time and "
-             "direction changes over correct trials. Mean ± SD over participants.")
+             "direction changes over correct trials. Mean ± SD over participants (sample SD, n − 1; "
+             "a cell with one participant's value shows it alone).")
     for m in analysis.MEASURES:
         if m not in group["anova"]:
             continue

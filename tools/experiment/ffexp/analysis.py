@@ -84,7 +84,7 @@ def group_statistics(participants):
         n = min((len(c) for c in curves), default=0)
         if n >= 4:
             m = np.array([c[:n] for c in curves])
-            mean, sd = m.mean(axis=0), m.std(axis=0)
+            mean, sd = m.mean(axis=0), stats.sample_sd(m, axis=0)  # sd nan for one participant
             x = np.arange(1, n + 1, dtype=float)
             out["learning"][r] = dict(x=x, mean=mean, sd=sd, fit=metrics.fit_power_law(x, mean))
     return out

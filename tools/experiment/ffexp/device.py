@@ -9,11 +9,13 @@ every 30 ms) is lost: the study pauses until it answers again. That
 timeout is wall-clock time even when the simulator runs faster, so a busy
 computer that delays ff-sim for a few ms is not taken for a lost device."""
 import abc
+import ctypes
 import os
 import select
 import signal
 import socket
 import subprocess
+import sys
 import time
 
 from . import protocol
@@ -240,6 +242,29 @@ def _free_udp_port():
         return s.getsockname()[1]
 
 
+PR_SET_PDEATHSIG = 1  # linux/prctl.h
+
+
+def dies_with_this_process():
+    """A preexec_fn for Popen that makes the child get SIGTERM when this
+    process dies, however it dies (SIGKILL too): Linux's PR_SET_PDEATHSIG.
+    None elsewhere, or where libc has no prctl."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl  # looked up before the fork
+    except (OSError, AttributeError):
+        return None
+    parent = os.getpid()
+
+    def preexec():
+        prctl(ctypes.c_int(PR_SET_PDEATHSIG), ctypes.c_ulong(signal.SIGTERM), ctypes.c_ulong(0),
+              ctypes.c_ulong(0), ctypes.c_ulong(0))
+        if os.getppid() != parent:  # it died before the prctl: no signal will come
+            os.kill(os.getpid(), signal.SIGTERM)
+    return preexec
+
+
 class SimDevice(UdpDevice):
     """Starts ff-sim (the firmware on the host), talks to it like to the device,
     sends it the finger, and streams the rendered amplitude back."""
@@ -251,7 +276,9 @@ class SimDevice(UdpDevice):
         cmd = [binary, "--port", str(port), "--finger-port", str(finger_port), "--speed", f"{speed:g}", "--quiet"]
         if trace:
             cmd += ["--trace", trace]
-        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        # ff-sim dies with the study, also when the study is killed (SIGKILL) and cannot close it
+        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                     preexec_fn=dies_with_this_process())
         line = self._ready_line()
         super().__init__("127.0.0.1", port, clock=clock, time_scale=speed)
         self.name = f"sim:{os.path.basename(binary)} speed {speed:g}"

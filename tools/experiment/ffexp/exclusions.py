@@ -26,11 +26,12 @@ def read_exclusions(folder):
     if not os.path.isfile(path):
         return {}
     out = {}
-    for line, row, idx, _ in logs._rows(path, EXCLUSION_COLUMNS):  # the reason may be left out
+    # the reason may be left out; a last row without its end is a row (editors save so)
+    for line, row, idx, _ in logs._rows(path, EXCLUSION_COLUMNS, written_by_hand=True):
         if len(row) <= idx["trial"]:
             raise logs.LogError(path, line, "no trial number")
         text = row[idx["trial"]].strip()
-        if not text.isdigit() or not 1 <= int(text) <= 180:
+        if not (text.isascii() and text.isdigit()) or not 1 <= int(text) <= 180:  # not '²' or '٣'
             raise logs.LogError(path, line, f"'{text}' is not a trial number 1..180")
         out[int(text)] = row[idx["reason"]] if len(row) > idx["reason"] else ""
     return out
@@ -41,11 +42,17 @@ def propose(folder):
     trials = logs.read_trials(folder)
     frames = logs.read_frames(folder)
     events = logs.read_events(folder)
+    events_path = os.path.join(folder, "events.csv")
+    for e in events:
+        e["t"] = logs._number(events_path, e["line"], "t", e["t"])
+    windows = event_windows(trials, [e["t"] for e in events if e["event"] == "resume"])
     device = {}  # trial -> the first thing the device did wrong in it
     for e in events:
         if e["event"] in ("device-lost", "device-error") and e["trial"] not in ("", None):
-            device.setdefault(int(float(e["trial"])), "device lost during the trial" if e["event"] == "device-lost"
-                              else f"device error during the trial: {e['detail']}")
+            n = logs._whole(events_path, e["line"], "trial", e["trial"])
+            if n in windows and windows[n][0] < e["t"] <= windows[n][1]:
+                device.setdefault(n, "device lost during the trial" if e["event"] == "device-lost"
+                                  else f"device error during the trial: {e['detail']}")
     out = []
     for tr in trials:
         n = tr["trial"]
@@ -73,6 +80,19 @@ def propose(folder):
             out.append((n, "two-finger", f"jump of {step[j]:.0f} px at t={t[j + 1]:.3f} s and back"))
         else:
             out.append((n, "jump", f"jump of {step[j]:.0f} px in {dt[j] * 1000:.0f} ms at t={t[j + 1]:.3f} s"))
+    return out
+
+
+def event_windows(trials, resumes):
+    """{trial: (after, until)}: a finished trial's events are those logged
+    after the previous finished trial's crossing or the last resume before
+    it began, whichever is later (not those of a run killed during it), up to
+    its own crossing (a device lost and back before a restart counts)."""
+    crossings = sorted(t["t_cross"] for t in trials)
+    out = {}
+    for tr in trials:
+        before = [c for c in crossings if c < tr["t_enter_start"]] + [r for r in resumes if r <= tr["t_enter_start"]]
+        out[tr["trial"]] = (max(before, default=-np.inf), tr["t_cross"])
     return out
 
 

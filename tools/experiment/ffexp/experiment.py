@@ -15,6 +15,7 @@ REPO_ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", 
 FEEDBACK_S = 1.5
 SIM_FEEDBACK_S = 0.4
 STATUS_RETRY_S = 0.5
+RESUME_GAP_S = 1.0  # a resumed run's clock starts this long after the last time logged
 
 EPILOG = """\
 examples:
@@ -357,9 +358,12 @@ def run(argv, device_factory=None):
         os.environ["SDL_AUDIODRIVER"] = "dummy"
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
     speed = args.speed
+    # A resumed run's clock starts 1 s after the last time logged: times never go back, so a killed
+    # run's frames (same trial number) cannot fall into the re-run trial's interval.
+    start = logs.last_time(folder) + RESUME_GAP_S if args.resume else 0.0
     origin = time.monotonic()
     def clock():
-        return (time.monotonic() - origin) * speed
+        return start + (time.monotonic() - origin) * speed
     try:
         dev = (device_factory or devices.open_device)(args.device, REPO_ROOT, speed, clock)
     except ValueError as e:
@@ -388,14 +392,18 @@ def run_on(dev, args, folder, plan, first, score, session, clock):
         print("ff-experiment: the device's tracker uses the default sensor profile, not one measured on this "
               "sensor (docs/tracking.md#calibration, ffctl sensor-profile)")
     if session is None:
-        logs.write_session(folder, dict(
-            participant=args.participant_number, age=args.age, gender=args.gender, handedness=args.handedness,
-            seed=args.participant_number, order=design.order_name(args.participant_number),
-            program_version=VERSION, firmware_version=status.firmware, protocol_version=protocol.VERSION,
-            device=dev.name, participant_kind=args.participant, speed=args.speed,
-            started=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            scene_hashes=scene_hashes(), plan=[[t["rendering"], t["strength"], t["target"]] for t in plan],
-            sensor_profile=profile))
+        try:
+            logs.write_session(folder, dict(
+                participant=args.participant_number, age=args.age, gender=args.gender, handedness=args.handedness,
+                seed=args.participant_number, order=design.order_name(args.participant_number),
+                program_version=VERSION, firmware_version=status.firmware, protocol_version=protocol.VERSION,
+                device=dev.name, participant_kind=args.participant, speed=args.speed,
+                started=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+                scene_hashes=scene_hashes(), plan=[[t["rendering"], t["strength"], t["target"]] for t in plan],
+                sensor_profile=profile))
+        except logs.LogWriteError as e:  # a full disk: nothing was logged, so there is nothing to resume
+            print(f"ff-experiment: {e}", file=sys.stderr)
+            return 1
     participant = None
     if args.participant == "sim":
         from .participant import SimParticipant

@@ -9,7 +9,7 @@ import numpy as np  # noqa: E402
 
 import ff_files  # noqa: E402
 
-from . import VERSION, analysis, geometry, metrics  # noqa: E402
+from . import VERSION, analysis, geometry, metrics, stats  # noqa: E402
 
 SOFTWARE = "ff-analyse " + VERSION
 
@@ -58,8 +58,11 @@ def angles(ax, participants):
         a = np.concatenate([t["angles"] for p in participants for t in p.trials if t["rendering"] == r] or [np.array([])])
         edges, h = metrics.angle_histogram(a)
         ax.step(edges[:-1], h, where="post", color=COLOURS[r], label=r)
-    for ang in metrics.PATH_ANGLES_DEG:
-        ax.axvline(ang, color="grey", ls="--", lw=0.8)
+    # the paths start and end at 0 deg and are steepest (top +, bottom -) mid-way
+    ends, up, down = metrics.PATH_ANGLES_DEG
+    ax.axvline(ends, color="grey", ls="--", lw=0.8, label="paths' ends, 0°")
+    ax.axvline(up, color="grey", ls="--", lw=0.8, label=f"paths' steepest, ±{up:.1f}°")
+    ax.axvline(down, color="grey", ls="--", lw=0.8)
     ax.set_xlim(-180, 180)
     ax.set_xlabel("movement angle (deg, 0 = right, + = up)")
     ax.set_ylabel("fraction")
@@ -70,7 +73,9 @@ def blocks(ax, participants):
     """Fig. 15 top: hit rate per 45-trial block."""
     for r in analysis.RENDERINGS:
         b = np.array([(metrics.block_hit_rates(p.trials, r) + [math.nan] * 2)[:2] for p in participants])
-        ax.errorbar([1, 2], np.nanmean(b, axis=0), yerr=np.nanstd(b, axis=0), color=COLOURS[r], marker="o", label=r, capsize=3)
+        # the sample SD over participants: no bar for one participant
+        ax.errorbar([1, 2], np.nanmean(b, axis=0), yerr=stats.sample_sd(b, axis=0), color=COLOURS[r], marker="o",
+                    label=r, capsize=3)
     ax.set_xticks([1, 2])
     ax.set_xlabel("block of 45 trials")
     ax.set_ylabel("hit rate")
@@ -78,7 +83,7 @@ def blocks(ax, participants):
 
 
 def learning(ax, learning_stats):
-    """Fig. 15 bottom: 10-trial moving average of movement time, mean +- SD, power-law fit
+    """Fig. 15 bottom: 10-trial moving average of movement time, mean +- sample SD, power-law fit
     (analysis.group_statistics' "learning")."""
     for r, d in learning_stats.items():
         ax.plot(d["x"], d["mean"], color=COLOURS[r], label=r)

@@ -8,10 +8,15 @@ One folder per participant (P07/):
   exclusions.csv  trials a person decided to drop (trial,reason); see exclusions.py
 
 Rows are appended and flushed one by one and the files fsync'ed at each
-trial's end, so a killed program loses at most the unfinished trial, which
---resume runs again. Readers raise LogError naming the file and line.
+trial's end (frames and events first, then the trial's row, so a row never
+reaches the disk before its frames), so a killed program loses at most the
+unfinished trial, which --resume runs again. A new file, folder or rename is
+made durable by fsync'ing the folder that holds it. Readers raise LogError
+naming the file and line.
 """
 import csv
+import errno
+import io
 import json
 import math
 import os
@@ -93,6 +98,36 @@ class CsvAppender:
                 pass  # the failed write's rest, already reported
 
 
+def sync_folder(folder):
+    """fsync a folder: the names in it (a new file, a rename) survive a power
+    cut. A file system that cannot sync a folder is left as it is."""
+    if os.name != "posix":
+        return
+    try:
+        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError as e:
+        raise LogWriteError(folder, e) from None
+    try:
+        os.fsync(fd)
+    except OSError as e:
+        if e.errno not in (errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+            raise LogWriteError(folder, e) from None
+    finally:
+        os.close(fd)
+
+
+def make_folder(folder):
+    """os.makedirs, then syncs the parent of each folder it made (parents first)."""
+    new = []
+    path = os.path.abspath(folder)
+    while not os.path.isdir(path) and os.path.dirname(path) != path:
+        new.append(path)
+        path = os.path.dirname(path)
+    os.makedirs(folder, exist_ok=True)
+    for made in reversed(new):
+        sync_folder(os.path.dirname(made))
+
+
 def _drop_torn_tail(path):
     """A power cut or a full disk can leave half a row at the end (torn_line):
     cut it off before appending (its trial was unfinished and runs again on
@@ -112,7 +147,8 @@ def _cell(v):
 
 
 def write_session(folder, header):
-    """Writes session.json whole (ff_files.write_whole: partial file, fsync, rename)."""
+    """Writes session.json whole (ff_files.write_whole: partial file, fsync,
+    rename); LogWriteError if it cannot be written."""
     data = dict(header)
     data["format"] = FORMAT
     data["format_version"] = FORMAT_VERSION
@@ -120,17 +156,31 @@ def write_session(folder, header):
     def write(f):
         json.dump(data, f, indent=2, sort_keys=True)
         f.write("\n")
-    ff_files.write_whole(os.path.join(folder, "session.json"), write)
+    make_folder(folder)  # a folder that cannot be made is bad input, not a write that failed
+    path = os.path.join(folder, "session.json")
+    try:
+        ff_files.write_whole(path, write)
+    except OSError as e:  # a full disk, a lost drive: LogWriteError
+        raise LogWriteError(path, e) from None
+    sync_folder(folder)  # the rename
 
 
 class ParticipantLog:
     """The writer side: frames, trials and events of one participant."""
 
     def __init__(self, folder):
-        os.makedirs(folder, exist_ok=True)
-        self.frames = CsvAppender(os.path.join(folder, "frames.csv"), FRAME_COLUMNS)
-        self.trials = CsvAppender(os.path.join(folder, "trials.csv"), TRIAL_COLUMNS)
-        self.events = CsvAppender(os.path.join(folder, "events.csv"), EVENT_COLUMNS)
+        make_folder(folder)
+        names = [os.path.join(folder, n) for n in ("frames.csv", "trials.csv", "events.csv")]
+        new = not all(os.path.exists(n) for n in names)
+        self.frames = CsvAppender(names[0], FRAME_COLUMNS)
+        self.trials = CsvAppender(names[1], TRIAL_COLUMNS)
+        self.events = CsvAppender(names[2], EVENT_COLUMNS)
+        if new:
+            try:
+                sync_folder(folder)
+            except LogWriteError:
+                self.close()
+                raise
 
     def frame(self, trial, t, x, y, touch, force_n, late_ms):
         self.frames.append([trial, t, x, y, int(bool(touch)), force_n, late_ms])
@@ -139,8 +189,12 @@ class ParticipantLog:
         self.events.append([t, trial, event, detail])
 
     def trial(self, row):
+        """The trial's row, once its frames and events are on disk: a power
+        cut never leaves a finished trial without them."""
+        self.frames.fsync()
+        self.events.fsync()
         self.trials.append([row[c] for c in TRIAL_COLUMNS])
-        self.sync()
+        self.trials.fsync()
 
     def sync(self):
         for a in (self.frames, self.trials, self.events):
@@ -164,9 +218,10 @@ def read_session(folder):
     path = os.path.join(folder, "session.json")
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing: not a participant folder of ff-experiment")
+    with open(path, "rb") as f:
+        text = _text(path, f.read())
     try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
+        data = json.loads(text)
     except json.JSONDecodeError as e:
         raise LogError(path, e.lineno, f"not valid JSON ({e.msg})") from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
@@ -177,7 +232,22 @@ def read_session(folder):
     for key in ("participant", "seed", "order"):
         if key not in data:
             raise LogError(path, 1, f"header has no '{key}'")
+    for key in ("participant", "seed"):
+        if not isinstance(data[key], int) or isinstance(data[key], bool) or data[key] < 1:
+            raise LogError(path, 1, f"header's '{key}' is {json.dumps(data[key])}, not a positive whole number")
+    if not isinstance(data["order"], str):
+        raise LogError(path, 1, f"header's 'order' is {json.dumps(data['order'])}, not a text")
     return data
+
+
+def _text(path, data):
+    """The bytes of a log file as text; LogError on the line of the first byte
+    that is not UTF-8 (a file saved in another encoding, or damaged)."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise LogError(path, data.count(b"\n", 0, e.start) + 1,
+                       f"not UTF-8 text (byte 0x{data[e.start]:02x}; save it as UTF-8)") from None
 
 
 def _torn_start(data):
@@ -202,28 +272,40 @@ def torn_note(path):
     return f"{path}:{line}: the last line has no end (a write cut short)" if line else None
 
 
-def _rows(path, columns):
+def _rows(path, columns, written_by_hand=False):
     """Yields (line number, row, column index, complete) for each row, complete
     when it reaches the last column read; checks the column header. A torn last
-    line is not a row."""
+    line is not a row, unless the file is written_by_hand: an editor may save
+    the last row without its end."""
     if not os.path.isfile(path):
         raise LogError(path, 0, "missing")
-    torn = torn_line(path)
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.reader(f)
+    with open(path, "rb") as f:
+        data = f.read()
+    torn = None if written_by_hand or _torn_start(data) is None else data.count(b"\n") + 1
+    reader = csv.reader(io.StringIO(_text(path, data), newline=""))
+
+    def next_row():
         try:
-            head = next(reader)
+            return next(reader)
+        except csv.Error as e:  # a field over the csv module's size limit, a NUL byte
+            raise LogError(path, reader.line_num, f"not a CSV row ({e})") from None
+    try:
+        head = next_row()
+    except StopIteration:
+        raise LogError(path, 1, "empty file (no column header)") from None
+    missing = [c for c in columns if c not in head]
+    if missing:
+        raise LogError(path, 1, f"missing column(s): {', '.join(missing)}")
+    index = {c: head.index(c) for c in columns}
+    last = max(index.values())
+    while True:
+        try:
+            row = next_row()
         except StopIteration:
-            raise LogError(path, 1, "empty file (no column header)") from None
-        missing = [c for c in columns if c not in head]
-        if missing:
-            raise LogError(path, 1, f"missing column(s): {', '.join(missing)}")
-        index = {c: head.index(c) for c in columns}
-        last = max(index.values())
-        for row in reader:
-            if not row or reader.line_num == torn:
-                continue
-            yield reader.line_num, row, index, len(row) > last
+            return
+        if not row or reader.line_num == torn:
+            continue
+        yield reader.line_num, row, index, len(row) > last
 
 
 def _number(path, line, name, text):
@@ -298,6 +380,20 @@ def read_frames(folder):
     return {c: np.asarray(v, dtype=float) for c, v in cols.items()}
 
 
+def last_time(folder):
+    """The latest time in frames.csv and events.csv (0 if none): a resumed
+    run's clock starts after it, so times never go back across runs and a
+    killed run's frames cannot fall into a re-run trial's interval."""
+    last = 0.0
+    for name in ("frames.csv", "events.csv"):
+        path = os.path.join(folder, name)
+        if not os.path.isfile(path) or os.path.getsize(path) == 0:
+            continue
+        for line, row, idx, _ in _rows(path, ["t"]):
+            last = max(last, _number(path, line, "t", row[idx["t"]]))
+    return last
+
+
 def read_events(folder):
     path = os.path.join(folder, "events.csv")
     if not os.path.isfile(path):
@@ -306,5 +402,5 @@ def read_events(folder):
     for line, row, idx, complete in _rows(path, EVENT_COLUMNS):
         if not complete:
             continue
-        out.append({c: row[i] for c, i in idx.items()})
+        out.append(dict({c: row[i] for c, i in idx.items()}, line=line))
     return out

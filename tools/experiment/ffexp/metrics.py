@@ -8,14 +8,21 @@ import math
 import numpy as np
 from scipy import optimize, signal
 
+from . import design, geometry
+
 FRAME_RATE_HZ = 80.0
 FILTER_CUTOFF_HZ = 2.0
 FILTER_ORDER = 2
 REVERSAL_GAP_PX = 10.0     # a stationary point is a reversal when the finger went >= 10 px (~2 mm)
 MERGE_DISTANCE_PX = 15.0   # an x and a y reversal this close (~3 mm) are one direction change
 BLOCK_TRIALS = 45
+HALF_TRIALS = design.TRIALS // len(design.RENDERINGS)  # one rendering's trials: 90
 MOVING_AVERAGE_WINDOW = 10
-PATH_ANGLES_DEG = (0.0, math.degrees(math.atan2(200.0, 600.0)), -math.degrees(math.atan2(200.0, 600.0)))
+# The paths' directions (geometry.path_y: y' = 6T u (L - u) / L^3): every path
+# starts and ends at 0 deg; the top and bottom ones are steepest mid-way, at
+# +-atan(1.5 |T| / L) = +-26.6 deg (atan(|T| / L) = 18.4 deg is only their chord).
+PATH_STEEPEST_DEG = math.degrees(math.atan(1.5 * abs(geometry.RISE["top"]) / geometry.PATH_LENGTH))
+PATH_ANGLES_DEG = (0.0, PATH_STEEPEST_DEG, -PATH_STEEPEST_DEG)  # Fig. 14's reference lines
 MIN_SPEED_PX_S = 20.0      # slower frames have no meaningful direction
 
 
@@ -176,12 +183,17 @@ def cell_table(trials, value, renderings, strengths):
             for r in renderings for s in strengths}
 
 
-def block_hit_rates(trials, rendering, block=BLOCK_TRIALS):
-    """Hit rate per consecutive block of `block` trials of one rendering, in
-    the order they were presented (the thesis: 2 blocks of 45 per half)."""
-    ordered = sorted((t for t in trials if t["rendering"] == rendering), key=lambda t: t["trial"])
-    n_blocks = int(math.ceil(len(ordered) / block)) if ordered else 0
-    return [hit_rate(ordered[i * block:(i + 1) * block]) for i in range(n_blocks)]
+def block_hit_rates(trials, rendering, block=BLOCK_TRIALS, half=HALF_TRIALS):
+    """Hit rate per block of `block` trials of one rendering, in the order
+    they were presented (the thesis: 2 blocks of 45 per half). A trial's block
+    comes from its number: each rendering fills one 90-trial half (1-90 or
+    91-180), so trials 1-45 and 91-135 are block 1, 46-90 and 136-180 block 2,
+    whichever trials are excluded. A block without trials is nan."""
+    blocks = {}
+    for t in trials:
+        if t["rendering"] == rendering:
+            blocks.setdefault((int(t["trial"]) - 1) % half // block, []).append(t)
+    return [hit_rate(blocks.get(i, [])) for i in range(max(blocks) + 1)] if blocks else []
 
 
 def moving_average(values, window=MOVING_AVERAGE_WINDOW):

@@ -16,6 +16,20 @@ import numpy as np
 from scipy import stats as sps
 
 
+def sample_sd(values, axis=None):
+    """The SD over participants: the sample standard deviation (n - 1 in the
+    denominator) of the finite values, along axis; nan, without a warning,
+    where fewer than two values have one (a single participant has no spread)."""
+    v = np.asarray(values, float)
+    ok = np.isfinite(v)
+    n = ok.sum(axis=axis)
+    mean = np.where(ok, v, 0.0).sum(axis=axis) / np.maximum(n, 1)
+    dev = np.where(ok, v - (mean if axis is None else np.expand_dims(mean, axis)), 0.0)
+    var = (dev ** 2).sum(axis=axis) / np.maximum(n - 1, 1)
+    sd = np.where(n >= 2, np.sqrt(var), np.nan)
+    return float(sd) if axis is None else sd
+
+
 def _orthonormal_contrasts(k):
     """k x (k-1) matrix with orthonormal columns, each orthogonal to ones."""
     helmert = np.zeros((k, k - 1))

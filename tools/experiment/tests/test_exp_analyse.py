@@ -109,6 +109,43 @@ def test_bad_input_names_file_and_line(planted_folders, tmp_path, capsys, damage
     assert expect in err and "Traceback" not in err and err.count("\n") == 1
 
 
+def with_line(path, number, text):
+    """Replaces line `number` (1 = the header) of a file by the bytes `text`."""
+    lines = path.read_bytes().split(b"\n")
+    lines[number - 1] = text
+    path.write_bytes(b"\n".join(lines))
+
+
+@pytest.mark.parametrize("damage, expect", [
+    (lambda f: (f / "exclusions.csv").write_bytes(b"trial,reason\n3,\xe9ternu\xe9\n"),  # saved as Latin-1
+     "exclusions.csv:2: not UTF-8 text (byte 0xe9; save it as UTF-8)"),
+    (lambda f: (f / "exclusions.csv").write_bytes("trial,reason\n4,x\n²,sneezed\n".encode()),
+     "exclusions.csv:3: '²' is not a trial number 1..180"),
+    (lambda f: with_line(f / "trials.csv", 3, (f / "trials.csv").read_bytes().split(b"\n")[2] + b"\xff"),
+     "trials.csv:3: not UTF-8 text (byte 0xff; save it as UTF-8)"),
+    (lambda f: with_line(f / "frames.csv", 7, b"1,0.3,\x80,240,1,0.3,0"),
+     "frames.csv:7: not UTF-8 text (byte 0x80; save it as UTF-8)"),
+    (lambda f: with_line(f / "frames.csv", 5, b'1,"' + b"9" * 200000 + b'",240,1,0.3,0'),
+     "frames.csv:5: not a CSV row (field larger than field limit (131072))"),
+    (lambda f: (f / "session.json").write_text(json.dumps(dict(json.loads((f / "session.json").read_text()),
+                                                                participant=[1]))),
+     "session.json:1: header's 'participant' is [1], not a positive whole number"),
+    (lambda f: (f / "session.json").write_text(json.dumps(dict(json.loads((f / "session.json").read_text()),
+                                                                order=3))),
+     "session.json:1: header's 'order' is 3, not a text"),
+    (lambda f: (f / "session.json").write_bytes((f / "session.json").read_bytes().replace(b'"x"', b'"\xe9"')),
+     "session.json:5: not UTF-8 text (byte 0xe9; save it as UTF-8)"),  # {, age, format, format_version, gender
+], ids=["latin-1-exclusions", "superscript-trial", "bad-byte-trials", "bad-byte-frames", "huge-field",
+        "participant-list", "order-number", "bad-byte-session"])
+def test_malformed_files_are_one_line_and_exit_2(planted_folders, tmp_path, capsys, damage, expect):
+    f = copy_folder(planted_folders[0], tmp_path / "P01")
+    damage(f)
+    assert run_bad(f, tmp_path) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"ff-analyse: {f / expect}") and err.count("\n") == 1, err[:300]
+    assert "Traceback" not in err
+
+
 def test_a_torn_last_trial_is_left_out_and_said(planted_folders, tmp_path, capsys):
     f = copy_folder(planted_folders[0], tmp_path / "P01")
     trials = f / "trials.csv"
@@ -154,7 +191,7 @@ def test_block_hit_rates_and_learning_curves(planted_folders):
         curve = g["learning"][r]
         assert list(curve["x"]) == list(range(1, 82))
         assert curve["mean"] == pytest.approx(runs.mean(axis=0), abs=1e-12)
-        assert curve["sd"] == pytest.approx(runs.std(axis=0), abs=1e-12)
+        assert curve["sd"] == pytest.approx(runs.std(axis=0, ddof=1), abs=1e-12)  # the sample SD
         assert curve["fit"] == pytest.approx(metrics.fit_power_law(np.arange(1.0, 82.0), runs.mean(axis=0)))
         a, b, c = curve["fit"]
         assert a > 0 and b > 0  # the planted 4 s / trial index: faster with practice
@@ -207,7 +244,9 @@ def cell_lines(folders):
                     elif any(t["hit"] for t in cell):  # the others: over correct trials
                         per.append(np.mean([t["movement_time"] for t in cell if t["hit"]])
                                    if measure == "movement_time" else 0.0)  # straight strokes: no changes
-                cells.append(f"{np.mean(per):.2f} ± {np.std(per):.2f}" if per else "–")
+                # the sample SD over participants; one participant's value alone
+                cells.append(f"{np.mean(per):.2f} ± {np.std(per, ddof=1):.2f}" if len(per) > 1 else
+                             f"{per[0]:.2f}" if per else "–")
             lines.append(f"| {measure.replace('_', ' ')} | {r} | " + " | ".join(cells) + " |")
     return lines
 
@@ -222,7 +261,8 @@ def test_the_summary_page(planted_folders, tmp_path):
     assert text[4:6] == ["| measure | rendering | s=1.00 | s=0.66 | s=0.33 |", "|---|---|---|---|---|"]
     assert text[6:12] == cell_lines(folders)
     assert text[12:14] == ["", "Hit rate over all trials of a cell (30 per participant, chance 1/3); movement time "
-                               "and direction changes over correct trials. Mean ± SD over participants."]
+                               "and direction changes over correct trials. Mean ± SD over participants (sample SD, "
+                               "n − 1; a cell with one participant's value shows it alone)."]
     for m in ("hit rate", "movement time", "direction changes"):
         head = text.index(f"**{m}**, RM-ANOVA rendering × strength with order between:")
         assert text[head - 1] == ""  # markdown: a paragraph of its own
@@ -265,6 +305,28 @@ def test_the_summary_of_empty_cells_and_no_learning(tmp_path, capsys):
     for r in logs.RENDERINGS:
         assert sum(line.startswith(f"- {r}: movement time") for line in text) == 1
         assert any(line.startswith(f"- {r}: movement time shows no power-law learning trend") for line in text)
+
+
+def test_the_learning_curves_sd_is_the_sample_sd(tmp_path):
+    # every movement of participant 1 takes 2 s, of participant 2 3 s: moving averages 2 and 3,
+    # whose sample SD is |3 - 2| / sqrt(2) = 0.7071 (the population SD would be 0.5)
+    folders = [write_participant(str(tmp_path), n, lambda r, s: 1.0, lambda r, i, n=n: float(n + 1)) for n in (1, 2)]
+    g = analysis.group_statistics([analysis.Participant(f) for f in folders])
+    for r in logs.RENDERINGS:
+        assert g["learning"][r]["mean"] == pytest.approx(np.full(81, 2.5), abs=1e-5)
+        assert g["learning"][r]["sd"] == pytest.approx(np.full(81, 1 / np.sqrt(2)), abs=1e-5)
+
+
+def test_one_participant_shows_means_without_an_sd_and_without_warnings(planted_folders, tmp_path, capsys):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert analyse_cli.main([planted_folders[0], "-o", str(tmp_path / "r")]) == 0
+        g = analysis.group_statistics([analysis.Participant(planted_folders[0])])
+    assert [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)] == []
+    text = (tmp_path / "r" / "summary.md").read_text().splitlines()
+    assert text[6:12] == cell_lines(planted_folders[:1]) and "±" not in "".join(text[6:12])
+    for r in logs.RENDERINGS:
+        assert np.all(np.isnan(g["learning"][r]["sd"]))  # no spread to show
 
 
 def test_the_same_participant_twice_is_refused(planted_folders, tmp_path, capsys):

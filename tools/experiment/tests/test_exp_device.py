@@ -2,8 +2,11 @@
 frames built with the codec, the ff-sim stand-in as a child process, and
 the in-Python fake. What each keeps, refuses, and how it says so."""
 import os
+import signal
 import socket
 import stat
+import subprocess
+import sys
 import threading
 import time
 
@@ -292,6 +295,39 @@ def test_a_simulator_that_ignores_sigterm_is_killed(tmp_path, monkeypatch, closi
     monkeypatch.setattr(dev.proc, "wait", short_wait)
     dev.close()
     assert real_wait(timeout=5) == -9
+
+
+def _gone(pid):
+    """No such process, or one that has exited and waits to be reaped (a zombie)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] == "Z"
+    except FileNotFoundError:
+        return True
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
+def test_the_simulator_dies_with_a_killed_study():
+    # a study that started ff-sim (the stand-in) and is then SIGKILLed: no close() runs
+    here = os.path.dirname(os.path.abspath(__file__))
+    code = (f"import sys, time; sys.path[:0] = [{os.path.join(here, '..')!r}, {os.path.join(here, '..', '..', 'common')!r}]\n"
+            f"from ffexp import device\n"
+            f"dev = device.SimDevice({STANDIN!r})\n"
+            f"print(dev.proc.pid, flush=True)\n"
+            f"time.sleep(60)\n")
+    study = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    sim = int(study.stdout.readline())
+    try:
+        assert not _gone(sim)
+        study.kill()
+        study.wait()
+        deadline = time.monotonic() + 1.0
+        while time.monotonic() < deadline and not _gone(sim):
+            time.sleep(0.02)
+        assert _gone(sim)
+    finally:
+        if not _gone(sim):
+            os.kill(sim, signal.SIGKILL)
 
 
 def test_find_ff_sim_and_free_ports(tmp_path):

@@ -50,6 +50,20 @@ def test_each_kind_of_candidate(tmp_path):
                    8: ("device", "device error during the trial: datagram refused: bad CRC (3 times)")}
 
 
+def test_a_run_killed_during_a_trial_does_not_flag_its_re_run(tmp_path):
+    folder, log = participant(tmp_path)
+    stroke(log, 1, 0.0)
+    log.event(1.2, 2, "device-lost", "test")  # trial 2's first attempt: the run was killed, no row
+    log.event(3.0, 2, "resume", "firmware 1.0")
+    stroke(log, 2, 3.5)  # the re-run, clean
+    log.event(4.2, 3, "device-error", "datagram refused: bad CRC")
+    log.event(4.3, 3, "resume", "firmware 1.0")
+    log.event(4.4, 3, "device-lost", "test")  # after the resume, before trial 3 begins: its condition's send
+    stroke(log, 3, 5.0)
+    log.close()
+    assert exclusions.propose(folder) == [(3, "device", "device lost during the trial")]
+
+
 def test_the_proposal_is_a_file_to_review_and_rename(tmp_path):
     folder, log = participant(tmp_path)
     stroke(log, 1, 0.0, jump=10)
@@ -66,6 +80,12 @@ def test_the_proposal_is_a_file_to_review_and_rename(tmp_path):
 def test_the_persons_file(tmp_path):
     (tmp_path / "exclusions.csv").write_text("trial,reason\n3,sneezed\n\n180\n 7 ,\n")
     assert exclusions.read_exclusions(str(tmp_path)) == {3: "sneezed", 180: "", 7: ""}
+
+
+def test_a_persons_file_saved_without_a_final_newline_keeps_its_last_row(tmp_path):
+    # many editors save so; it is not a write cut short, as in the program's own logs
+    (tmp_path / "exclusions.csv").write_bytes(b"trial,reason\n3,jump\n12,two-finger")
+    assert exclusions.read_exclusions(str(tmp_path)) == {3: "jump", 12: "two-finger"}
 
 
 @pytest.mark.parametrize("rows, line, what", [

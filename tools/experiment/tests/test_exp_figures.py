@@ -95,9 +95,10 @@ def test_angle_histograms_are_normalised_with_the_paths_marked(two, ax):
         np.testing.assert_allclose(line.get_xdata(), edges[:-1])
         np.testing.assert_allclose(line.get_ydata(), counts / counts.sum())
     marks = sorted(l.get_xdata()[0] for l in ax.get_lines() if l.get_linestyle() == "--")
-    rise = math.degrees(math.atan(200 / 600))
-    np.testing.assert_allclose(marks, [-rise, 0.0, rise])
-    assert ax.get_xlim() == (-180, 180) and _labels(ax) == ["heightmap", "frictionmap"]
+    steepest = math.degrees(math.atan(0.5))  # the top path's slope mid-way: 6 * 200 * 300 * 300 / 600^3
+    np.testing.assert_allclose(marks, [-steepest, 0.0, steepest])
+    assert ax.get_xlim() == (-180, 180)
+    assert _labels(ax) == ["heightmap", "frictionmap", "paths' ends, 0°", "paths' steepest, ±26.6°"]
     assert ax.get_ylabel() == "fraction" and ax.get_xlabel().startswith("movement angle (deg")
 
 
@@ -111,6 +112,12 @@ def test_block_hit_rates_are_the_mean_and_sd_of_each_half(two, ax):
                          ][k * 45:(k + 1) * 45]) for k in (0, 1)] for tr in trials]
         np.testing.assert_allclose(line.get_ydata(), np.mean(per, axis=0))
         assert list(line.get_xdata()) == [1, 2] and to_rgba(line.get_color()) == to_rgba(figures.COLOURS[r])
+    for bars, r in zip([c for c in ax.containers], ("heightmap", "frictionmap")):
+        per = np.array([[np.mean([t["hit"] for t in tr if t["rendering"] == r and (t["trial"] - 1) % 90 // 45 == k])
+                         for k in (0, 1)] for tr in trials])
+        # two participants: the sample SD of a and b is |a - b| / sqrt(2)
+        half_bars = [abs(seg[1][1] - seg[0][1]) / 2 for seg in bars.lines[2][0].get_segments()]
+        np.testing.assert_allclose(half_bars, np.abs(per[0] - per[1]) / math.sqrt(2))
     assert ax.get_ylim() == (0, 1.02) and [t for t in ax.get_xticks()] == [1, 2]
     assert ax.get_xlabel() == "block of 45 trials" and ax.get_ylabel() == "hit rate"
 

@@ -39,6 +39,8 @@ def test_each_finished_trial_is_on_disk_and_so_is_a_closed_log(tmp_path, monkeyp
     real = os.fsync
     monkeypatch.setattr(logs.os, "fsync", lambda fd: (synced.append(os.readlink(f"/proc/self/fd/{fd}")), real(fd)))
     log = logs.ParticipantLog(str(tmp_path))
+    assert synced == [str(tmp_path)]  # the folder, for the three new names in it
+    synced.clear()
     log.frame(1, 0.0, 1.0, 2.0, 1, 0.0, 0)
     assert synced == []
     log.trial(TRIAL)
@@ -48,6 +50,55 @@ def test_each_finished_trial_is_on_disk_and_so_is_a_closed_log(tmp_path, monkeyp
     log.close()
     assert sorted(os.path.basename(p) for p in synced) == ["events.csv", "frames.csv", "trials.csv"]
     assert all(a._file.closed for a in (log.frames, log.trials, log.events))
+
+
+class RecordedFile:
+    """A log file whose writes are noted in `calls` as they are made."""
+
+    def __init__(self, f, calls):
+        self._f, self._calls = f, calls
+
+    def write(self, text):
+        self._calls.append(("write", self._f.name, text))
+        return self._f.write(text)
+
+    def __getattr__(self, name):
+        return getattr(self._f, name)
+
+
+def test_a_power_cut_never_leaves_a_trial_row_without_its_frames_nor_a_name_unsynced(tmp_path, monkeypatch):
+    calls = []
+    real_fsync, real_replace, real_open = os.fsync, os.replace, open
+
+    def fsync(fd):
+        calls.append(("fsync", os.readlink(f"/proc/self/fd/{fd}")))
+        real_fsync(fd)
+
+    def replace(src, dst):
+        real_replace(src, dst)
+        calls.append(("replace", str(dst)))
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    monkeypatch.setattr(os, "replace", replace)
+    monkeypatch.setattr(logs, "open", lambda *a, **kw: RecordedFile(real_open(*a, **kw), calls), raising=False)
+    root = tmp_path / "logs"  # neither logs/ nor logs/P01 exists yet
+    folder = root / "P01"
+    logs.write_session(str(folder), dict(participant=1, seed=1, order="fm-hm"))
+    synced = [c[1] for c in calls if c[0] == "fsync"]
+    assert str(tmp_path) in synced and str(root) in synced  # the new folders' names in their parents
+    renamed = calls.index(("replace", str(folder / "session.json")))
+    assert ("fsync", str(folder)) in calls[renamed + 1:]  # the rename itself
+    calls.clear()
+    log = logs.ParticipantLog(str(folder))
+    assert ("fsync", str(folder)) == calls[-1]  # after the three new files were made
+    calls.clear()
+    log.frame(1, 0.5, 10, 20, 1, 0.3, 0)
+    log.event(0.6, 1, "counters", "x=1")
+    log.trial(TRIAL)
+    row = next(i for i, c in enumerate(calls) if c[0] == "write" and c[1].endswith("trials.csv"))
+    assert [os.path.basename(c[1]) for c in calls[:row] if c[0] == "fsync"] == ["frames.csv", "events.csv"]
+    assert ("fsync", str(folder / "trials.csv")) in calls[row + 1:]
+    log.close()
 
 
 def test_the_session_header(tmp_path):

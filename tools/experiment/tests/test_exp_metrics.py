@@ -87,10 +87,22 @@ def test_resample_uniform_80_hz():
 
 def test_movement_angles_along_paths():
     t = np.arange(0, 3, 1 / 80)
-    up = metrics.movement_angles(t, 100 + 200 * t, 240 - 200 / 3 * t)  # towards the top end
-    assert np.median(up) == pytest.approx(metrics.PATH_ANGLES_DEG[1], abs=0.1)
+    up = metrics.movement_angles(t, 100 + 200 * t, 240 - 200 / 3 * t)  # straight towards the top end
+    assert np.median(up) == pytest.approx(math.degrees(math.atan(200 / 600)), abs=0.1)  # the chord: 18.4 deg
     edges, h = metrics.angle_histogram(up)
     assert h.sum() == pytest.approx(1.0)
+
+
+def test_the_paths_start_and_end_level_and_are_steepest_mid_way():
+    # Along the top path y = 240 - 200 (3 s^2 - 2 s^3), s = (x - 100) / 600, by hand:
+    # dy/dx = -200 * 6 s (1 - s) / 600, 0 at both ends, -0.5 mid-way: atan(0.5) = 26.57 deg up the screen.
+    t = np.arange(0, 6 + 1e-9, 1 / 80)
+    s = t / 6
+    x, y = 100 + 600 * s, 240 - 200 * (3 * s ** 2 - 2 * s ** 3)
+    a = metrics.movement_angles(t, x, y, min_speed=0)
+    assert a[len(a) // 2] == pytest.approx(26.565, abs=0.1) and np.max(a) == pytest.approx(26.565, abs=0.1)
+    assert abs(a[1]) < 1.5 and abs(a[-2]) < 1.5
+    assert metrics.PATH_ANGLES_DEG == pytest.approx((0.0, 26.565, -26.565), abs=1e-3)
 
 
 def test_power_law_recovered_within_one_percent():
@@ -119,6 +131,16 @@ def test_hit_rate_and_blocks():
     assert metrics.hit_rate(tr) == 0.5
     assert metrics.block_hit_rates(tr, "heightmap") == [1.0, 0.0]
     assert math.isnan(metrics.hit_rate([]))
+
+
+def test_blocks_follow_the_trial_numbers_when_trials_are_excluded():
+    # block 1 (trials 1-45) all hits, block 2 (46-90) all misses; 5 block-1 trials excluded:
+    # still 40/40 and 0/45, not the first 45 remaining trials (40 hits + 5 misses = 0.889)
+    tr = [t for t in trials_with([True] * 45 + [False] * 45) if t["trial"] not in (3, 10, 20, 30, 40)]
+    assert metrics.block_hit_rates(tr, "heightmap") == [1.0, 0.0]
+    # the second half: trials 91-135 and 136-180, here with block 2's first 9 trials excluded
+    tr = [t for t in trials_with([True] * 45 + [False] * 45, start=91) if not 136 <= t["trial"] <= 144]
+    assert metrics.block_hit_rates(tr, "heightmap") == [1.0, 0.0]
 
 
 def test_movement_samples_take_the_trial_interval_only():

@@ -138,6 +138,46 @@ def test_killed_mid_trial_resumes_at_first_unfinished_trial(tmp_path):
     assert any(e["event"] == "resume" and int(float(e["trial"])) == len(done) + 1 for e in events)
 
 
+class InterruptedDevice(device.FakeDevice):
+    """Ctrl-C 1.25 s (100 frames) into trial 1, after the finger has left the start circle."""
+
+    def __init__(self, clock):
+        super().__init__(clock)
+        self.polls = 0
+
+    def poll(self):
+        if self.conditions:
+            self.polls += 1
+            if self.polls == 100:
+                raise KeyboardInterrupt
+        return super().poll()
+
+
+def test_a_resumed_run_never_mixes_the_interrupted_runs_frames_into_the_trial(tmp_path):
+    import csv
+    from ffexp import exclusions, metrics
+    folder = tmp_path / "P04"
+    assert run_fake(tmp_path, "--trials", "3", "--skip-familiarisation",
+                    factory=lambda spec, root, speed, clock: InterruptedDevice(clock)) == 1
+    assert logs.read_trials(str(folder)) == []
+    with open(folder / "frames.csv") as f:
+        first_run = len(f.read().splitlines()) - 1
+    assert first_run >= 99
+    assert run_fake(tmp_path, "--trials", "1", "--resume") == 0
+    with open(folder / "frames.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    times = [float(r["t"]) for r in rows]
+    assert all(b >= a for a, b in zip(times, times[1:]))  # the clock never goes back across runs
+    resumed = min(times[first_run:])
+    assert resumed > max(times[:first_run])
+    trial = logs.read_trials(str(folder))[0]
+    t, x, y = metrics.movement_samples(logs.read_frames(str(folder)), trial)
+    mine = [float(r["t"]) for r in rows[first_run:] if r["trial"] == "1" and r["touch"] == "1"
+            and trial["t_leave_start"] <= float(r["t"]) <= trial["t_cross"]]
+    assert len(t) > 0 and list(t) == mine and t.min() >= resumed  # only the resumed run's frames
+    assert exclusions.propose(str(folder)) == []  # no jump from one run's finger to the other's
+
+
 def _one(made, device_class=None, **kw):
     """A device factory that makes a device_class (ClosingDevice by default) and keeps it in `made`."""
     def factory(spec, root, speed, clock):
@@ -240,13 +280,33 @@ def test_refused_datagrams_and_device_errors_are_logged_once_a_frame(tmp_path):
 def test_propose_exclusions_needs_no_participant_number(tmp_path, capsys):
     from exp_synthetic import write_participant
     folder = write_participant(str(tmp_path), 3, lambda r, s: 0.5)
-    with open(os.path.join(folder, "events.csv"), "a") as f:
-        f.write("10.0,7,device-lost,test\n")
+    seventh = logs.read_trials(folder)[6]
+    with open(os.path.join(folder, "events.csv"), "a") as f:  # during trial 7
+        f.write(f"{seventh['t_enter_start'] + 0.1},7,device-lost,test\n")
     assert experiment.main(["--propose-exclusions", folder]) == 0
     path = os.path.join(folder, "exclusions.proposed.csv")
     assert capsys.readouterr().out == (f"ff-experiment: 1 candidate(s) in {path}; review them and copy the ones "
                                        "to drop into exclusions.csv\n")
     assert open(path).read().splitlines()[1] == "7,device,device lost during the trial"
+
+
+def test_propose_exclusions_on_an_events_file_with_a_bad_trial_is_one_line(tmp_path, capsys):
+    from exp_synthetic import write_participant
+    folder = write_participant(str(tmp_path), 3, lambda r, s: 0.5)
+    with open(os.path.join(folder, "events.csv"), "a") as f:
+        f.write("10.0,seven,device-lost,test\n")  # line 2, under the header
+    assert experiment.main(["--propose-exclusions", folder]) == 2
+    assert capsys.readouterr().err == (f"ff-experiment: {os.path.join(folder, 'events.csv')}:2: "
+                                       "column 'trial': 'seven' is not a number\n")
+
+
+def test_resume_on_a_log_that_is_not_utf8_is_one_line(tmp_path, capsys):
+    assert run_fake(tmp_path, "--trials", "2", "--skip-familiarisation") == 0
+    trials = tmp_path / "P04" / "trials.csv"
+    trials.write_bytes(trials.read_bytes().replace(b"ok\n", b"\xe9\n", 1))  # line 2
+    capsys.readouterr()
+    assert run_fake(tmp_path, "--trials", "3", "--resume") == 2
+    assert capsys.readouterr().err == f"ff-experiment: {trials}:2: not UTF-8 text (byte 0xe9; save it as UTF-8)\n"
 
 
 @pytest.mark.parametrize("argv, why", [
@@ -327,6 +387,23 @@ def test_an_output_folder_that_cannot_be_made_is_one_line_and_closes_the_device(
                             "-o", str(tmp_path / "logs")], _one(made)) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"ff-experiment: {tmp_path / 'logs' / 'P04'}") and "Not a directory" in err
+    assert made[0].closed == 1
+
+
+def test_a_full_disk_as_the_session_is_created_exits_1(tmp_path, capsys, monkeypatch):
+    import ff_files
+    real = ff_files.write_whole
+
+    def disk_full(path, write, binary=False):
+        def fill(f):
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return real(path, fill, binary)
+    monkeypatch.setattr(ff_files, "write_whole", disk_full)
+    made = []
+    assert run_fake(tmp_path, factory=_one(made)) == 1  # a log that cannot be written: 1, not bad input
+    session = tmp_path / "P04" / "session.json"
+    assert capsys.readouterr().err == f"ff-experiment: cannot write {session}: No space left on device\n"
+    assert not session.exists() and not (tmp_path / "P04" / "session.json.partial").exists()
     assert made[0].closed == 1
 
 

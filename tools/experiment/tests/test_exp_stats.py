@@ -1,5 +1,8 @@
 """The ANOVA against independent implementations: statsmodels' AnovaRM
 (within part), Box's epsilon formula, one-way ANOVA and t-tests (between part)."""
+import math
+import warnings
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -145,3 +148,14 @@ def test_the_summary_prints_p_and_f_as_papers_do():
     r = dict(F=5.4321, df1=2, df2=20, p=0.0123, df1_gg=1.234, df2_gg=12.34, p_gg=0.0346, epsilon=0.617)
     assert stats.format_f(r) == "F(2, 20) = 5.43, p = 0.012"
     assert stats.format_f(r, corrected=True) == "F(1.2, 12.3) = 5.43, p = 0.035, GG eps = 0.62"
+
+
+def test_the_sd_over_participants_is_the_sample_sd():
+    # by hand: 1, 2, 3, 4 have mean 2.5 and squared deviations 2.25 + 0.25 + 0.25 + 2.25 = 5; 5 / (4 - 1)
+    assert stats.sample_sd([1.0, 2.0, 3.0, 4.0]) == pytest.approx(math.sqrt(5 / 3), rel=1e-12)
+    assert stats.sample_sd([2.0, 4.0, math.nan]) == pytest.approx(math.sqrt(2), rel=1e-12)  # (1 + 1) / 1
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # one participant: no spread, and nothing to warn about
+        assert math.isnan(stats.sample_sd([0.7]))
+        got = stats.sample_sd([[1.0, 5.0, math.nan], [3.0, math.nan, math.nan]], axis=0)
+    assert got[0] == pytest.approx(math.sqrt(2)) and np.isnan(got[1]) and np.isnan(got[2])
