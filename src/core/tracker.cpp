@@ -120,16 +120,22 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
                                fade.position);
   calm_evidence_.configure(calm_evidence(config), config.calm_rest_sigmas, config.calm_moving_sigmas, fade.calm);
   calm_steady_speed_ = std::sqrt(fade.calm.steady_variance);
-  reset();
+  // The tick clock runs on: the device's micros() did not change with the
+  // configuration, and the next report must be judged by it like any other.
+  forget_finger();
 }
 
 void Tracker::reset() {
-  // No finger and no tick clock. Everything else about the finger (filters,
-  // velocity, pending jump, stroke fit) starts again at the next touch-down,
-  // in restart_at(), the only way back to having one.
+  forget_finger();
+  have_tick_ = false;
+}
+
+void Tracker::forget_finger() {
+  // Everything else about the finger (filters, velocity, pending jump, stroke
+  // fit) starts again at the next touch-down, in restart_at(), the only way
+  // back to having one.
   state_ = TrackState{};
   have_last_ = false;
-  have_tick_ = false;
 }
 
 FF_TICK_INLINE void Tracker::learn_velocity_noise() {
