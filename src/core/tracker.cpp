@@ -275,9 +275,10 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   if (have_tick_) {
     // Judge the stamp by the tick clock (the same micros() on the device): a
     // report from the future, or older than the stale timeout, is a glitch.
-    const int32_t lead = elapsed_us(in.t_us, last_tick_us_);
-    if (lead > static_cast<int32_t>(config_.max_sample_lead_us) ||
-        -lead > static_cast<int32_t>(config_.stale_timeout_us)) {
+    // In 64 bits: a lead of INT32_MIN (2^31 us either way) has no negation.
+    const int64_t lead = elapsed_us(in.t_us, last_tick_us_);
+    if (lead > static_cast<int64_t>(config_.max_sample_lead_us) ||
+        lead < -static_cast<int64_t>(config_.stale_timeout_us)) {
       faults_.add(Fault::SampleTimeImplausible);
       return;
     }
