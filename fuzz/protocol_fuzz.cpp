@@ -40,6 +40,7 @@ int protocol_one_input(const uint8_t* data, size_t size) {
       // Every profile the device accepts makes a tracker that answers a report with a finite position.
       static ff::Tracker tracker;
       tracker.configure(ff::TrackerConfig::recommended(m.sensor_profile));
+      tracker.reset();  // configure() keeps the tick clock; every input starts at the same times
       tracker.on_sample({1000, 400.0f, 240.0f, true});
       const ff::TrackState& s = tracker.on_tick(1500);
       if (!s.present || !ff::is_finite(s.position.x) || !ff::is_finite(s.position.y)) {

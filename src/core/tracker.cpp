@@ -120,16 +120,22 @@ void Tracker::configure(const TrackerConfig& config, const FadeNoise& fade) {
                                fade.position);
   calm_evidence_.configure(calm_evidence(config), config.calm_rest_sigmas, config.calm_moving_sigmas, fade.calm);
   calm_steady_speed_ = std::sqrt(fade.calm.steady_variance);
-  reset();
+  // The tick clock runs on: the device's micros() did not change with the
+  // configuration, and the next report must be judged by it like any other.
+  forget_finger();
 }
 
 void Tracker::reset() {
-  // No finger and no tick clock. Everything else about the finger (filters,
-  // velocity, pending jump, stroke fit) starts again at the next touch-down,
-  // in restart_at(), the only way back to having one.
+  forget_finger();
+  have_tick_ = false;
+}
+
+void Tracker::forget_finger() {
+  // Everything else about the finger (filters, velocity, pending jump, stroke
+  // fit) starts again at the next touch-down, in restart_at(), the only way
+  // back to having one.
   state_ = TrackState{};
   have_last_ = false;
-  have_tick_ = false;
 }
 
 FF_TICK_INLINE void Tracker::learn_velocity_noise() {
@@ -269,9 +275,10 @@ FF_FASTRUN void Tracker::on_sample(const SensorSample& in, bool need_filter) {
   if (have_tick_) {
     // Judge the stamp by the tick clock (the same micros() on the device): a
     // report from the future, or older than the stale timeout, is a glitch.
-    const int32_t lead = elapsed_us(in.t_us, last_tick_us_);
-    if (lead > static_cast<int32_t>(config_.max_sample_lead_us) ||
-        -lead > static_cast<int32_t>(config_.stale_timeout_us)) {
+    // In 64 bits: a lead of INT32_MIN (2^31 us either way) has no negation.
+    const int64_t lead = elapsed_us(in.t_us, last_tick_us_);
+    if (lead > static_cast<int64_t>(config_.max_sample_lead_us) ||
+        lead < -static_cast<int64_t>(config_.stale_timeout_us)) {
       faults_.add(Fault::SampleTimeImplausible);
       return;
     }

@@ -48,23 +48,28 @@ BusStatus Ad9834::write(const uint16_t* words, uint32_t count) {
   return s;
 }
 
+// control_ is what the chip holds: a word is recorded only once it was written
+// (after a failed select the chip still plays the other register).
 BusStatus Ad9834::write_control(uint16_t control) {
-  control_ = static_cast<uint16_t>(control & ~(kAddressMask | kControlReserved));
-  return write(&control_, 1);
+  const uint16_t c = static_cast<uint16_t>(control & ~(kAddressMask | kControlReserved));
+  const BusStatus s = write(&c, 1);
+  if (s == BusStatus::Ok) control_ = c;
+  return s;
 }
 
 BusStatus Ad9834::start(uint32_t f_out_hz, bool release) {
   const uint32_t word = frequency_word(f_out_hz, mclk_hz_);
   // Software control (PIN/SW = 0), sine, SIGN BIT OUT off, FREQ0/PHASE0, in reset.
-  control_ = kB28 | kReset;
+  const uint16_t control = kB28 | kReset;
   const uint16_t words[] = {
-      control_,
+      control,
       freq_lsb_word(0, word), freq_msb_word(0, word),
       freq_lsb_word(1, word), freq_msb_word(1, word),  // a stray FSEL plays the same tone
       phase_word(0, 0), phase_word(1, 0),
   };
   const BusStatus s = write(words, sizeof(words) / sizeof(words[0]));
   if (s != BusStatus::Ok) return s;
+  control_ = control;
   freq_[0] = freq_[1] = word;
   return release ? release_reset() : BusStatus::Ok;
 }

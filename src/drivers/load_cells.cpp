@@ -18,6 +18,7 @@ void LoadCellMonitor::start(uint32_t now_us) {
   started_ = true;
   tared_ = false;
   zero_counts_ = 0.0f;
+  tare_counts_ = 0.0f;
   filled_ = 0;
   next_us_ = now_us + config_.period_us;
 }
@@ -57,12 +58,19 @@ bool LoadCellMonitor::step(uint32_t now_us, bool finger_present, LoadReading& ou
   if (filled_ < kLoadAverageLength) ++filled_;
 
   float mean = 0.0f;
-  for (int i = 0; i < filled_; ++i) mean += static_cast<float>(window_[(head_ - 1 - i + kLoadAverageLength) % kLoadAverageLength]);
+  uint32_t lowest = UINT32_MAX, highest = 0;
+  for (int i = 0; i < filled_; ++i) {
+    const uint32_t v = window_[(head_ - 1 - i + kLoadAverageLength) % kLoadAverageLength];
+    mean += static_cast<float>(v);
+    if (v < lowest) lowest = v;
+    if (v > highest) highest = v;
+  }
   mean /= static_cast<float>(filled_);
 
   if (!tared_) {
     if (filled_ < kLoadAverageLength) return true;  // tare still collecting
     zero_counts_ = mean;
+    tare_counts_ = mean;
     tared_ = true;
     filled_ = 0;  // the average starts afresh from the zero
     out.tared = true;
@@ -72,13 +80,16 @@ bool LoadCellMonitor::step(uint32_t now_us, bool finger_present, LoadReading& ou
   bool all_free = filled_ == kLoadAverageLength;
   for (int i = 0; i < kLoadAverageLength; ++i) all_free = all_free && window_free_[i];
   if (all_free && mean != zero_counts_) {
-    const float drift_mN = (mean - zero_counts_) * config_.millinewton_per_count;
-    if (std::fabs(drift_mN) <= config_.rezero_limit_mN) {
+    // Measured from the tare, not from the last zero: a load that arrives a
+    // little at a time would otherwise be followed step by step and zeroed away.
+    const float drift_mN = (mean - tare_counts_) * config_.millinewton_per_count;
+    const float spread_mN = static_cast<float>(highest - lowest) * config_.millinewton_per_count;
+    if (std::fabs(drift_mN) > config_.rezero_limit_mN) {
+      ++rezeros_refused_;
+    } else if (spread_mN <= config_.rezero_limit_mN) {  // the readings agree: the plate is at rest
       zero_counts_ = mean;
       ++rezeros_;
       out.rezeroed = true;
-    } else {
-      ++rezeros_refused_;
     }
   }
 

@@ -260,7 +260,10 @@ bool ZforceSensor::poll(uint32_t now_us, SensorSample& out) {
     state_ = ZforceState::Configuring;
     deadline_us_ = now_us + config_.response_timeout_us;
   }
-  if (tracking_ && elapsed_since(now_us, tracked_seen_us_) > config_.track_timeout_us) {
+  // Signed: an edge that rose after the loop read the clock stamps its frame
+  // a little after now_us, which is no silence at all.
+  const int32_t silent_us = signed_elapsed(now_us, tracked_seen_us_);
+  if (tracking_ && silent_us > 0 && static_cast<uint32_t>(silent_us) > config_.track_timeout_us) {
     tracking_ = false;
     for (uint32_t& w : ignored_) w = 0;
     add(ZforceCount::TrackLost);

@@ -277,6 +277,35 @@ TEST(HapticPipeline, WithoutAReportAtTheChangeTheFingerIsFoundAgainAtTheNext) {
   EXPECT_TRUE(out.back().present);
 }
 
+// A new profile reconfigures the tracker, but the clock runs on: the first
+// report after the change is judged by the tick clock like any other. One
+// stamped 1 s ahead is dropped; taken as the new touch-down, it would make
+// every report for the next second look older and freeze the finger.
+TEST(HapticPipeline, TheFirstReportAfterAProfileChangeIsJudgedByTheTickClock) {
+  auto p = std::make_unique<HapticPipeline>();  // the neutral scene: the output is at the last report
+  // At rest at x = 100 until 50 ms, then right at 0.625 px/ms to rest at 700 from 1010 ms.
+  auto x_at = [](uint32_t t_us) {
+    if (t_us <= 50000) return 100.0f;
+    if (t_us >= 1010000) return 700.0f;
+    return 100.0f + 0.000625f * static_cast<float>(t_us - 50000);
+  };
+  TickOutput out;
+  for (uint32_t now = 0; now <= 1030000; now += kTickPeriodUs) {
+    if (now == 50000) {
+      ASSERT_TRUE(p->set_sensor_profile(measured()));
+      ASSERT_TRUE(p->post_sample({now + 1000000, 100.0f, 240.0f, true}));  // in place of the 50 ms report
+    } else if (now % 5000 == 0) {
+      ASSERT_TRUE(p->post_sample({now, x_at(now), 240.0f, true}));
+    }
+    out = p->tick(now);
+  }
+  EXPECT_EQ(p->tracker().config().sensor, measured());
+  EXPECT_EQ(p->faults()[Fault::SampleTimeImplausible], 1u);
+  EXPECT_EQ(p->faults()[Fault::NonIncreasingTime], 0u);
+  ASSERT_TRUE(out.present);
+  EXPECT_EQ(out.position.x, 700.0f);
+}
+
 TEST(HapticPipeline, TheLoopWritesTheSlotTheTickIsNotReading) {
   auto p = std::make_unique<HapticPipeline>();
   SensorProfile a = measured(), b = measured();

@@ -771,6 +771,26 @@ TEST(Tracker, ReportFromTheFutureIsDropped) {
   EXPECT_NEAR(static_cast<double>(states.back().position.x), 100 + 300 * 0.4995, 0.05);  // last tick
 }
 
+// A report stamped exactly 2^31 us after the last tick is as far ahead as it
+// is behind: implausible either way. Taken as a touch-down, it would make
+// every later report look older than it for 35.8 min.
+TEST(Tracker, AReportHalfTheClockAheadIsDroppedAndTheFingerFollowed) {
+  Tracker t;
+  const auto s = line(20000, {100, 240}, {300, 0}, 60);  // 20 .. 315 ms
+  size_t next = 0;
+  TrackState last;
+  for (uint32_t now = 0; now < 320000; now += kTickPeriodUs) {
+    if (now == 10000) t.on_sample({now - kTickPeriodUs + 0x80000000u, 100, 240, true});  // the lead is INT32_MIN
+    while (next < s.size() && s[next].t_us <= now) t.on_sample(s[next++]);
+    last = t.on_tick(now);
+  }
+  EXPECT_EQ(t.faults()[Fault::SampleTimeImplausible], 1u);
+  EXPECT_EQ(t.faults()[Fault::NonIncreasingTime], 0u);
+  EXPECT_EQ(t.faults()[Fault::TouchDown], 1u);
+  ASSERT_TRUE(last.present);
+  EXPECT_NEAR(static_cast<double>(last.position.x), 100 + 300 * 0.2995, 0.05);  // the finger at the last tick
+}
+
 TEST(Tracker, OneTickGlitchIsIgnoredAClockStepIsFollowed) {
   Tracker t;
   for (const SensorSample& s : line(0, {100, 100}, {100, 0}, 10)) t.on_sample(s);

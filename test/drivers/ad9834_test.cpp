@@ -156,6 +156,79 @@ TEST(Ad9834, TriangleAndArgumentChecks) {
   EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
 }
 
+// The chip behind a bus whose next `fail_next` writes time out without reaching it.
+class FlakySpi final : public SpiBus16 {
+ public:
+  explicit FlakySpi(SpiBus16& chip) : chip_(chip) {}
+  uint32_t fail_next = 0;
+
+ private:
+  BusStatus do_write(const SpiConfig& config, uint8_t chip_select, const uint16_t* words, size_t count) override {
+    if (fail_next > 0) {
+      --fail_next;
+      return BusStatus::Timeout;
+    }
+    return chip_.write(config, chip_select, words, count);
+  }
+  SpiBus16& chip_;
+};
+
+// A select that did not reach the chip selects nothing: the driver still
+// names the register the chip plays, so the next word (a sweep's step) goes
+// to the other one and never changes the tone while it plays.
+TEST(Ad9834, ASelectThatFailsChangesNothing) {
+  Ad9834Model chip;
+  FlakySpi bus(chip);
+  Ad9834 dds(bus, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);  // FREQ0 plays 124912
+  const uint16_t before = dds.control();
+  ASSERT_EQ(dds.set_frequency_word(1, 100000u), BusStatus::Ok);
+  bus.fail_next = 1;
+  EXPECT_EQ(dds.select(1, 0), BusStatus::Timeout);
+  EXPECT_EQ(dds.control(), before);
+  EXPECT_EQ(dds.selected_frequency(), 0);
+  ASSERT_EQ(chip.output_word(), 124912u);
+  // The sweep's next step: the register not playing, then select it.
+  const uint8_t idle = static_cast<uint8_t>(1u - dds.selected_frequency());
+  ASSERT_EQ(dds.set_frequency_word(idle, 100001u), BusStatus::Ok);
+  EXPECT_EQ(chip.output_word(), 124912u);  // still the start tone, untouched
+  ASSERT_EQ(dds.select(idle, 0), BusStatus::Ok);
+  EXPECT_EQ(chip.output_word(), 100001u);
+  EXPECT_EQ(dds.bus_errors(), 1u);
+  EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+// B28 set in a control word that never arrived is not set: the next full
+// word writes it first, so the chip takes the two halves as a pair.
+TEST(Ad9834, AB28ThatNeverArrivedIsWrittenAgain) {
+  Ad9834Model chip;
+  FlakySpi bus(chip);
+  Ad9834 dds(bus, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);
+  ASSERT_EQ(dds.set_frequency_lsbs(1, 124912u), BusStatus::Ok);  // B28 off on the chip
+  ASSERT_EQ(chip.control() & ad9834::kB28, 0);
+  bus.fail_next = 1;  // the control word that sets B28 again
+  EXPECT_EQ(dds.set_frequency_word(1, 0x2ABCDEu), BusStatus::Timeout);
+  EXPECT_EQ(dds.control() & ad9834::kB28, 0);
+  ASSERT_EQ(dds.set_frequency_word(1, 0x2ABCDEu), BusStatus::Ok);
+  EXPECT_NE(chip.control() & ad9834::kB28, 0);
+  EXPECT_EQ(chip.frequency_register(1), 0x2ABCDEu);
+  EXPECT_EQ(chip.total_faults(), 0u) << chip.first_fault();
+}
+
+// A start-up that failed has not put the chip in reset: the driver does not
+// claim it did.
+TEST(Ad9834, AStartThatFailsRecordsNoControlWord) {
+  Ad9834Model chip;
+  FlakySpi bus(chip);
+  Ad9834 dds(bus, 0);
+  ASSERT_EQ(dds.start(34900), BusStatus::Ok);  // 0x2000: B28, running
+  bus.fail_next = 1;
+  EXPECT_EQ(dds.start(25000, false), BusStatus::Timeout);
+  EXPECT_EQ(dds.control(), 0x2000);
+  EXPECT_EQ(dds.control(), chip.control());
+}
+
 TEST(Ad9834, CountsBusErrors) {
   MockSpiBus16 spi({{SpiMode::Mode2, 0, {0x2100, 0x4000, 0x4000, 0x8000, 0x8000, 0xC000, 0xE000}, BusStatus::Timeout}});
   Ad9834 dds(spi, 0);

@@ -133,6 +133,47 @@ TEST(LoadCells, LargeOffsetsAreNotZeroedAway) {
   EXPECT_EQ(rig.cells.rezeros_refused(), 2u);
 }
 
+// A load put down over a second with no finger reported (a hand, an object)
+// is no drift: +3 counts a reading for 32 readings (0.96 s) to +96 counts,
+// 1008.81 mN. No window of 5 agrees while it rises (a spread of 12 counts,
+// 126 mN, over the 100 mN limit), and once it rests it is 96 counts above the
+// tare: the zero stays at the tare.
+TEST(LoadCells, ALoadPutDownOverASecondIsNotZeroedAway) {
+  Rig rig;
+  rig.tare();
+  LoadReading r;
+  for (int k = 1; k <= 32; ++k) {
+    rig.adc.set(0, static_cast<uint16_t>(100 + 3 * k));
+    r = rig.next();
+  }
+  for (int k = 0; k < 10; ++k) r = rig.next();
+  EXPECT_FLOAT_EQ(rig.cells.zero_counts(), 1000.0f);
+  EXPECT_NEAR(static_cast<double>(r.force_mN), 96 * kMnPerCount, kTol);
+  EXPECT_TRUE(r.over_force);
+  EXPECT_EQ(rig.cells.rezeros(), 0u);
+  EXPECT_GT(rig.cells.rezeros_refused(), 0u);
+}
+
+// Slower, +1 count a reading (a spread of 4 counts, 42 mN: the readings
+// agree): the zero follows only while the window's mean is within 100 mN
+// (9.516 counts) of the tare. The mean at reading k >= 5 is 1000 + k - 2, so
+// the last zero taken is 1009 (k = 11); at rest at +96 the force is
+// (1096 - 1009) counts = 914.24 mN.
+TEST(LoadCells, ASlowlyRisingLoadMovesTheZeroNoFurtherThanTheLimitFromTheTare) {
+  Rig rig;
+  rig.tare();
+  LoadReading r;
+  for (int k = 1; k <= 96; ++k) {
+    rig.adc.set(0, static_cast<uint16_t>(100 + k));
+    r = rig.next();
+  }
+  for (int k = 0; k < 10; ++k) r = rig.next();
+  EXPECT_FLOAT_EQ(rig.cells.zero_counts(), 1009.0f);
+  EXPECT_EQ(rig.cells.rezeros(), 7u);  // k = 5 .. 11
+  EXPECT_NEAR(static_cast<double>(r.force_mN), 87 * kMnPerCount, kTol);
+  EXPECT_TRUE(r.over_force);
+}
+
 TEST(LoadCells, NoRezeroWhileAFingerReadingIsInTheWindow) {
   Rig rig;
   rig.tare();

@@ -374,6 +374,47 @@ TEST(ZforceSensor, ForgettingASilentFingerForgivesTheIgnoredOnes) {
   EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 1u);
 }
 
+// The firmware polls with one now_us per loop pass; a DR edge that rises
+// after the pass read the clock stamps its frame a little after now_us. The
+// next poll of that pass must not take the tracked finger's newest report for
+// one 2^32 us old: finger 0 (x = 200) stays tracked when finger 1 (x = 600)
+// is later listed first.
+TEST(ZforceSensor, AnEdgeNewerThanTheLoopsClockIsNoSilence) {
+  ZforceRig rig;
+  rig.configure();
+  uint32_t x[2], y[2];
+  rig.model.to_sensor(200.0f, 100.0f, x[0], y[0]);
+  rig.model.to_sensor(600.0f, 100.0f, x[1], y[1]);
+  auto frame = [&](uint32_t t_us, std::vector<uint8_t> ids, std::vector<uint8_t> events) {
+    std::vector<uint32_t> xs, ys;
+    for (uint8_t id : ids) {
+      xs.push_back(x[id]);
+      ys.push_back(y[id]);
+    }
+    rig.model.schedule_raw(t_us, rig.model.touch_frame(ids.data(), events.data(), xs.data(), ys.data(),
+                                                       static_cast<int>(ids.size()), t_us));
+  };
+  frame(100000, {0}, {0});        // 0 down: tracked
+  frame(105000, {0, 1}, {1, 0});  // 1 down: ignored
+  frame(110002, {0, 1}, {1, 1});  // rises 2 us after the pass at 110000 read the clock
+  frame(115000, {1, 0}, {1, 1});  // 1 listed first
+  frame(120000, {1, 0}, {1, 1});
+  std::vector<SensorSample> got;
+  for (uint32_t t = 100000; t <= 125000; t += 500) {
+    rig.model.advance_to(t + 2);  // the sensor runs on while the pass polls with the time it read
+    SensorSample s;
+    while (rig.sensor.poll(t, s)) got.push_back(s);
+  }
+  ASSERT_EQ(got.size(), 5u);
+  EXPECT_EQ(got[2].t_us, 110002u);
+  for (const SensorSample& s : got) {
+    EXPECT_TRUE(s.touch);
+    EXPECT_EQ(s.x, 200.0f) << s.t_us;
+  }
+  EXPECT_EQ(rig.sensor.count(ZforceCount::TrackLost), 0u);
+  EXPECT_EQ(rig.sensor.count(ZforceCount::ResumedWithoutDown), 0u);
+}
+
 TEST(ZforceSensor, TheFirstFingerDownIsTheOneTracked) {
   // The other finger lands first (a frame with it alone), then the one the
   // trace follows: the first stays tracked, as the thesis' sensor would have it.

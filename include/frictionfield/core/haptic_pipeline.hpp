@@ -44,8 +44,9 @@ class HapticPipeline {
   uint32_t last_prepare_us() const { return last_prepare_us_; }
   // The tracker for the sensor `profile` describes (TrackerConfig::recommended),
   // from the start of the next tick on: the tick configures the tracker
-  // before it takes a report, which resets it, so a finger on the screen is
-  // found again at its next report. An invalid profile (is_valid) is counted
+  // before it takes a report, which forgets the finger (not the tick clock),
+  // so a finger on the screen is found again at its next report, judged by
+  // the tick clock like any other. An invalid profile (is_valid) is counted
   // (Fault::BadSensorProfile) and changes nothing: false.
   bool set_sensor_profile(const SensorProfile& profile);
   // The tracker configuration the next tick uses: the last one handed over.

@@ -131,10 +131,12 @@ class Tracker {
  public:
   explicit Tracker(const TrackerConfig& config = TrackerConfig::recommended());
   Tracker(const TrackerConfig& config, const FadeNoise& fade);  // `fade` = fade_noise(config)
+  // Both forget the finger (found again at its next report) but keep the
+  // tick clock, by which that report is judged.
   void configure(const TrackerConfig& config);  // derives its FadeNoise
   // Bounded work, for the tick: `fade` must be fade_noise(config).
   void configure(const TrackerConfig& config, const FadeNoise& fade);
-  void reset();
+  void reset();  // a new start: forgets the finger and the tick clock
 
   // A sensor report (any order of calls with tick() is allowed). With
   // need_filter = false (the scene needs no motion) the filters are not fed;
@@ -160,6 +162,7 @@ class Tracker {
   // Further from `from` than max_speed allows in the time between (plus the slack).
   bool moved_further_than_allowed(const SensorSample& s, const SensorSample& from) const;
   void lose_finger();
+  void forget_finger();  // no finger and no state to render: configure() and reset()
   Vec2 estimate(uint32_t now_us, Vec2& velocity);
   uint32_t extrapolation_us(uint32_t now_us);
   Vec2 faded_direction(Vec2 velocity) const;

@@ -44,7 +44,7 @@ class Ad9834 {
   BusStatus set_output_enabled(bool on) { return set_power(on ? Power::Running : Power::DacOff); }
   BusStatus set_waveform(Waveform w);
 
-  uint16_t control() const { return control_; }
+  uint16_t control() const { return control_; }  // the last control word the chip took
   uint32_t frequency_word_of(uint8_t reg) const { return freq_[reg & 1u]; }
   uint8_t selected_frequency() const { return (control_ & ad9834::kFsel) != 0 ? 1 : 0; }
   uint8_t selected_phase() const { return (control_ & ad9834::kPsel) != 0 ? 1 : 0; }

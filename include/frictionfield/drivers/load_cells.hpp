@@ -6,9 +6,11 @@
 // readings after start (tare; restarted if a finger is present meanwhile),
 // and is re-taken while no finger is present (the thesis saw the zero drift
 // with temperature): once the last 5 readings were all taken without a
-// finger, the zero snaps to their mean, provided the drift is smaller than
-// rezero_limit_mN (more than that is something resting on the plate, not
-// drift, and is left visible). Over-force: the average above 0.5 N.
+// finger and agree (highest minus lowest within rezero_limit_mN), the zero
+// snaps to their mean, provided that mean is within rezero_limit_mN of the
+// tare. Further from the tare is something resting on the plate, not drift,
+// however slowly it came: refused (counted) and left visible. Over-force:
+// the average above 0.5 N.
 #include <cstdint>
 
 #include "frictionfield/bus/adc.hpp"
@@ -60,6 +62,7 @@ class LoadCellMonitor {
   bool started_ = false;
   bool tared_ = false;
   float zero_counts_ = 0.0f;
+  float tare_counts_ = 0.0f;  // the zero taken at start(): re-zeroes stay within the limit of it
   uint32_t window_[kLoadAverageLength] = {};  // raw sums, newest at head_ - 1
   bool window_free_[kLoadAverageLength] = {};  // taken without a finger
   int head_ = 0;

@@ -18,7 +18,7 @@ enum class DeviceCount : uint8_t {
   UdpSendFailures,        // the reply address did not answer ARP
   ForceReadErrors,        // load-cell reads that failed: that reading skipped
   ForceRezeros,           // the zero re-taken while no finger was on the plate
-  ForceRezerosRefused,    // drift over the limit: something rests on the plate, left visible
+  ForceRezerosRefused,    // over the limit from the tare: something rests on the plate, left visible
   ForcePeriodsMissed,     // readings later than their period (the main loop was busy)
   UdpUnavailable,         // 1: no network chip answered at start-up, so no UDP until reset
   kCount
