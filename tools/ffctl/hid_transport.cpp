@@ -3,6 +3,7 @@
 #include <hidapi.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <stdexcept>
 
@@ -89,6 +90,10 @@ ReceiveResult HidTransport::receive(std::vector<uint8_t>& frame, int timeout_ms)
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count());
     if (left <= 0) return ReceiveResult::Timeout;
     const int n = hid_read_timeout(device_, report, sizeof report, left);
+    // A signal (Ctrl-C ending a recording) interrupts hidraw's poll(), which is
+    // never restarted: -1 with EINTR, the device still there. Read on; the
+    // caller sees the stop at its next frame.
+    if (n < 0 && errno == EINTR) continue;
     if (n < 0) return ReceiveResult::Disconnected;
     if (n == 0) return ReceiveResult::Timeout;
     if (reassembler_.push(report)) {

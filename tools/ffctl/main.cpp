@@ -618,7 +618,7 @@ int main(int argc, char** argv) {
       });
       if (live) std::fprintf(stderr, "\n");
       std::string werr;
-      if (!writer.close(werr)) return fail(werr);
+      if (!writer.close(werr)) return usage(werr + " (what arrived before was kept)");  // an output: exit 2
       std::fprintf(stderr, "wrote %s, %s, %s%s%s\n", record_out.c_str(), ff::ffctl::ticks_path_for(record_out).c_str(),
                    ff::ffctl::force_path_for(record_out).c_str(),
                    r.has_condition ? (", " + ff::ffctl::condition_path_for(record_out)).c_str() : "",

@@ -19,6 +19,7 @@
 #include "device_client.hpp"
 #include "hex_record.hpp"
 #include "support/file_contents.hpp"
+#include "support/file_size_limit.hpp"
 #include "test/emulated_usb/usb_bus.hpp"
 #include "support/scratch_path.hpp"
 
@@ -319,6 +320,38 @@ TEST(FfctlUsb, ACablePulledWhileRecordingKeepsWhatCame) {
   EXPECT_LT(rec.ticks.size(), 7000u);
   EXPECT_EQ(bus.device(), "absent");
   EXPECT_EQ(count_of(bus.events(), "unplugged"), 1u);
+}
+
+// Ctrl-C interrupts hidraw's poll(): hid_read_timeout returns -1 with EINTR
+// while the device is still there. The recording ends as Ctrl-C should:
+// StopStream, the last reports read, exit 0.
+TEST(FfctlUsb, CtrlCEndsAUsbRecordingCleanly) {
+  Bus bus("record_ctrl_c", {{"device", "firmware"}, {"sigint_after_ms", "1500"}});
+  const std::string path = bus.folder + "/rec.csv";
+  UsbRun r = bus.ffctl("record -o " + path);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(has(r.err, "disconnected")) << r.err;
+  EXPECT_TRUE(has(r.err, "wrote " + path)) << r.err;
+  Recording rec;
+  std::string error;
+  ASSERT_TRUE(read_recording(path, rec, error)) << error;
+  EXPECT_GT(rec.ticks.size(), 1000u);
+  EXPECT_EQ(bus.device(), "firmware");
+}
+
+// A full disk while recording (RLIMIT_FSIZE: "File too large"): an output
+// that cannot be written is exit 2 (docs/tools.md), named with its reason.
+TEST(FfctlUsb, ARecordingThatCannotBeWrittenExits2) {
+  Bus bus("record_full", {{"device", "firmware"}});
+  const std::string path = bus.folder + "/rec.csv";
+  UsbRun r;
+  {
+    support::FileSizeLimit full(16384);  // the headers fit, a second of ticks does not
+    r = bus.ffctl("record -o " + path + " --seconds 2");
+  }
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "cannot write " + bus.folder)) << r.err;
+  EXPECT_TRUE(has(r.err, "File too large")) << r.err;
 }
 
 TEST(FfctlUsb, ResetBootsWhatTheFlashHolds) {

@@ -18,11 +18,16 @@
 // - A feature report goes to usb_dev.c's SET_REPORT handler (the model's).
 // - With unplug_after_ms in the bus file, the cable comes out that long after
 //   the open: reads and writes fail from then on.
+// - With sigint_after_ms, Ctrl-C comes that long after the open, during a
+//   read: the signal's handler runs and hidraw's poll() returns -1 with EINTR
+//   (poll is never restarted), so hid_read_timeout returns -1 with errno EINTR
+//   (hidapi linux/hid.c), the device still there.
 #include <hidapi.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <deque>
 #include <memory>
@@ -111,6 +116,18 @@ class EmulatedTeensy {
     return unplug_at_ != std::chrono::steady_clock::time_point{} && std::chrono::steady_clock::now() >= unplug_at_;
   }
   bool gone() const { return teensy_model::rebooted() || unplugged(); }
+  void interrupt_after(long ms) {
+    if (ms > 0) interrupt_at_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  }
+  // True once, when Ctrl-C is due: it is raised here, as if during poll().
+  bool interrupted_now() {
+    if (interrupt_at_ == std::chrono::steady_clock::time_point{} || std::chrono::steady_clock::now() < interrupt_at_) {
+      return false;
+    }
+    interrupt_at_ = {};
+    std::raise(SIGINT);
+    return true;
+  }
   std::deque<std::vector<uint8_t>>& hidraw() { return hidraw_; }
 
  private:
@@ -119,7 +136,7 @@ class EmulatedTeensy {
   std::unique_ptr<teensy_model::SimDevices> devices_;
   std::deque<std::vector<uint8_t>> hidraw_;
   uint64_t t0_ = 0;
-  std::chrono::steady_clock::time_point wall0_, unplug_at_{};
+  std::chrono::steady_clock::time_point wall0_, unplug_at_{}, interrupt_at_{};
 };
 
 EmulatedTeensy& teensy() {
@@ -211,6 +228,7 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
   if (!d->silent && interface == kSeremuInterface && !teensy().running()) {
     teensy().boot();
     teensy().unplug_after(bus.get_long("unplug_after_ms", 0));
+    teensy().interrupt_after(bus.get_long("sigint_after_ms", 0));
   }
   return d;
 }
@@ -267,6 +285,10 @@ int HID_API_EXPORT HID_API_CALL hid_read_timeout(hid_device* dev, unsigned char*
       return static_cast<int>(n);
     }
     if (teensy().gone()) return -1;
+    if (teensy().interrupted_now()) {
+      errno = EINTR;
+      return -1;
+    }
     if (!blocking && std::chrono::steady_clock::now() >= deadline) return 0;
     teensy().run(1000);
   }

@@ -18,6 +18,7 @@
 //   hang_after_writes=0                      HalfKay stops answering after this many blocks (0: never)
 //   stall_after_writes=0                     HalfKay stalls every request after this many blocks (0: never)
 //   unplug_after_ms=0                        the cable comes out this long after ffctl opens the firmware
+//   sigint_after_ms=0                        Ctrl-C this long after ffctl opens the firmware, during a read
 //   appears_at_ms, erased, writes            kept by the models
 #include <cstdint>
 #include <map>
