@@ -1,6 +1,7 @@
 #include "device_client.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -387,13 +388,17 @@ bool RecordingWriter::note_failure(File f) {
   return false;
 }
 
+namespace {
+constexpr const char* kTicksHeader = "t_us,amplitude,dac,present";
+}  // namespace
+
 bool RecordingWriter::open(const std::string& path, const std::vector<std::string>& metadata, const Recording& r,
                            std::string& error) {
   names_[kTrace] = path;
   names_[kTicks] = ticks_path_for(path);
   names_[kForce] = force_path_for(path);
-  static const char* const kHeaders[kFiles] = {"t_us,x,y,touch,taken_us\n", "t_us,amplitude,dac,present\n",
-                                               "t_us,force_mN,over_force\n"};
+  const std::string headers[kFiles] = {"t_us,x,y,touch,taken_us\n", std::string(kTicksHeader) + "\n",
+                                       "t_us,force_mN,over_force\n"};
   for (int i = 0; i < kFiles; ++i) {
     files_[i] = std::fopen(names_[i].c_str(), "w");
     if (!files_[i]) return note_failure(static_cast<File>(i)), error = failure_, false;
@@ -401,7 +406,7 @@ bool RecordingWriter::open(const std::string& path, const std::vector<std::strin
     buffers_[i] = std::make_unique<char[]>(kBufferBytes);
     std::setvbuf(files_[i], buffers_[i].get(), _IOFBF, kBufferBytes);
     for (const std::string& line : metadata) std::fprintf(files_[i], "# %s\n", line.c_str());
-    std::fputs(kHeaders[i], files_[i]);
+    std::fputs(headers[i].c_str(), files_[i]);
   }
   if (!flush(error)) return false;
   // A stale one would mislead verify.
@@ -496,8 +501,12 @@ bool read_ticks(const std::string& path, std::vector<DeviceTick>& ticks, std::st
   for (int line_no = 1; std::getline(in, line); ++line_no) {
     const size_t first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
-    if (!header_seen) {
+    line.erase(line.find_last_not_of(" \t\r") + 1);  // Windows line ends
+    if (!header_seen) {  // a file without it would lose its first tick as the header
       header_seen = true;
+      if (line.substr(first) != kTicksHeader) {
+        return error = path + ":" + std::to_string(line_no) + ": expected the header " + kTicksHeader, false;
+      }
       continue;
     }
     unsigned long long time = 0;
@@ -505,8 +514,8 @@ bool read_ticks(const std::string& path, std::vector<DeviceTick>& ticks, std::st
     int present = 0;
     float amp = 0.0f;
     char tail = 0;
-    line.erase(line.find_last_not_of(" \t\r") + 1);  // Windows line ends
-    if (std::sscanf(line.c_str(), "%llu,%f,%u,%d%c", &time, &amp, &dac, &present, &tail) != 4 || dac > 4095 ||
+    if (!std::isdigit(static_cast<unsigned char>(line[first])) ||  // %llu would take "-5" as a huge time
+        std::sscanf(line.c_str(), "%llu,%f,%u,%d%c", &time, &amp, &dac, &present, &tail) != 4 || dac > 4095 ||
         present < 0 || present > 1 || !std::isfinite(amp)) {
       return error = path + ":" + std::to_string(line_no) + ": expected t_us,amplitude,dac,present", false;
     }

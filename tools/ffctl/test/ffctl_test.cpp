@@ -825,6 +825,30 @@ TEST(Ffctl, ARecordingsTakenTimesStayWithTheirRowsWhateverLinesAreBetween) {
   EXPECT_EQ(error.rfind(path + ":4:2: x is not a number", 0), 0u) << error;
 }
 
+// A ticks file without its header would lose its first tick as the header;
+// a time written with a sign would wrap to a huge one (%llu takes "-5").
+TEST(Ffctl, ATicksFileWithoutItsHeaderOrWithASignedTimeIsRefused) {
+  const std::string path = support::scratch_path("ffctl_ticks_header.csv");
+  std::ofstream(path) << "t_us,x,y,touch\n1000,10,10,1\n";
+  std::ofstream(ticks_path_for(path)) << "# ffctl record\n500,0.5,2048,1\n1000,0.5,2048,1\n";
+  Recording headless;
+  std::string error;
+  EXPECT_FALSE(read_recording(path, headless, error));
+  EXPECT_EQ(error, ticks_path_for(path) + ":2: expected the header t_us,amplitude,dac,present");
+  for (const char* time : {"-5", "+5", " -5"}) {
+    std::ofstream(ticks_path_for(path)) << "t_us,amplitude,dac,present\n" << time << ",0.5,2048,1\n";
+    Recording signed_time;
+    EXPECT_FALSE(read_recording(path, signed_time, error)) << time;
+    EXPECT_EQ(error, ticks_path_for(path) + ":2: expected t_us,amplitude,dac,present") << time;
+  }
+  std::ofstream(ticks_path_for(path)) << "  t_us,amplitude,dac,present \r\n 500,0.5,2048,1\n";
+  Recording padded;
+  EXPECT_TRUE(read_recording(path, padded, error)) << error;
+  EXPECT_EQ(padded.ticks.size(), 1u);
+  std::filesystem::remove(ticks_path_for(path));
+  std::filesystem::remove(path);
+}
+
 TEST(Ffctl, ATicksFileReadsLikeEveryTraceFile) {
   const std::string path = support::scratch_path("ffctl_ticks_shape.csv");
   std::ofstream(path) << "t_us,x,y,touch\n1000,10,10,1\n";
