@@ -1,5 +1,6 @@
 #include "frictionfield/host/trace_csv.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -9,7 +10,6 @@
 #include <istream>
 #include <ostream>
 #include <sstream>
-#include <algorithm>
 
 #include "frictionfield/host/input_file.hpp"
 
@@ -82,6 +82,12 @@ bool SensorTraceReader::read_header(TraceError& error) {
   names_ = split(line);
   for (size_t i = 0; i < names_.size(); ++i) {
     const std::string& name = names_[i] = trim(names_[i]);
+    // Named twice, the last would win silently: a file merged by hand.
+    if (!name.empty() && std::find(names_.begin(), names_.begin() + static_cast<long>(i), name) !=
+                             names_.begin() + static_cast<long>(i)) {
+      error = {line_no_, i + 1, "column '" + name + "' is named twice in the header"};
+      return false;
+    }
     const int c = static_cast<int>(i);
     if (name == "t_us") col_t_ = c;
     else if (name == "x") col_x_ = c;
@@ -117,6 +123,12 @@ bool SensorTraceReader::parse_row(const std::string& line, TraceRow& row, TraceE
   if (f.size() < needed_) {
     error = {line_no_, f.size() + 1,
              "expected at least " + std::to_string(needed_) + " fields, got " + std::to_string(f.size())};
+    return false;
+  }
+  if (f.size() > names_.size()) {  // misaligned: a column the header does not name
+    error = {line_no_, names_.size() + 1,
+             "more fields than the header names (" + std::to_string(names_.size()) + "), got " +
+                 std::to_string(f.size())};
     return false;
   }
   row = TraceRow{};

@@ -90,6 +90,9 @@ TEST(TraceCsv, ErrorsNameLineAndColumn) {
       // A stamp near 2^64 hung the replay (its tick times wrapped): found by fuzz/trace_csv.
       {"t_us,x,y,touch\n18446744073709551610,100,0,0\n", 2, 1, "at most 2^53"},
       {"t_us,x,y,touch\n9007199254740993,100,0,0\n", 2, 1, "at most 2^53"},
+      // A file merged or shifted by hand: a column named twice, a row wider than the header.
+      {"t_us,x,y,touch,t_us\n1000,400,240,1,5\n", 1, 5, "column 't_us' is named twice"},
+      {"t_us,x,y,touch\n1000,400,240,1\n1500,401,240,1,junk,more\n", 3, 5, "more fields than the header names (4)"},
   };
   for (const Case& c : cases) {
     std::vector<TraceRow> rows;
