@@ -20,10 +20,10 @@ namespace ff::protocol {
 
 constexpr size_t kHidReportBytes = 64;
 constexpr size_t kHidChunkBytes = kHidReportBytes - 1;
-constexpr size_t kMaxHidReports = (kMaxFrame + kHidChunkBytes - 1) / kHidChunkBytes;
 
 // How many reports a frame of `size` bytes takes.
 constexpr size_t reports_for(size_t size) { return (size + kHidChunkBytes - 1) / kHidChunkBytes; }
+constexpr size_t kMaxHidReports = reports_for(kMaxFrame);
 
 // Report `index` of `frame` (index < reports_for(size) <= 0x7F).
 void fill_report(const uint8_t* frame, size_t size, size_t index, uint8_t* report);
