@@ -14,10 +14,14 @@ uint64_t ReplaySummary::rejected_samples() const {
 
 namespace {
 
-// Rows with their arrival time. A row stamped far ahead of the rows behind it
-// (a clock glitch, more than kMaxHoldUs) arrives with the next one instead of
-// holding the whole trace back; smaller inversions keep docs/spec.md's rule
-// (the tracker then judges the earlier stamp). Monotonic traces: the spec exactly.
+// Rows with their arrival time: the tick due to take them. A row of a device
+// recording that says which tick took it (taken_us) arrives for the tick
+// nearest that time, whatever its stamp: the replay then feeds the tracker as
+// the device did. Any other row arrives at its stamp, except a row stamped far
+// ahead of the rows behind it (a clock glitch, more than kMaxHoldUs), which
+// arrives with the next one instead of holding the whole trace back; smaller
+// inversions keep docs/spec.md's rule (the tracker then judges the earlier
+// stamp). Monotonic traces: the spec exactly.
 // Arrivals are worked out backwards over a window of rows; the window looks
 // kLookahead rows past the rows it hands out, so only a chain of more than
 // kLookahead glitches in a row could be judged differently from the whole file.
@@ -64,12 +68,20 @@ class ArrivalQueue {
     if (rows_.empty()) return false;
     uint64_t next_arrival = UINT64_MAX;
     for (size_t i = rows_.size(); i-- > 0;) {
-      const bool glitch = next_arrival != UINT64_MAX && rows_[i].row.t_us > next_arrival + kMaxHoldUs;
-      rows_[i].arrival = glitch ? next_arrival : rows_[i].row.t_us;
+      const TraceRow& r = rows_[i].row;
+      const bool glitch = next_arrival != UINT64_MAX && r.t_us > next_arrival + kMaxHoldUs;
+      if (r.taken_us >= 0) rows_[i].arrival = nearest_tick_takes(static_cast<uint64_t>(r.taken_us));
+      else rows_[i].arrival = glitch ? next_arrival : r.t_us;
       next_arrival = rows_[i].arrival;
     }
     ready_ = ended_ ? rows_.size() : rows_.size() - kLookahead;
     return true;
+  }
+
+  // On the device a tick's time is micros() in its interrupt, a microsecond or
+  // so off the replay's 500 us grid: the tick within half a period takes it.
+  static uint64_t nearest_tick_takes(uint64_t taken_us) {
+    return taken_us > kTickPeriodUs / 2 ? taken_us - kTickPeriodUs / 2 + 1 : 0;
   }
 
   static constexpr uint64_t kMaxHoldUs = 20000;
@@ -88,8 +100,16 @@ ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const Ti
   TraceRow row;
   uint64_t arrival = 0;
   if (!queue.peek(row, arrival)) return summary;
-  const uint64_t t0 = row.t_us;
+  // The first tick takes the first row: on a recording, the device's tick that
+  // took it (so the ticks fall where the device's fell); else at its arrival,
+  // so a first row stamped far ahead cannot skip the rows behind it.
+  const uint64_t t0 = row.taken_us >= 0 ? static_cast<uint64_t>(row.taken_us) : arrival;
   uint64_t last_due = t0;  // the latest arrival delivered so far
+  // The device ticks from power-on, so its tracker judges even the first
+  // report's stamp by the tick clock: one silent tick before t0 gives the
+  // replay's tracker that clock too (a first stamp 100 s ahead is then a
+  // glitch, not the time every later report must follow).
+  if (t0 >= kTickPeriodUs) pipeline.tick(static_cast<uint32_t>(t0 - kTickPeriodUs));
   double amplitude_sum = 0.0;
   summary.amplitude_min = 1.0f;
   uint64_t extra_left = options.extra_ticks;

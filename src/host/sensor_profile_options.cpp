@@ -5,9 +5,13 @@
 
 namespace ff::host {
 
+namespace {
+constexpr const char* kGroup = "Sensor profile (docs/tracking.md#calibration)";
+}  // namespace
+
 void add_sensor_profile_options(CLI::App& app, SensorProfile& p) {
   using L = SensorProfileLimits;
-  const char* group = "Sensor profile (docs/tracking.md#calibration)";
+  const char* group = kGroup;
   app.add_option("--white-noise-px", p.white_noise_px, "report noise independent from report to report, 1 sigma per axis")
       ->check(CLI::Range(1e-3f, L::kMaxNoisePx))->capture_default_str()->group(group);
   app.add_option("--correlated-noise-px", p.correlated_noise_px, "slow noise wander (Gauss-Markov), 1 sigma per axis")
@@ -24,6 +28,27 @@ void add_sensor_profile_options(CLI::App& app, SensorProfile& p) {
       ->check(CLI::Range(0.0f, L::kMaxJitterUs))->capture_default_str()->group(group);
   app.add_option("--latency-us", p.latency_us, "from the sensor's scan to the report's stamp")
       ->check(CLI::Range(0u, L::kMaxLatencyUs))->capture_default_str()->group(group);
+}
+
+bool sensor_profile_given(const CLI::App& app) {
+  for (const CLI::Option* o : app.get_options()) {
+    if (o->get_group() == kGroup && o->count() > 0) return true;
+  }
+  return false;
+}
+
+bool parse_sensor_profile_flags(const std::string& flags, SensorProfile& profile, std::string& error) {
+  CLI::App app;
+  SensorProfile p;
+  add_sensor_profile_options(app, p);
+  try {
+    app.parse(flags, false);
+  } catch (const CLI::ParseError& e) {
+    return error = e.what(), false;
+  }
+  if (!is_valid(p)) return error = "the profile's values contradict each other (" + flags + ")", false;
+  profile = p;
+  return true;
 }
 
 std::string sensor_profile_flags(const SensorProfile& p) {

@@ -51,6 +51,9 @@ bool parse_float(const std::string& text, float& out) {  // "" parses nothing: e
   return true;
 }
 
+// Metadata before the header that a reader keeps: every tool writes fewer.
+constexpr size_t kMaxLeadingComments = 64;
+
 }  // namespace
 
 std::string TraceError::to_string(const std::string& file) const {
@@ -67,6 +70,9 @@ bool SensorTraceReader::next_data_line(std::string& line) {
     ++line_no_;
     if (line_no_ == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // UTF-8 BOM
     const std::string t = trim(line);
+    if (!t.empty() && t[0] == '#' && names_.empty() && leading_comments_.size() < kMaxLeadingComments) {
+      leading_comments_.push_back(t);
+    }
     if (t.empty() || t[0] == '#') continue;  // blank lines and metadata
     return true;
   }
@@ -95,6 +101,7 @@ bool SensorTraceReader::read_header(TraceError& error) {
     else if (name == "touch") col_touch_ = c;
     else if (name == "x_true") col_x_true_ = c;
     else if (name == "y_true") col_y_true_ = c;
+    else if (name == "taken_us") col_taken_ = c;
   }
   if (col_t_ < 0 || col_x_ < 0 || col_y_ < 0 || col_touch_ < 0) {
     error = {line_no_, 0, "header must name the columns t_us, x, y and touch (got '" + trim(line) + "')"};
@@ -107,7 +114,6 @@ bool SensorTraceReader::read_header(TraceError& error) {
 bool SensorTraceReader::next(TraceRow& row, TraceError& error, TruthPoint* truth) {
   error = {};
   std::string line;
-  fields_.clear();
   if (!next_data_line(line)) return false;
   if (parse_row(line, row, error, truth)) return true;
   // getline stopped at the end of the file, not at a newline: a write cut short.
@@ -118,8 +124,7 @@ bool SensorTraceReader::next(TraceRow& row, TraceError& error, TruthPoint* truth
 }
 
 bool SensorTraceReader::parse_row(const std::string& line, TraceRow& row, TraceError& error, TruthPoint* truth) {
-  fields_ = split(line);
-  const std::vector<std::string>& f = fields_;
+  const std::vector<std::string> f = split(line);
   if (f.size() < needed_) {
     error = {line_no_, f.size() + 1,
              "expected at least " + std::to_string(needed_) + " fields, got " + std::to_string(f.size())};
@@ -158,6 +163,19 @@ bool SensorTraceReader::parse_row(const std::string& line, TraceRow& row, TraceE
     error = {line_no_, static_cast<size_t>(col_y_) + 1, "y is not a number (got '" + ys + "')"};
     return false;
   }
+  if (col_taken_ >= 0) {
+    const std::string taken = static_cast<size_t>(col_taken_) < f.size() ? trim(f[col_taken_]) : std::string();
+    uint64_t v = 0;
+    if (taken == "-1") {
+      row.taken_us = -1;
+    } else if (parse_u64(taken, v) && v <= kMaxTraceTimeUs) {
+      row.taken_us = static_cast<int64_t>(v);
+    } else {
+      error = {line_no_, static_cast<size_t>(col_taken_) + 1,
+               "taken_us must be a time in us or -1 (got '" + taken + "')"};
+      return false;
+    }
+  }
   if (truth != nullptr) {
     *truth = TruthPoint{};
     float tx = 0.0f, ty = 0.0f;
@@ -170,13 +188,19 @@ bool SensorTraceReader::parse_row(const std::string& line, TraceRow& row, TraceE
   return true;
 }
 
+std::string SensorTraceReader::metadata(const std::string& key) const {
+  for (const std::string& c : leading_comments_) {
+    const std::string text = trim(c.substr(1));
+    if (text.compare(0, key.size(), key) != 0 || text.size() == key.size()) continue;
+    const char after = text[key.size()];
+    if (after == ' ' || after == ':') return trim(text.substr(key.size() + 1));
+  }
+  return "";
+}
+
 int SensorTraceReader::column(const std::string& name) const {
   const auto it = std::find(names_.begin(), names_.end(), name);
   return it == names_.end() ? -1 : static_cast<int>(it - names_.begin());
-}
-
-std::string SensorTraceReader::field(int column) const {
-  return column >= 0 && static_cast<size_t>(column) < fields_.size() ? trim(fields_[column]) : std::string();
 }
 
 bool read_sensor_trace(std::istream& in, std::vector<TraceRow>& rows, TraceError& error) {

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <iterator>
 #include <memory>
 #include <vector>
@@ -187,6 +189,78 @@ TEST(Replay, AJumpKeepsItsStampAndCountsEveryRowAfterIt) {
 // ff-replay's "rejected" line: the faults that drop a sample, one each, and
 // no more than the samples read (the list here is fault_counters.hpp's
 // comments read by hand: the kinds that say "dropped" or lose the sample).
+TEST(Replay, AFirstRowStampedFarAheadDoesNotSkipTheRowsBehindIt) {
+  // The first stamp is 100 s ahead (a clock glitch); the 20 reports behind it
+  // span 1 ms .. 96 ms. Ticking from that stamp made every other row due at the
+  // first tick, and all but 8 overflowed the mailbox: 0.1 s of output.
+  std::vector<TraceRow> rows = {{100'000'000, 400, 240, true}};
+  for (uint64_t t = 1000; t <= 96000; t += 5000) rows.push_back({t, 400, 240, true});
+  auto p = std::make_unique<HapticPipeline>();
+  const ReplaySummary s = replay(rows, *p, nullptr);
+  // Ticks from the second row's arrival (1 ms), the glitch arriving with it, to 96 ms.
+  EXPECT_EQ(s.ticks, (96000u - 1000u) / kTickPeriodUs + 1);
+  EXPECT_EQ(s.faults[Fault::MailboxOverflow], 0u);
+  EXPECT_EQ(s.samples, rows.size());
+  EXPECT_EQ(s.rejected_samples(), 1u);  // the glitch alone
+}
+
+TEST(Replay, ARowWithItsTakenTimeGoesToTheTickThatTookItWhateverItsStamp) {
+  // Stamps 1000, 1200, 1400 would all be taken by the ticks from 1000 on; the
+  // device took them at 1700, 2201 and 2699 (its ticks are micros() in an
+  // interrupt, a microsecond off the grid).
+  std::vector<TraceRow> rows = {{1000, 10, 10, true}, {1200, 20, 10, true}, {1400, 30, 10, true}};
+  rows[0].taken_us = 1700;
+  rows[1].taken_us = 2201;
+  rows[2].taken_us = 2699;
+  auto p = std::make_unique<HapticPipeline>();
+  std::vector<std::pair<uint64_t, uint32_t>> seen;  // tick time, reports taken by then
+  replay(rows, *p, [&](uint64_t t, const TickOutput&) { seen.push_back({t, p->samples_taken()}); });
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0], (std::pair<uint64_t, uint32_t>{1700, 1}));
+  EXPECT_EQ(seen[1], (std::pair<uint64_t, uint32_t>{2200, 2}));
+  EXPECT_EQ(seen[2], (std::pair<uint64_t, uint32_t>{2700, 3}));
+}
+
+TEST(Replay, ARecordingWithTakenTimesReplaysToTheDevicesTicks) {
+  // A model device, independent of the replay: ticks every 500 us, each at
+  // micros() a microsecond or so off the grid; a 200 Hz report of a moving
+  // finger reaches the mailbox 700 us after its stamp (the I2C read) and is
+  // taken by the next tick. The trace keeps each report's stamp and the time
+  // of the tick that took it, as ffctl record writes them.
+  Condition c;
+  c.scene = scenes::heightmap(Target::Top);
+  c.amplitude.strength = 0.66f;
+  auto device = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(device->set_condition(c), PrepareStatus::Ok);
+  std::vector<TraceRow> rows;
+  std::vector<std::pair<uint64_t, uint16_t>> device_ticks;
+  uint64_t next_stamp = 10'000;
+  for (uint64_t k = 0; k < 4000; ++k) {
+    const uint64_t tick = 250 + 500 * k + (k % 3) - 1;  // 249, 750, 1251, 1749, ...
+    while (next_stamp + 700 <= tick && next_stamp < 1'800'000) {
+      const float s = static_cast<float>(next_stamp) * 1e-6f;
+      TraceRow r{next_stamp, 100.0f + 300.0f * s, 240.0f - 120.0f * std::sin(4.0f * s), s < 1.2f};
+      r.taken_us = static_cast<int64_t>(tick);
+      device->post_sample({static_cast<uint32_t>(r.t_us), r.x, r.y, r.touch});
+      rows.push_back(r);
+      next_stamp += 5000;
+    }
+    if (!rows.empty()) device_ticks.push_back({tick, device->tick(static_cast<uint32_t>(tick)).dac});
+  }
+  auto p = std::make_unique<HapticPipeline>();
+  ASSERT_EQ(p->set_condition(c), PrepareStatus::Ok);
+  std::vector<uint16_t> replayed;
+  replay(rows, *p, [&](uint64_t, const TickOutput& o) { replayed.push_back(o.dac); });
+  ASSERT_GE(replayed.size(), 3000u);
+  size_t beyond_one_code = 0, moving = 0;
+  for (size_t i = 0; i < replayed.size() && i < device_ticks.size(); ++i) {
+    beyond_one_code += std::abs(int{replayed[i]} - int{device_ticks[i].second}) > 1;
+    moving += device_ticks[i].second != 0;
+  }
+  EXPECT_GT(moving, 1000u);
+  EXPECT_EQ(beyond_one_code, 0u);
+}
+
 TEST(ReplaySummary, RejectedSamplesAreTheFaultsThatDropOne) {
   const Fault dropping[] = {Fault::NonFiniteCoordinate, Fault::OffScreen,       Fault::NonIncreasingTime,
                             Fault::JumpRejected,        Fault::MailboxOverflow, Fault::SampleTimeImplausible};

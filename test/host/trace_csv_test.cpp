@@ -199,27 +199,44 @@ TEST(TraceCsv, EachRowAndEachCallStartsClean) {
   EXPECT_EQ(err.line, 0u);
 }
 
-TEST(TraceCsv, AToolsOwnColumnIsReadInStepWithTheRows) {
-  std::istringstream in("t_us, x ,y,touch , note\r\n1,1,1,1, first \r\n# a comment\n\n2,2,2,1\n3,3,3,1,third\n");
+TEST(TraceCsv, ARecordingsTakenTimesAreReadWithTheirRows) {
+  std::istringstream in("t_us, x ,y,touch , taken_us \r\n1,1,1,1, 500 \r\n# a comment\n\n2,2,2,1,-1\n3,3,3,1,x\n");
   SensorTraceReader reader(in);
   TraceError err;
   ASSERT_TRUE(reader.read_header(err));
-  EXPECT_EQ(reader.column("note"), 4);
-  EXPECT_EQ(reader.column("touch"), 3);  // names trimmed
-  EXPECT_EQ(reader.column("taken_us"), -1);
-  EXPECT_EQ(reader.field(4), "");  // no row read yet
+  EXPECT_EQ(reader.column("taken_us"), 4);  // names trimmed
+  EXPECT_EQ(reader.column("note"), -1);
   TraceRow row;
   ASSERT_TRUE(reader.next(row, err));
-  EXPECT_EQ(reader.field(4), "first");
-  EXPECT_EQ(reader.field(0), "1");
+  EXPECT_EQ(row.taken_us, 500);
   ASSERT_TRUE(reader.next(row, err));
   EXPECT_EQ(row.t_us, 2u);
-  EXPECT_EQ(reader.field(4), "");  // this row is short
-  EXPECT_EQ(reader.field(-1), "");
-  ASSERT_TRUE(reader.next(row, err));
-  EXPECT_EQ(reader.field(4), "third");
+  EXPECT_EQ(row.taken_us, -1);  // the firmware did not say
   EXPECT_FALSE(reader.next(row, err));
-  EXPECT_EQ(reader.field(4), "");  // past the end
+  EXPECT_EQ(err.to_string("r.csv"), "r.csv:6:5: taken_us must be a time in us or -1 (got 'x')");
+}
+
+TEST(TraceCsv, ATraceWithoutTakenTimesLeavesThemUnknown) {
+  std::istringstream in("t_us,x,y,touch,note\n1,1,1,1,500\n");
+  std::vector<TraceRow> rows;
+  TraceError err;
+  ASSERT_TRUE(read_sensor_trace(in, rows, err)) << err.message;
+  EXPECT_EQ(rows.at(0).taken_us, -1);
+}
+
+TEST(TraceCsv, MetadataBeforeTheHeaderIsFoundByItsKeyInEitherForm) {
+  std::istringstream in(
+      "# ffctl 0.1.0 record -o r.csv\n#  sensor-profile --white-noise-px 2 \n# scene_hash: ab12\n"
+      "# sensor-profiles other\nt_us,x,y,touch\n# sensor-profile late\n1,1,1,1\n");
+  SensorTraceReader reader(in);
+  TraceError err;
+  ASSERT_TRUE(reader.read_header(err));
+  TraceRow row;
+  ASSERT_TRUE(reader.next(row, err));
+  EXPECT_EQ(reader.metadata("sensor-profile"), "--white-noise-px 2");  // ffctl's "key value", trimmed
+  EXPECT_EQ(reader.metadata("scene_hash"), "ab12");                    // the other tools' "key: value"
+  EXPECT_EQ(reader.metadata("ffctl"), "0.1.0 record -o r.csv");
+  EXPECT_EQ(reader.metadata("date"), "");  // none; and a line after the header is a row's note, not metadata
 }
 
 }  // namespace

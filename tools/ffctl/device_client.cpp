@@ -470,19 +470,8 @@ bool read_samples(const std::string& path, std::vector<DeviceSample>& samples, s
   host::SensorTraceReader reader(in);
   host::TraceError terr;
   if (!reader.read_header(terr)) return error = terr.to_string(path), false;
-  const int taken_column = reader.column("taken_us");
   for (host::TraceRow row; reader.next(row, terr);) {
-    DeviceSample s{row, false, 0};
-    if (taken_column >= 0) {
-      const std::string field = reader.field(taken_column);
-      char* end = nullptr;
-      const long long v = std::strtoll(field.c_str(), &end, 10);
-      if (field.empty() || *end != '\0' || v < -1) {
-        return error = path + ":" + std::to_string(reader.line()) + ": taken_us must be a time in us or -1", false;
-      }
-      s.taken_known = v >= 0;
-      s.taken_us = s.taken_known ? static_cast<uint64_t>(v) : 0;
-    }
+    DeviceSample s{row, row.taken_us >= 0, row.taken_us >= 0 ? static_cast<uint64_t>(row.taken_us) : 0};
     samples.push_back(s);
   }
   return terr.message.empty() || (error = terr.to_string(path), false);

@@ -59,6 +59,12 @@ bool parse_screen(const std::string& text, float& width, float& height) {
   return true;
 }
 
+std::string shortest(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,7 +78,9 @@ int main(int argc, char** argv) {
       "calibration, input), then one row per 500 us tick: t_us,x,y,vx,vy,amplitude,dac,present\n"
       "(present = 1: a finger was tracked at that tick), then a '# summary' line.\n"
       "A gap between reports longer than --max-gap-s is a clock fault: the replay ends at the last\n"
-      "plausible report and reports the rows it left out.\n\n"
+      "plausible report and reports the rows it left out.\n"
+      "An ffctl recording replays as the device rendered it: each report at the tick that took it\n"
+      "(taken_us), with the sensor profile its '# sensor-profile' line names (unless flags are given).\n\n"
       "Exit codes: 0 ok; 1 a check failed (--strict: samples rejected or rows left out);\n"
       "2 bad usage or input (unreadable trace, bad scene words, output = input).\n\n"
       "Example:\n"
@@ -118,6 +126,7 @@ int main(int argc, char** argv) {
     std::cerr << "ff-replay: " << error << "\n";
     return kExitBadUsage;
   }
+  const bool profile_given = ff::host::sensor_profile_given(app);
   if (output != "-" && ff::host::same_file(input, output)) {
     std::cerr << "ff-replay: the output " << output << " is the input trace itself: choose another -o\n";
     return kExitBadUsage;
@@ -133,6 +142,17 @@ int main(int argc, char** argv) {
   if (!reader.read_header(trace_error)) {
     std::cerr << "ff-replay: " << trace_error.to_string(input) << "\n";
     return kExitBadUsage;
+  }
+  // An ffctl recording names the profile the device's tracker used: replay with it unless told otherwise.
+  std::string profile_source = profile_given ? "command line" : "default";
+  if (const std::string recorded = reader.metadata("sensor-profile"); !profile_given && recorded.rfind("--", 0) == 0) {
+    if (!ff::host::parse_sensor_profile_flags(recorded, sensor, error)) {
+      std::cerr << "ff-replay: " << input << ": its sensor-profile line: " << error
+                << " (give the profile's flags to override it)\n";
+      return kExitBadUsage;
+    }
+    make_tracker(tracker, derivative, sensor, tracker_config, error);
+    profile_source = "the recording's sensor-profile line";
   }
 
   auto pipeline = std::make_unique<ff::HapticPipeline>(tracker_config);
@@ -161,9 +181,14 @@ int main(int argc, char** argv) {
              {"scene_hash", ff::host::hash_hex(ff::host::condition_hash(condition))},
              {"tracker", tracker + " (derivative " + derivative + ")"},
              {"sensor_profile", tracker == "thesis" ? "not used by the thesis pipeline"
-                                                    : ff::host::sensor_profile_flags(sensor)},
+                                                    : ff::host::sensor_profile_flags(sensor) + " (" +
+                                                          profile_source + ")"},
              {"strength", std::to_string(spec.strength)},
              {"calibration", spec.inverted_dac ? "inverted (AD9834 FSADJUST)" : "linear"},
+             {"timing", std::string(reader.column("taken_us") >= 0
+                                        ? "each report at the tick that took it on the device (taken_us)"
+                                        : "each report at the first tick at or after its stamp") +
+                            ", --extra-ms " + shortest(extra_ms) + ", --max-gap-s " + shortest(max_gap_s)},
              {"screen", screen + (screen == "800x480" ? "" : " scaled to 800x480")},
              {"columns", "t_us,x,y (filtered px),vx,vy (direction used),amplitude,dac,present (finger tracked)"}});
   ff::host::write_replay_header(*out);

@@ -26,6 +26,9 @@ struct TraceRow {
   float x = 0.0f;
   float y = 0.0f;
   bool touch = false;
+  // The device tick that took the report, from an ffctl recording's taken_us
+  // column: -1 where the file has no such column or the firmware did not say.
+  int64_t taken_us = -1;
 };
 
 struct TraceError {
@@ -44,7 +47,8 @@ struct TruthPoint {
 
 // Reads `t_us,x,y,touch` row by row (any column order, extra columns ignored),
 // so a trace of any length needs constant memory. Coordinates may be nan/inf
-// (the tracker must cope); t_us and touch must be integers.
+// (the tracker must cope); t_us and touch must be integers, and so must
+// taken_us where the header names it (-1: not known).
 class SensorTraceReader {
  public:
   explicit SensorTraceReader(std::istream& in) : in_(in) {}
@@ -55,20 +59,21 @@ class SensorTraceReader {
   // An error in a last line without its end says so: a recording cut short.
   bool next(TraceRow& row, TraceError& error, TruthPoint* truth = nullptr);
   bool has_truth() const { return col_x_true_ >= 0 && col_y_true_ >= 0; }
+  // The value of a metadata line before the header, "# key value" (ffctl) or
+  // "# key: value" (the other tools); "" where there is none.
+  std::string metadata(const std::string& key) const;
   size_t line() const { return line_no_; }
-  // A column a tool adds (ffctl's taken_us), read in step with the rows: its
-  // index in the header (-1: absent), and its trimmed field in the row next()
-  // last read ("" where that row is short).
+  // A column's index in the header (-1: absent).
   int column(const std::string& name) const;
-  std::string field(int column) const;
 
  private:
   bool next_data_line(std::string& line);
   bool parse_row(const std::string& line, TraceRow& row, TraceError& error, TruthPoint* truth);
   std::istream& in_;
-  std::vector<std::string> names_, fields_;  // the header's (trimmed), the last row's
+  std::vector<std::string> names_;  // the header's, trimmed
+  std::vector<std::string> leading_comments_;  // '#' lines before the header, trimmed (the first 64)
   size_t line_no_ = 0;
-  int col_t_ = -1, col_x_ = -1, col_y_ = -1, col_touch_ = -1, col_x_true_ = -1, col_y_true_ = -1;
+  int col_t_ = -1, col_x_ = -1, col_y_ = -1, col_touch_ = -1, col_x_true_ = -1, col_y_true_ = -1, col_taken_ = -1;
   size_t needed_ = 0;
 };
 

@@ -118,7 +118,7 @@ class ReplayOutput(Case):
             runs[name] = read_replay(out)
         self.assertEqual(runs["default"][0]["sensor_profile"],
                          "--white-noise-px 1 --correlated-noise-px 0 --correlation-time-ms 0 --tremor-px 0 "
-                         "--tremor-hz 0 --report-rate-hz 200 --jitter-us 150 --latency-us 0")
+                         "--tremor-hz 0 --report-rate-hz 200 --jitter-us 150 --latency-us 0 (default)")
         self.assertIn("--tremor-px 1 --tremor-hz 9.5", runs["late"][0]["sensor_profile"])
         self.assertIn("--latency-us 3000", runs["late"][0]["sensor_profile"])
         # Reports dated 3 ms earlier: the tracker puts the finger further along at each tick.
@@ -128,6 +128,44 @@ class ReplayOutput(Case):
         self.assertEqual(runs["thesis-late"][0]["sensor_profile"], "not used by the thesis pipeline")
         for bad in (["--tremor-hz", "25"], ["--correlated-noise-px", "2", "--correlation-time-ms", "-1"]):
             self.assertEqual(run(REPLAY, trace, "-o", self.path("bad.csv"), *bad).returncode, 2, bad)
+
+    def test_a_recordings_sensor_profile_line_is_used_unless_flags_are_given(self):
+        # ffctl record writes "# sensor-profile FLAGS" before the header: the
+        # profile the device's tracker used.
+        recorded = "--latency-us 3000 --tremor-px 1 --tremor-hz 9.5"
+        rec = self.path("rec.csv")
+        write_trace(rec, stroke(100), prefix=f"# ffctl 0.1.0 record -o rec.csv\n# sensor-profile {recorded}\n")
+        plain = self.path("plain.csv")
+        write_trace(plain, stroke(100))
+        runs = {}
+        for name, trace, extra in (("rec", rec, []), ("flags", plain, recorded.split()),
+                                   ("override", rec, ["--latency-us", "0"]), ("plain", plain, [])):
+            out = self.path(name + ".out.csv")
+            res = run(REPLAY, "-q", trace, "-o", out, *extra)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            runs[name] = read_replay(out)
+        self.assertTrue(runs["rec"][0]["sensor_profile"].endswith("(the recording's sensor-profile line)"))
+        self.assertIn("--latency-us 3000", runs["rec"][0]["sensor_profile"])
+        self.assertEqual(runs["rec"][2], runs["flags"][2])  # as if its flags were typed
+        self.assertEqual(runs["override"][2], runs["plain"][2])  # a flag given: the line is not used at all
+        self.assertTrue(runs["override"][0]["sensor_profile"].endswith("(command line)"))
+        # A line the options refuse is bad input, with the way out.
+        for bad in ("--tremor-hz 25", "--correlated-noise-px 2", "--wobble 3"):
+            write_trace(rec, stroke(10), prefix=f"# sensor-profile {bad}\n")
+            res = run(REPLAY, rec, "-o", self.path("bad.csv"))
+            self.assertEqual(res.returncode, 2, bad)
+            self.assertIn("its sensor-profile line", res.stderr)
+            self.assertEqual(len(res.stderr.strip().splitlines()), 1, res.stderr)
+
+    def test_the_timing_options_are_in_the_metadata(self):
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        write_trace(trace, stroke(20))
+        self.assertEqual(run(REPLAY, "-q", trace, "-o", out, "--extra-ms", "250", "--max-gap-s", "2.5").returncode, 0)
+        self.assertEqual(read_replay(out)[0]["timing"],
+                         "each report at the first tick at or after its stamp, --extra-ms 250, --max-gap-s 2.5")
+        write_trace(trace, [r + (r[0] + 700,) for r in stroke(20)], header="t_us,x,y,touch,taken_us")
+        self.assertEqual(run(REPLAY, "-q", trace, "-o", out).returncode, 0)
+        self.assertTrue(read_replay(out)[0]["timing"].startswith("each report at the tick that took it"))
 
     def test_a_byte_order_mark_is_accepted(self):
         plain, bom = self.path("plain.csv"), self.path("bom.csv")

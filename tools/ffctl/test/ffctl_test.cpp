@@ -814,11 +814,11 @@ TEST(Ffctl, ARecordingsTakenTimesStayWithTheirRowsWhateverLinesAreBetween) {
   std::ofstream(path) << "# ffctl record\nt_us,x,y,touch,taken_us\n1000,10,10,1,1500\n\n2000,20,10,1,soon\n";
   Recording bad_taken;
   EXPECT_FALSE(read_recording(path, bad_taken, error));
-  EXPECT_EQ(error, path + ":5: taken_us must be a time in us or -1");
+  EXPECT_EQ(error, path + ":5:5: taken_us must be a time in us or -1 (got 'soon')");
   std::ofstream(path) << "# ffctl record\nt_us,x,y,touch,taken_us\n1000,10,10,1\n";
   Recording short_row;
   EXPECT_FALSE(read_recording(path, short_row, error));
-  EXPECT_EQ(error, path + ":3: taken_us must be a time in us or -1");
+  EXPECT_EQ(error, path + ":3:5: taken_us must be a time in us or -1 (got '')");
   std::ofstream(path) << "# ffctl record\n# 200 Hz\nt_us,x,y,touch,taken_us\n1000,ten,10,1,1500\n";
   Recording bad_x;
   EXPECT_FALSE(read_recording(path, bad_x, error));
