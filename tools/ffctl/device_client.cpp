@@ -28,8 +28,13 @@ using protocol::MessageType;
 
 ReceiveResult DeviceClient::next(Message& m, int timeout_ms) {
   std::vector<uint8_t> frame;
+  // One deadline for the whole call: frames that do not decode (another
+  // protocol version left streaming, corrupt frames) must not extend it.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
   for (;;) {
-    const ReceiveResult r = transport_.receive(frame, timeout_ms);
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return ReceiveResult::Timeout;
+    const ReceiveResult r = transport_.receive(frame, static_cast<int>(left.count()));
     if (r != ReceiveResult::Frame) return r;
     const protocol::DecodeStatus status = protocol::decode(frame.data(), frame.size(), m);
     if (status == protocol::DecodeStatus::Ok) return r;

@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <deque>
 #include <filesystem>
 #include <functional>
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include <unistd.h>
 
@@ -662,6 +664,50 @@ TEST(Ffctl, ErrorRepliesAndOtherVersionsReadPlainly) {
                                ", this ffctl version " + std::to_string(protocol::kVersion);
   EXPECT_NE(error.find(expected), std::string::npos) << error;
   EXPECT_EQ(client.foreign_version(), protocol::kVersion + 1);
+}
+
+// A device that keeps sending frames ffctl cannot decode: a firmware of
+// another protocol version left streaming. Each receive waits 5 ms; it
+// disconnects after `limit` of them, to bound the old code's wait.
+class ForeignStream final : public Transport {
+ public:
+  explicit ForeignStream(int limit) : limit_(limit) {}
+  bool send(const uint8_t*, size_t) override { return true; }
+  ReceiveResult receive(std::vector<uint8_t>& frame, int) override {
+    if (++receives_ > limit_) return ReceiveResult::Disconnected;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    Message m;
+    m.type = MessageType::Force;
+    frame.resize(protocol::kMaxFrame);
+    frame.resize(protocol::encode(m, frame.data(), frame.size()));
+    frame[2] = static_cast<uint8_t>(protocol::kVersion + 1);
+    return ReceiveResult::Frame;
+  }
+  int receives() const { return receives_; }
+
+ private:
+  int limit_;
+  int receives_ = 0;
+};
+
+TEST(Ffctl, TheReplyDeadlineHoldsWhileUndecodableFramesKeepComing) {
+  // Each foreign frame gave the next receive the whole timeout again: a 2 s
+  // request waited as long as the stream lasted (17 s against a streaming
+  // protocol-1 device). 100 ms at 5 ms a frame is about 20 receives, not 1000.
+  ForeignStream device(1000);
+  DeviceClient client(device);
+  Message q, reply;
+  q.type = MessageType::QueryStatus;
+  std::string error;
+  EXPECT_FALSE(client.request(q, reply, error, 100));
+  EXPECT_LT(device.receives(), 100);
+  EXPECT_NE(error.find("no reply from the device within 100 ms: it speaks protocol version"), std::string::npos)
+      << error;
+  ForeignStream streaming(1000);
+  DeviceClient reader(streaming);
+  Message m;
+  EXPECT_EQ(reader.next(m, 100), ReceiveResult::Timeout);
+  EXPECT_LT(streaming.receives(), 100);
 }
 
 TEST(Ffctl, ARecordingRunsThroughTheClockWrapAndKeepsTheCondition) {
