@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "frictionfield/host/cli_conventions.hpp"
+
 namespace ff::host {
 
 namespace {
@@ -46,6 +48,7 @@ bool parse_sensor_profile_flags(const std::string& flags, SensorProfile& profile
   } catch (const CLI::ParseError& e) {
     return error = e.what(), false;
   }
+  if (std::string why = non_finite_option(app); !why.empty()) return error = why, false;
   if (!is_valid(p)) return error = "the profile's values contradict each other (" + flags + ")", false;
   profile = p;
   return true;

@@ -226,6 +226,24 @@ class ReplayOutput(Case):
         self.assertEqual(res.returncode, 2)
         self.assertIn("--derivative is filtered or raw", res.stderr)
 
+    def test_a_value_that_is_not_a_finite_number_is_a_usage_error(self):
+        trace = self.path("t.csv")
+        write_trace(trace, stroke(5))
+        for tool, args in ((REPLAY, [trace, "--extra-ms", "nan"]), (REPLAY, [trace, "--white-noise-px", "nan"]),
+                           (REPLAY, [trace, "--strength", "-inf"]), (SCENE_RENDER, ["--step", "nan"]),
+                           (SCENE_RENDER, ["--direction", "nan"])):
+            res = run(tool, *args)
+            self.assertEqual(res.returncode, 2, args)
+            self.assertEqual(res.stderr, f"{os.path.basename(tool)}: {args[-2]} {args[-1]}: not a finite number\n")
+        # A file may be called nan: positional arguments are names, not numbers.
+        write_trace(self.path("nan"), stroke(5))
+        self.assertEqual(run(REPLAY, "-q", self.path("nan"), "-o", self.path("r.csv")).returncode, 0)
+        # A recording's sensor-profile line is held to the same rule.
+        write_trace(trace, stroke(5), prefix="# sensor-profile --white-noise-px nan\n")
+        res = run(REPLAY, trace, "-o", self.path("r.csv"))
+        self.assertEqual(res.returncode, 2)
+        self.assertIn("--white-noise-px nan: not a finite number", res.stderr)
+
     def test_a_header_without_the_columns_names_the_file_and_line(self):
         trace = self.path("t.csv")
         write_trace(trace, [(0, 1, 2)], header="time,x,y", prefix="# from a logger\n")
