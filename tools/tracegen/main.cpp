@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -18,6 +19,13 @@
 #include "trace_writer.hpp"
 
 namespace {
+
+// Seeds and the first stamp stay exact in a double (the trace readers' bound
+// is 2^53 us); 10,000 faults, rests or lifts of a kind keep placement (up to 1000 tries per
+// fault) in int and in seconds.
+constexpr double kMaxSeed = 9007199254740992.0;  // 2^53
+constexpr double kMaxStartUs = 4503599627370496.0;  // 2^52: far below the 2^53 us readers accept
+constexpr int kMaxFaultsOfAKind = 10000;
 
 using namespace ff::tracegen;
 
@@ -51,6 +59,12 @@ constexpr const char* kFooter =
     "  ff-tracegen --class realistic-1khz --seed 4 -o real.csv    # every effect, 1 kHz\n"
     "  ff-tracegen --correlated-noise-px 1.5 --correlated-tau-ms 30 --noise-px 0.5 -o wander.csv\n"
     "  ff-tracegen --rest-only --class correlated-noise --duration 10 -o rest.csv   # to calibrate";
+
+// Whether two output names are one file, whether or not it exists yet.
+bool same_path(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  return fs::weakly_canonical(fs::absolute(a)) == fs::weakly_canonical(fs::absolute(b));
+}
 
 struct Cli {
   std::string output = "-";
@@ -224,7 +238,10 @@ int main(int argc, char** argv) {
   app.add_option("--truth-ticks", cli.truth_ticks,
                  "Also write the true finger at every 500 us tick (t_us,x_true,y_true,vx_true,vy_true,touch) "
                  "from the first report on, for comparing a replay tick by tick");
-  app.add_option("--seed", o.seed, "Random seed: same seed and options, same trace")->capture_default_str();
+  // Integer options are range-checked as doubles: CLI11 would wrap -1 to 2^64 - 1 for an unsigned option.
+  app.add_option("--seed", o.seed, "Random seed: same seed and options, same trace")
+      ->check(CLI::Range(0.0, kMaxSeed))
+      ->capture_default_str();
   app.add_option("--duration", o.motion.duration_s, "Length of the exploration in seconds")
       ->capture_default_str()->check(CLI::Range(0.05, 24.0 * 3600.0));
 
@@ -246,9 +263,9 @@ int main(int argc, char** argv) {
   app.add_option("--dwell-max", o.motion.dwell_max_s, "Longest pause at a reversal (s; uniform from 0)")
       ->capture_default_str()->check(CLI::Range(0.0, 10.0))->group(motion);
   app.add_option("--rests", o.motion.rests, "Rests: the finger stays still on the screen for 0.6-2 s")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(motion);
+      ->capture_default_str()->check(CLI::Range(0, kMaxFaultsOfAKind))->group(motion);
   app.add_option("--lifts", o.motion.lifts, "Lift-offs: the finger leaves for 0.15-0.6 s and lands elsewhere")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(motion);
+      ->capture_default_str()->check(CLI::Range(0, kMaxFaultsOfAKind))->group(motion);
   app.add_option("--slow-strokes", o.motion.slow_fraction, "Share of strokes that are slow: peak 20-70 px/s "
                                                            "(4-14 mm/s), lasting 0.8-2 s")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
@@ -304,22 +321,23 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.01, 1e5))->group(sensor);
 
   auto* faults = "Faults (each inserted N times at seeded random places, away from each other)";
-  app.add_option("--missing", o.faults.missing, "Gaps of 1-6 missing reports")->check(CLI::NonNegativeNumber)->group(faults);
+  app.add_option("--missing", o.faults.missing, "Gaps of 1-6 missing reports")->check(CLI::Range(0, kMaxFaultsOfAKind))->group(faults);
   app.add_option("--late", o.faults.late, "Reports read 1-12 ms late (stamped at the read, measured at the scan)")
-      ->check(CLI::NonNegativeNumber)->group(faults);
+      ->check(CLI::Range(0, kMaxFaultsOfAKind))->group(faults);
   app.add_option("--jumps", o.faults.jumps, "1-3 reports from a second finger or a glitch, >= 150 px away")
-      ->check(CLI::NonNegativeNumber)->group(faults);
+      ->check(CLI::Range(0, kMaxFaultsOfAKind))->group(faults);
   app.add_option("--duplicates", o.faults.duplicates,
                  "Non-increasing timestamps, in turn: an exact duplicate row, a new report with the same "
                  "timestamp, a report stamped before its predecessor")
-      ->check(CLI::NonNegativeNumber)->group(faults);
+      ->check(CLI::Range(0, kMaxFaultsOfAKind))->group(faults);
   app.add_option("--nan", o.faults.non_finite, "Reports with nan or infinite coordinates")
-      ->check(CLI::NonNegativeNumber)->group(faults);
+      ->check(CLI::Range(0, kMaxFaultsOfAKind))->group(faults);
   app.add_option("--off-screen", o.faults.off_screen, "Reports far outside the screen (-300, 900, 65535, 880)")
-      ->check(CLI::NonNegativeNumber)->group(faults);
+      ->check(CLI::Range(0, kMaxFaultsOfAKind))->group(faults);
   app.add_flag("--wrap", o.faults.wrap, "Start so that the 32-bit microsecond clock wraps mid-stroke near the "
                                         "middle (t_us passes 2^32 = 4294967296 in the file)")->group(faults);
   app.add_option("--start-us", o.faults.start_us, "Time stamp of the first report (ignored with --wrap)")
+      ->check(CLI::Range(0.0, kMaxStartUs))
       ->capture_default_str()->group(faults);
   app.add_flag("--all-faults", cli.all_faults, "Shorthand: 2 of each fault above, 2 rests and 2 lifts "
                                                "(explicit counts win)")->group(faults);
@@ -342,6 +360,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ff-tracegen: --tremor-hz-max (%g) is below --tremor-hz (%g)\n", o.tremor.max_hz,
                  o.tremor.min_hz);
     return 2;
+  }
+  if (!cli.truth_ticks.empty() && cli.truth_ticks != "-" && cli.output != "-" &&
+      same_path(cli.truth_ticks, cli.output)) {
+    std::fprintf(stderr, "ff-tracegen: --truth-ticks %s is the trace's own file (-o): choose another\n",
+                 cli.truth_ticks.c_str());
+    return ff::host::kExitBadUsage;
   }
   o.sensor.correlated_noise_tau_s = correlated_tau_ms * 1e-3;
   // A class brings its own noise and quantum; --noise and --quantise change them when given.

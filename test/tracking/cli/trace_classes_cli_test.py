@@ -267,6 +267,38 @@ class TrackBenchClasses(unittest.TestCase):
         self.assertEqual(res.returncode, 2)
         self.assertIn("--classes", res.stderr)
 
+    def test_a_value_that_is_not_a_finite_number_is_a_usage_error(self):
+        # CLI11's range checks let nan through (every comparison with it is
+        # false): --duration nan crashed ff-tracegen, --rate nan hung it,
+        # --jitter-us nan wrote stamps near 2^63; ff-track-bench took
+        # --white-noise-px nan and fell back to the default profile quietly.
+        for tool, args in ((TRACEGEN, ["--duration", "nan"]), (TRACEGEN, ["--rate", "nan"]),
+                           (TRACEGEN, ["--jitter-us", "NaN"]), (TRACEGEN, ["--noise-px", "inf"]),
+                           (TRACEGEN, ["--duration", "1e999"]), (BENCH, ["--class", "white-200hz", "--white-noise-px", "nan"])):
+            res = run(tool, *args, "-q") if tool is TRACEGEN else run(tool, *args)
+            self.assertEqual(res.returncode, 2, args)
+            self.assertIn(args[-1], res.stderr)  # inf is out of every range already; nan is caught after
+            if args[-1].lower() == "nan":
+                self.assertEqual(res.stderr.splitlines()[-1].split(": ", 1)[1], f"{args[-2]} {args[-1]}: not a finite number")
+
+    def test_counts_seeds_and_start_times_outside_their_ranges_are_refused_not_wrapped(self):
+        # -1 wrapped to 2^64 - 1 (the same trace as 2^64, which CLI11 clamped);
+        # --start-us -1 wrote stamps wrapping from 2^64 - 1; 5,000,000 gaps hung.
+        for args in (["--seed", "-1"], ["--seed", "18446744073709551616"], ["--start-us", "-1"],
+                     ["--start-us", str(2**53 + 1)], ["--missing", "5000000"], ["--lifts", "1000000"]):
+            res = run(TRACEGEN, *args, "-q", "--duration", "1")
+            self.assertEqual(res.returncode, 2, args)
+            self.assertIn(args[0], res.stderr)
+        self.assertEqual(run(TRACEGEN, "--seed", str(2**53), "-q", "--duration", "1").returncode, 0)
+
+    def test_truth_ticks_into_the_trace_itself_is_refused(self):
+        with tempfile.TemporaryDirectory() as d:
+            trace = os.path.join(d, "t.csv")
+            res = run(TRACEGEN, "-q", "--duration", "1", "-o", trace, "--truth-ticks", os.path.join(d, ".", "t.csv"))
+            self.assertEqual(res.returncode, 2)
+            self.assertIn("is the trace's own file", res.stderr)
+            self.assertFalse(os.path.exists(trace))
+
     def test_frontier_sweeps_the_fade_and_marks_its_pareto_front(self):
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "frontier.csv")
