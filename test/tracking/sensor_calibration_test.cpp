@@ -250,6 +250,23 @@ Calibration calibrate_rows(const std::vector<host::TraceRow>& rows, const Calibr
   return c;
 }
 
+TEST(SensorCalibration, AStampBeforeTheFirstIsLeftOutNotTakenForTheFarFuture) {
+  // Unsigned, a stamp before the first row was 2^64 us ahead (5.8e5 years,
+  // which a double resolves to 4 ms): the first two rows swapped got the
+  // whole recording refused, and a clock stepped back 6 s mid-way was taken
+  // for 205.6 reports/s with 411 us of jitter.
+  std::vector<host::TraceRow> swapped = by_hand(every_us(5000, 2000), 1.0);
+  std::swap(swapped[0], swapped[1]);
+  const Calibration a = calibrate_rows(swapped);
+  EXPECT_NEAR(a.profile.report_rate_hz, 200.0, 0.01);
+  EXPECT_EQ(a.profile.jitter_us, 0.0f);  // the other 1999 stamps are 5 ms apart exactly
+  std::vector<host::TraceRow> stepped = by_hand(every_us(5000, 2000), 1.0);
+  for (size_t i = 1000; i < stepped.size(); ++i) stepped[i].t_us -= 6'000'000;  // 1 s before the first stamp
+  const Calibration b = calibrate_rows(stepped);
+  EXPECT_NEAR(b.profile.report_rate_hz, 200.0, 0.01);
+  EXPECT_EQ(b.profile.jitter_us, 0.0f);
+}
+
 TEST(SensorCalibration, ASteadyClockHasNoJitterAtAll) {
   const Calibration c = calibrate_rows(by_hand(every_us(5000, 2001), 1.0));
   EXPECT_EQ(c.profile.jitter_us, 0.0f);  // not a rounding error's 1e-10, which --profile-out would print

@@ -10,7 +10,11 @@ namespace ff::bench {
 
 namespace {
 
-double seconds_since(uint64_t t_us, uint64_t t0_us) { return static_cast<double>(t_us - t0_us) * 1e-6; }
+// Signed: a stamp before t0 (rows out of order, a clock stepped back) is in
+// the past, not 2^64 us ahead.
+double seconds_since(uint64_t t_us, uint64_t t0_us) {
+  return static_cast<double>(static_cast<int64_t>(t_us - t0_us)) * 1e-6;
+}
 
 bool on_screen(double x, double y) {
   return std::isfinite(x) && std::isfinite(y) && x >= 0.0 && y >= 0.0 && x <= static_cast<double>(kScreenMaxX) &&
