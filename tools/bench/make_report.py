@@ -744,6 +744,14 @@ def report(rows, m4, host_trackers, args):
 
 def main():
     args = parse_args()
+    try:
+        write_report(args)
+    except OSError as e:  # an input that cannot be read, an output that cannot be written: docs/tools.md, exit 2
+        print("make_report: %s" % ff_files.error_text(e), file=sys.stderr)
+        sys.exit(2)
+
+
+def write_report(args):
     host_cases, host_trackers = read_host(args.host)
     m4 = read_m4(args.m4)
     if m4 is not None:

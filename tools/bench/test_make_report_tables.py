@@ -541,9 +541,15 @@ def test_the_host_cpu_is_the_model_name_linux_reports(monkeypatch):
 # ------------------------------------------------------------- the whole tool
 
 
+def make_output_folders(args):
+    for path in (args.md, args.csv, args.png):
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+
+
 def test_main_writes_the_report_the_csv_and_the_figure(run, monkeypatch, capsys):
     folder = run["folder"]
     args = args_for(folder)
+    make_output_folders(args)
     argv = ["make_report.py", "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv", args.csv,
             "--png", args.png, "--cycles", args.cycles, "--m4-accuracy", args.m4_accuracy, "--environment", "x"]
     monkeypatch.setattr(sys, "argv", argv)
@@ -570,6 +576,7 @@ def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_
     (tmp_path / "whole").mkdir()
     write_run(tmp_path / "whole")
     args = args_for(tmp_path / "whole")
+    make_output_folders(args)
     r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--md", args.md, "--csv", args.csv, "--png",
                         args.png], capture_output=True, text=True, env=env, cwd=str(tmp_path))
     assert r.returncode == 0 and r.stdout.startswith(f"make_report: wrote {args.md}"), r.stderr
@@ -587,6 +594,16 @@ def test_a_harness_run_that_crashed_or_failed_writes_nothing(tmp_path, monkeypat
     with pytest.raises(SystemExit) as stop:
         make_report.main()
     assert says in str(stop.value.code) and not os.path.exists(tmp_path / "out")
+
+
+def test_an_output_in_a_missing_folder_is_one_line_and_exit_2(tmp_path):
+    write_run(tmp_path)
+    args = args_for(tmp_path)  # out/ and out/img/ do not exist: not made
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png], capture_output=True, text=True)
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr == f"make_report: {args.csv}: no such folder: {tmp_path / 'out'}\n"
+    assert not os.path.exists(tmp_path / "out")
 
 
 if __name__ == "__main__" and sys.argv[1:] == ["--update-golden"]:

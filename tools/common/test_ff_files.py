@@ -22,10 +22,13 @@ def test_a_complete_write_replaces_the_file_and_leaves_no_partial(tmp_path):
     assert os.listdir(tmp_path) == ["summary.md"]
 
 
-def test_a_missing_folder_is_made(tmp_path):
+def test_a_missing_folder_is_refused_not_made(tmp_path):
+    # docs/tools.md: an output in a missing folder cannot be written (exit 2); a typo must not make folders
     path = tmp_path / "report" / "benchmarks.md"
-    ff_files.write_whole(str(path), lambda f: f.write("new\n"))
-    assert path.read_text() == "new\n"
+    with pytest.raises(FileNotFoundError) as e:
+        ff_files.write_whole(str(path), lambda f: f.write("new\n"))
+    assert ff_files.error_text(e.value) == f"{path}: no such folder: {tmp_path / 'report'}"
+    assert os.listdir(tmp_path) == []
 
 
 def test_a_failed_write_leaves_the_old_file_as_it_was(tmp_path):
