@@ -746,12 +746,16 @@ def main():
     args = parse_args()
     try:
         write_report(args)
-    except OSError as e:  # an input that cannot be read, an output that cannot be written: docs/tools.md, exit 2
+    except (OSError, ff_files.OutputIsInput) as e:  # an input that cannot be read, an output that cannot be written: docs/tools.md, exit 2
         print("make_report: %s" % ff_files.error_text(e), file=sys.stderr)
         sys.exit(2)
 
 
 def write_report(args):
+    ff_files.refuse_overwriting_inputs(
+        [args.md, args.csv, args.png],
+        [os.path.join(args.host, "host_cases.csv"), os.path.join(args.host, "host_trackers.csv"), args.m4,
+         args.cycles, args.m4_accuracy])
     host_cases, host_trackers = read_host(args.host)
     m4 = read_m4(args.m4)
     if m4 is not None:

@@ -606,6 +606,18 @@ def test_an_output_in_a_missing_folder_is_one_line_and_exit_2(tmp_path):
     assert not os.path.exists(tmp_path / "out")
 
 
+def test_an_output_that_is_an_input_is_refused_before_anything_is_written(tmp_path):
+    write_run(tmp_path)
+    args = args_for(tmp_path)
+    make_output_folders(args)
+    harness = (tmp_path / "m4bench.txt").read_text()
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.m4, "--png", args.png], capture_output=True, text=True)
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr == f"make_report: output {args.m4} is the input {args.m4}: a tool never writes over its own input\n"
+    assert (tmp_path / "m4bench.txt").read_text() == harness and os.listdir(tmp_path / "out") == ["img"]
+
+
 if __name__ == "__main__" and sys.argv[1:] == ["--update-golden"]:
     import tempfile
     import pathlib

@@ -11,6 +11,27 @@ _FIGURE_METADATA_KEYS = {"png": ("Software", "Description"), "svg": ("Creator", 
                          "pdf": ("Creator", "Subject")}
 
 
+class OutputIsInput(ValueError):
+    """An output that names one of the tool's inputs."""
+
+
+def refuse_overwriting_inputs(outputs, inputs):
+    """Raises OutputIsInput if an output is one of the inputs (docs/tools.md: a tool
+    never writes over its own input), whatever its name: another relative path, a
+    symbolic or a hard link. Call it before writing anything. None is no file."""
+    for output in outputs:
+        for source in inputs:
+            if output is not None and source is not None and _same_file(output, source):
+                raise OutputIsInput(f"output {output} is the input {source}: a tool never writes over its own input")
+
+
+def _same_file(a, b):
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # one does not exist (yet): only the same path is the same file
+        return os.path.abspath(a) == os.path.abspath(b)
+
+
 def write_whole(path, write, binary=False):
     """Calls write(f) on NAME.partial opened for writing, then renames it to NAME.
 

@@ -145,3 +145,18 @@ def test_a_figure_takes_the_format_its_name_ends_with(tmp_path):
     assert svg.lstrip().startswith("<?xml") and "render_scene.py" in svg and "scene: vortex" in svg
     assert (tmp_path / "fig.pdf").read_bytes()[:5] == b"%PDF-"
     assert (tmp_path / "fig.out").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_an_output_that_is_an_input_under_any_name_is_refused(tmp_path, monkeypatch):
+    source = tmp_path / "trace.csv"
+    source.write_text("t_us,x,y,touch\n")
+    os.symlink(source, tmp_path / "soft.png")
+    os.link(source, tmp_path / "hard.png")
+    monkeypatch.chdir(tmp_path)
+    for output in (str(source), "trace.csv", "./sub/../trace.csv", "soft.png", "hard.png"):
+        with pytest.raises(ff_files.OutputIsInput) as e:
+            ff_files.refuse_overwriting_inputs([str(tmp_path / "fine.png"), output], [None, str(source)])
+        assert str(e.value) == f"output {output} is the input {source}: a tool never writes over its own input"
+    # another file, one not yet written, standard output, a device: no input of this tool
+    (tmp_path / "other.csv").write_text("t_us,x,y,touch\n")
+    ff_files.refuse_overwriting_inputs(["other.csv", "new.png", "-", "/dev/null"], [str(source)])

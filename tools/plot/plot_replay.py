@@ -188,6 +188,7 @@ def path_segments(x, y, amplitude, present, max_segments):
 
 
 def plot(args, words):
+    ff_files.refuse_overwriting_inputs([args.output], [args.trace, args.replay])
     meta, replay = read_replay(args.replay)
     trace = read_trace(args.trace)
     check_trace(meta, args.trace, args.replay)

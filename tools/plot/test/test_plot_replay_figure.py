@@ -196,3 +196,31 @@ def test_the_plot_is_drawn_headless_whatever_backend_the_user_set():
     res = subprocess.run([sys.executable, "-c", code, os.path.dirname(plot_replay.__file__)], capture_output=True,
                          text=True, env=dict(os.environ, MPLBACKEND="pdf"))
     assert res.returncode == 0 and res.stdout.strip().lower() == "agg", res.stderr
+
+
+def refused(capsys, monkeypatch, *argv):
+    """Runs main() on argv; returns its one line on stderr, after checking it exited 2."""
+    monkeypatch.setattr(sys, "argv", ["plot_replay.py", *map(str, argv)])
+    with pytest.raises(SystemExit) as stop:
+        plot_replay.main()
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1, err
+    return err
+
+
+def test_an_output_that_is_an_input_is_refused_before_anything_is_written(tmp_path, monkeypatch, capsys,
+                                                                          ff_scene_render):
+    trace, replay = write_pair(str(tmp_path))
+    os.symlink(replay, tmp_path / "replay-link.png")
+    os.link(trace, tmp_path / "trace-hardlink.png")
+    before = {name: (tmp_path / name).read_bytes() for name in ("trace.csv", "trace.csv.replay.csv")}
+    monkeypatch.chdir(tmp_path)
+    for output, source in ((replay, replay), (trace, trace), ("./trace.csv", trace),
+                           (tmp_path / "replay-link.png", replay), (tmp_path / "trace-hardlink.png", trace)):
+        err = refused(capsys, monkeypatch, trace, replay, "-o", output, "--bin", ff_scene_render)
+        assert err == f"plot_replay: output {output} is the input {source}: a tool never writes over its own input\n"
+    assert {name: (tmp_path / name).read_bytes() for name in before} == before
+    assert os.path.islink(tmp_path / "replay-link.png")  # the link itself is left too
+    assert sorted(os.listdir(tmp_path)) == ["replay-link.png", "trace-hardlink.png", "trace.csv",
+                                            "trace.csv.replay.csv"]
