@@ -9,7 +9,8 @@ scene, including --scene-file ones): the amplitude map for position-only
 scenes, |G_norm| with downhill arrows for directional ones. Scene words
 given on the command line must select the same condition (the scene hash in
 the metadata), and the trace must be the replay's input (name and size):
-otherwise the plot is refused.
+otherwise the plot is refused. So is a replay without ff-replay's final
+'# summary' line: killed midway or cut short, it is not the whole run.
 
 Long replays stream through numpy: the amplitude is drawn as its minimum and
 maximum per pixel column, the path from at most --max-segments segments, so
@@ -59,11 +60,24 @@ def read_header(path):
     raise ToolError(f"{path}: no header row")
 
 
+def check_complete(path):
+    """ff-replay writes '# summary:' after its last row: a replay killed midway
+    (ff-replay leaves X.partial) or a capture of its output cut short, even at
+    a row's end, has no such last line."""
+    with open(path, "rb") as f:
+        f.seek(0, os.SEEK_END)
+        f.seek(max(0, f.tell() - 4096))
+        tail = [line.strip() for line in f.read().splitlines() if line.strip()]
+    if not tail or not tail[-1].startswith(b"# summary:"):
+        raise ToolError(f"{path}: the replay is incomplete: no summary line (ff-replay writes it last)")
+
+
 def read_replay(path):
     meta, names, skip = read_header(path)
     missing = [c for c in REPLAY_COLUMNS if c not in names]
     if missing:
         raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
+    check_complete(path)
     cols = [names.index(c) for c in REPLAY_COLUMNS]
     with open(path, encoding="utf-8-sig") as f, warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)  # "input contained no data": said below, in one line

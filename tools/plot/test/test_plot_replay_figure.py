@@ -20,7 +20,7 @@ REPORTS = [(1_000_000, 100, 100, 1), (1_002_500, 105, 100, 1), (1_005_000, 110, 
            (1_030_000, 300, 300, 1)]
 
 
-def write_pair(folder, ticks=TICKS, reports=REPORTS, meta=()):
+def write_pair(folder, ticks=TICKS, reports=REPORTS, meta=(), summary=True):
     trace = os.path.join(folder, "trace.csv")
     with open(trace, "w") as f:
         f.write("# a comment line the reader skips\nt_us,x,y,touch\n\n")
@@ -31,6 +31,8 @@ def write_pair(folder, ticks=TICKS, reports=REPORTS, meta=()):
         f.writelines(f"# {line}\n" for line in meta)
         f.write("t_us,x,y,vx,vy,amplitude,dac,present\n")
         f.writelines(f"{t},{x},{y},0,0,{a},0,{p}\n" for t, x, y, a, p in ticks)
+        if summary:  # ff-replay's last line: without it the replay did not finish
+            f.write(f"# summary: ticks={len(ticks)} samples={len(reports)} rejected=0 rows_left_out=0\n")
     return trace, replay
 
 
@@ -171,9 +173,10 @@ def test_the_trace_reader_skips_comments_and_empty_rows_and_names_a_bad_row(tmp_
 
 @pytest.mark.parametrize("text, says", [
     ("# input: trace.csv (10 bytes)\n\n", "r.csv: no header row"),
-    ("# input: trace.csv (10 bytes)\nt_us,x,y,vx,vy,amplitude,dac,present\n", "r.csv: no ticks"),
+    ("# input: trace.csv (10 bytes)\nt_us,x,y,vx,vy,amplitude,dac,present\n# summary: ticks=0\n", "r.csv: no ticks"),
     ("t_us,x,y,vx,vy,amplitude,dac\n0,1,2,0,0,0.5,0\n", "r.csv: not an ff-replay output \\(no column present\\)"),
-    ("t_us,x,y,vx,vy,amplitude,dac,present\n0,1,2,0,0,0.5,0,1\n5000,1,2,0,0,half,0,1\n", "r.csv: .*half"),
+    ("t_us,x,y,vx,vy,amplitude,dac,present\n0,1,2,0,0,0.5,0,1\n5000,1,2,0,0,half,0,1\n# summary: ticks=2\n",
+     "r.csv: .*half"),
 ], ids=["no-header", "no-ticks", "no-present-column", "not-a-number"])
 def test_a_replay_that_is_not_one_is_refused_in_one_line(tmp_path, text, says):
     path = tmp_path / "r.csv"
@@ -224,3 +227,22 @@ def test_an_output_that_is_an_input_is_refused_before_anything_is_written(tmp_pa
     assert os.path.islink(tmp_path / "replay-link.png")  # the link itself is left too
     assert sorted(os.listdir(tmp_path)) == ["replay-link.png", "trace-hardlink.png", "trace.csv",
                                             "trace.csv.replay.csv"]
+
+
+@pytest.mark.parametrize("cut", ["summary", "rows", "row"])
+def test_a_replay_without_its_summary_line_is_refused_as_incomplete(tmp_path, monkeypatch, capsys, ff_scene_render,
+                                                                     cut):
+    # ff-replay writes '# summary:' last: a replay killed midway (X.partial) or a capture cut at a row's end
+    # lacks it, and plotting it would draw part of a run as the whole
+    trace, replay = write_pair(str(tmp_path))
+    text = open(replay).read()
+    lines = text.splitlines(keepends=True)
+    kept = {"summary": lines[:-1], "rows": lines[:-3], "row": lines[:-2] + [lines[-2][:9]]}[cut]
+    with open(replay, "w") as f:
+        f.writelines(kept)
+    err = refused(capsys, monkeypatch, trace, replay, "-o", tmp_path / "p.png", "--bin", ff_scene_render)
+    assert err == f"plot_replay: {replay}: the replay is incomplete: no summary line (ff-replay writes it last)\n"
+    assert not os.path.exists(tmp_path / "p.png")
+    with open(replay, "w") as f:  # blank lines after the summary are no matter
+        f.write(text + "\n\n")
+    assert plot_replay.read_replay(replay)[1]["t_us"][-1] == 1_025_000
