@@ -263,6 +263,17 @@ def plot(args, words):
     plt.close(fig)
 
 
+def at_least_one(text):
+    """An argparse type: a whole number from 1 on (--max-segments divides by it)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text} is not a whole number from 1 on")
+    return value
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
                                  usage="%(prog)s trace replay -o PNG [--from S] [--to S] [scene words...]")
@@ -272,7 +283,7 @@ def main():
     ap.add_argument("--from", dest="t_from", type=float, default=None, help="first second to draw (from the start)")
     ap.add_argument("--to", dest="t_to", type=float, default=None, help="last second to draw")
     ap.add_argument("--title", default=None)
-    ap.add_argument("--max-segments", type=int, default=20000, help="most path segments drawn (longer paths thinned)")
+    ap.add_argument("--max-segments", type=at_least_one, default=20000, help="most path segments drawn (longer paths thinned)")
     ap.add_argument("--bin", default=None, help="path to ff-scene-render (default: build/native, or $FF_SCENE_RENDER)")
     args, words = ap.parse_known_args()
     try:

@@ -246,3 +246,18 @@ def test_a_replay_without_its_summary_line_is_refused_as_incomplete(tmp_path, mo
     with open(replay, "w") as f:  # blank lines after the summary are no matter
         f.write(text + "\n\n")
     assert plot_replay.read_replay(replay)[1]["t_us"][-1] == 1_025_000
+
+
+@pytest.mark.parametrize("value", ["0", "-3", "2.5", "many"])
+def test_max_segments_below_one_is_a_usage_error(tmp_path, monkeypatch, capsys, value):
+    # 0 segments divided the report count by zero (a traceback)
+    trace, replay = write_pair(str(tmp_path))
+    monkeypatch.setattr(sys, "argv", ["plot_replay.py", trace, replay, "-o", str(tmp_path / "p.png"),
+                                      f"--max-segments={value}"])
+    with pytest.raises(SystemExit) as stop:
+        plot_replay.main()
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert err.endswith(f"plot_replay.py: error: argument --max-segments: {value} is not a whole number "
+                        "from 1 on\n") and "Traceback" not in err
+    assert not os.path.exists(tmp_path / "p.png")
