@@ -25,6 +25,7 @@ Exit codes: 0 ok, 2 bad usage or input (one line on stderr, never a traceback).
 import argparse
 import csv
 import os
+import re
 import shlex
 import sys
 import warnings
@@ -48,15 +49,18 @@ COLUMNS_DRAWN = 1000  # pixel columns of the amplitude plot
 # ---- files ------------------------------------------------------------------
 
 def read_header(path):
-    """Metadata, column names and the number of lines before the first row."""
-    lines, meta = 0, {}
+    """Metadata, the line each metadata key is on, column names and the number
+    of lines before the first row."""
+    lines, meta, meta_lines = 0, {}, {}
     with open(path, encoding="utf-8-sig") as f:
         for line in f:
             lines += 1
             if line.startswith("#") or not line.strip():
-                meta.update(parse_metadata([line.rstrip("\n")]))
+                found = parse_metadata([line.rstrip("\n")])
+                meta.update(found)
+                meta_lines.update(dict.fromkeys(found, lines))
                 continue
-            return meta, [c.strip() for c in line.split(",")], lines
+            return meta, meta_lines, [c.strip() for c in line.split(",")], lines
     raise ToolError(f"{path}: no header row")
 
 
@@ -73,7 +77,7 @@ def check_complete(path):
 
 
 def read_replay(path):
-    meta, names, skip = read_header(path)
+    meta, meta_lines, names, skip = read_header(path)
     missing = [c for c in REPLAY_COLUMNS if c not in names]
     if missing:
         raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
@@ -87,7 +91,7 @@ def read_replay(path):
             raise ToolError(f"{path}: {e}") from None
     if len(data) == 0:
         raise ToolError(f"{path}: no ticks")
-    return meta, {c: data[:, i] for i, c in enumerate(REPLAY_COLUMNS)}
+    return meta, {c: data[:, i] for i, c in enumerate(REPLAY_COLUMNS)}, meta_lines
 
 
 def read_trace(path):
@@ -113,6 +117,18 @@ def read_trace(path):
 
 
 # ---- checks -----------------------------------------------------------------
+
+def screen_scale(meta, meta_lines, replay_path):
+    """x and y factors from the trace's units to screen pixels: ff-replay --screen WxH
+    scales the trace's reports by 800/W and 480/H before the tracker sees them, and
+    says so in its '# screen: WxH scaled to 800x480' line (none in an older replay)."""
+    if "screen" not in meta:
+        return 1.0, 1.0
+    match = re.match(r"(\d+)[xX](\d+)(?: |$)", meta["screen"])
+    if not match or int(match[1]) == 0 or int(match[2]) == 0:
+        raise ToolError(f"{replay_path}:{meta_lines['screen']}: screen '{meta['screen']}' is not WxH with W, H > 0")
+    return WIDTH / int(match[1]), HEIGHT / int(match[2])
+
 
 def check_trace(meta, trace_path, replay_path):
     """The replay's metadata names its input as 'NAME (N bytes)'."""
@@ -203,9 +219,11 @@ def path_segments(x, y, amplitude, present, max_segments):
 
 def plot(args, words):
     ff_files.refuse_overwriting_inputs([args.output], [args.trace, args.replay])
-    meta, replay = read_replay(args.replay)
+    meta, replay, meta_lines = read_replay(args.replay)
     trace = read_trace(args.trace)
     check_trace(meta, args.trace, args.replay)
+    sx, sy = screen_scale(meta, meta_lines, args.replay)
+    trace["x"], trace["y"] = trace["x"] * sx, trace["y"] * sy  # where the tracker saw them
     binary = find_binary(args.bin)
     words = scene_for(meta, words, binary, args.replay)
 

@@ -261,3 +261,21 @@ def test_max_segments_below_one_is_a_usage_error(tmp_path, monkeypatch, capsys, 
     assert err.endswith(f"plot_replay.py: error: argument --max-segments: {value} is not a whole number "
                         "from 1 on\n") and "Traceback" not in err
     assert not os.path.exists(tmp_path / "p.png")
+
+
+def test_reports_of_a_replay_made_with_screen_are_scaled_as_ff_replay_scaled_them(tmp_path, drawn):
+    # ff-replay --screen 1600x1440 scales x by 800 / 1600 = 1/2 and y by 480 / 1440 = 1/3: the trace's
+    # reports, in that screen's units, land on the replay's path only scaled the same way
+    reports = [(t, 2 * x, 3 * y, touch) if touch else (t, x, y, touch) for t, x, y, touch in REPORTS]
+    trace, replay = write_pair(str(tmp_path), reports=reports, meta=["screen: 1600x1440 scaled to 800x480"])
+    reports_drawn = drawn(trace, replay)[0].axes[0].lines[0]
+    assert list(reports_drawn.get_xdata()) == [100, 105, 110, 120, 200, 210]
+    assert list(reports_drawn.get_ydata()) == [100, 100, 100, 110, 200, 200]
+    trace, replay = write_pair(str(tmp_path), meta=["screen: 800x480"])  # the sensor's own screen: as they are
+    assert list(drawn(trace, replay)[0].axes[0].lines[0].get_xdata()) == [100, 105, 110, 120, 200, 210]
+
+
+def test_a_screen_line_that_is_not_w_x_h_is_refused(tmp_path, monkeypatch, capsys, ff_scene_render):
+    trace, replay = write_pair(str(tmp_path), meta=["screen: 0x480"])
+    err = refused(capsys, monkeypatch, trace, replay, "-o", tmp_path / "p.png", "--bin", ff_scene_render)
+    assert err == f"plot_replay: {replay}:2: screen '0x480' is not WxH with W, H > 0\n"
