@@ -77,25 +77,89 @@ def check_complete(path):
 
 
 def read_replay(path):
-    meta, meta_lines, names, skip = read_header(path)
-    missing = [c for c in REPLAY_COLUMNS if c not in names]
-    if missing:
-        raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
-    check_complete(path)
-    cols = [names.index(c) for c in REPLAY_COLUMNS]
-    with open(path, encoding="utf-8-sig") as f, warnings.catch_warnings():
-        warnings.simplefilter("ignore", UserWarning)  # "input contained no data": said below, in one line
-        try:
-            data = np.loadtxt(f, delimiter=",", comments="#", skiprows=skip, usecols=cols, ndmin=2)
-        except ValueError as e:
-            raise ToolError(f"{path}: {e}") from None
+    """Metadata, the replay's columns and the line of each metadata key; a row
+    out of spec (docs/spec.md#replay-output) is refused with its line."""
+    try:
+        meta, meta_lines, names, skip = read_header(path)
+        duplicated = sorted({c for c in names if names.count(c) > 1})
+        if duplicated:
+            raise ToolError(f"{path}:{skip}: column {', '.join(duplicated)} is named twice")
+        missing = [c for c in REPLAY_COLUMNS if c not in names]
+        if missing:
+            raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
+        check_complete(path)
+        with open(path, encoding="utf-8-sig") as f, warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # "input contained no data": said below, in one line
+            try:
+                # every column, so that a row wider than the header is seen
+                data = np.loadtxt(f, delimiter=",", comments="#", skiprows=skip, ndmin=2)
+            except ValueError:
+                raise ToolError(first_bad_row(path, names, skip)) from None
+    except UnicodeDecodeError as e:
+        raise ToolError(f"{path}: not UTF-8 text ({e})") from None
     if len(data) == 0:
         raise ToolError(f"{path}: no ticks")
-    return meta, {c: data[:, i] for i, c in enumerate(REPLAY_COLUMNS)}, meta_lines
+    if data.shape[1] != len(names):  # every row as wide, and wider than the header
+        raise ToolError(f"{path}:{line_of_row(path, skip, 0)}: {data.shape[1]} fields, the header names {len(names)}")
+    columns = {c: data[:, names.index(c)] for c in REPLAY_COLUMNS}
+    check_rows(path, skip, columns)
+    return meta, columns, meta_lines
+
+
+def check_rows(path, skip, columns):
+    """Ranges of docs/spec.md#replay-output: ticks one after another, a finite
+    position, amplitude in [0, 1], present 0 or 1; the first row out of them is named."""
+    t, amplitude, present = columns["t_us"], columns["amplitude"], columns["present"]
+    later = np.ones(len(t), dtype=bool)
+    later[1:] = t[1:] > t[:-1]
+    checks = [(~np.isfinite(t), lambda i: f"t_us {t[i]:.0f} is not a finite time"),
+              (~later, lambda i: f"t_us {t[i]:.0f} is not after the previous tick's {t[i - 1]:.0f}")]
+    checks += [(~np.isfinite(columns[c]), lambda i, c=c: f"{c} {columns[c][i]:g} is not a finite position")
+               for c in ("x", "y")]
+    checks += [(~((amplitude >= 0) & (amplitude <= 1)), lambda i: f"amplitude {amplitude[i]:g} is outside [0, 1]"),
+               (~((present == 0) | (present == 1)), lambda i: f"present {present[i]:g} is not 0 or 1")]
+    firsts = [(int(np.argmax(bad)), n) for n, (bad, _) in enumerate(checks) if bad.any()]
+    if firsts:
+        row, n = min(firsts)
+        raise ToolError(f"{path}:{line_of_row(path, skip, row)}: {checks[n][1](row)}")
+
+
+def data_rows(path, skip):
+    """(line number, fields) of each row after the header, as np.loadtxt reads
+    them: '#' starts a comment, blank lines are skipped. Only to name a bad row."""
+    with open(path, encoding="utf-8-sig") as f:
+        for number, line in enumerate(f, start=1):
+            text = line.split("#", 1)[0].strip()
+            if number > skip and text:
+                yield number, text.split(",")
+
+
+def line_of_row(path, skip, row):
+    return next(number for n, (number, _) in enumerate(data_rows(path, skip)) if n == row)
+
+
+def first_bad_row(path, names, skip):
+    """The first row np.loadtxt could not read, as file:line: why."""
+    for number, fields in data_rows(path, skip):
+        if len(fields) != len(names):
+            return f"{path}:{number}: {len(fields)} fields, the header names {len(names)}"
+        for name, field in zip(names, fields):
+            try:
+                float(field)
+            except ValueError:
+                return f"{path}:{number}: {name} '{field.strip()}' is not a number"
+    return f"{path}: not a replay np.loadtxt can read"  # not reached: loadtxt and float() agree
 
 
 def read_trace(path):
     """t_us, x, y, touch of every report (csv: rows may have empty x, y)."""
+    try:
+        return _read_trace(path)
+    except UnicodeDecodeError as e:
+        raise ToolError(f"{path}: not UTF-8 text ({e})") from None
+
+
+def _read_trace(path):
     t, x, y, touch = [], [], [], []
     with open(path, newline="", encoding="utf-8-sig") as f:
         rows = csv.reader(line for line in f if not line.startswith("#"))
@@ -141,12 +205,15 @@ def check_trace(meta, trace_path, replay_path):
         raise ToolError(f"{replay_path} is the replay of {meta['input']}, not of {expected}")
 
 
-def scene_for(meta, words, binary, replay_path):
+def scene_for(meta, meta_lines, words, binary, replay_path):
     """The words to draw with: those given (checked against the replay's hash) or the replay's own."""
     if not words:
         if "scene" not in meta:
             return None
-        words = shlex.split(meta["scene"])
+        try:
+            words = shlex.split(meta["scene"])
+        except ValueError as e:  # quoting: "No closing quotation"
+            raise ToolError(f"{replay_path}:{meta_lines['scene']}: scene words {meta['scene']}: {e}") from None
     scene_meta, _ = sample(binary, words, 100.0, 0.0)
     if "scene_hash" in meta and scene_meta.get("scene_hash") != meta["scene_hash"]:
         raise ToolError(f"{replay_path} was rendered with '{meta.get('scene')}' (scene hash {meta['scene_hash']}), "
@@ -225,7 +292,7 @@ def plot(args, words):
     sx, sy = screen_scale(meta, meta_lines, args.replay)
     trace["x"], trace["y"] = trace["x"] * sx, trace["y"] * sy  # where the tracker saw them
     binary = find_binary(args.bin)
-    words = scene_for(meta, words, binary, args.replay)
+    words = scene_for(meta, meta_lines, words, binary, args.replay)
 
     t0 = replay["t_us"][0]
     seconds = (replay["t_us"] - t0) * 1e-6

@@ -176,7 +176,7 @@ def test_the_trace_reader_skips_comments_and_empty_rows_and_names_a_bad_row(tmp_
     ("# input: trace.csv (10 bytes)\nt_us,x,y,vx,vy,amplitude,dac,present\n# summary: ticks=0\n", "r.csv: no ticks"),
     ("t_us,x,y,vx,vy,amplitude,dac\n0,1,2,0,0,0.5,0\n", "r.csv: not an ff-replay output \\(no column present\\)"),
     ("t_us,x,y,vx,vy,amplitude,dac,present\n0,1,2,0,0,0.5,0,1\n5000,1,2,0,0,half,0,1\n# summary: ticks=2\n",
-     "r.csv: .*half"),
+     "r.csv:3: amplitude 'half' is not a number"),
 ], ids=["no-header", "no-ticks", "no-present-column", "not-a-number"])
 def test_a_replay_that_is_not_one_is_refused_in_one_line(tmp_path, text, says):
     path = tmp_path / "r.csv"
@@ -279,3 +279,65 @@ def test_a_screen_line_that_is_not_w_x_h_is_refused(tmp_path, monkeypatch, capsy
     trace, replay = write_pair(str(tmp_path), meta=["screen: 0x480"])
     err = refused(capsys, monkeypatch, trace, replay, "-o", tmp_path / "p.png", "--bin", ff_scene_render)
     assert err == f"plot_replay: {replay}:2: screen '0x480' is not WxH with W, H > 0\n"
+
+
+
+# The third tick (line 5: the input line, the header, two ticks before it) made out of spec (docs/spec.md#replay-output)
+@pytest.mark.parametrize("third, says", [
+    ((1_010_000, 120, 110, 7.5, 1), "amplitude 7.5 is outside [0, 1]"),
+    ((1_010_000, 120, 110, -3, 1), "amplitude -3 is outside [0, 1]"),
+    ((1_010_000, 120, 110, "nan", 1), "amplitude nan is outside [0, 1]"),
+    ((1_010_000, 120, 110, 0.8, 3), "present 3 is not 0 or 1"),
+    ((1_010_000, 120, 110, 0.8, 0.5), "present 0.5 is not 0 or 1"),
+    ((1_010_000, "inf", 110, 0.8, 1), "x inf is not a finite position"),
+    ((1_010_000, 120, "nan", 0.8, 1), "y nan is not a finite position"),
+    ((1_004_000, 120, 110, 0.8, 1), "t_us 1004000 is not after the previous tick's 1005000"),
+    ((1_005_000, 120, 110, 0.8, 1), "t_us 1005000 is not after the previous tick's 1005000"),
+    (("inf", 120, 110, 0.8, 1), "t_us inf is not a finite time"),
+    ((1_010_000, 120, 110, 0.8, "1,9"), "9 fields, the header names 8"),
+    ((1_010_000, 120, 110, 0.8, "1;"), "present '1;' is not a number"),
+], ids=["amplitude-7.5", "amplitude-3", "amplitude-nan", "present-3", "present-half", "x-inf", "y-nan",
+        "t-backwards", "t-repeated", "t-inf", "row-wider", "not-a-number"])
+def test_a_row_out_of_spec_is_refused_with_its_line(tmp_path, third, says):
+    ticks = TICKS[:2] + [third] + TICKS[3:]
+    trace, replay = write_pair(str(tmp_path), ticks=ticks)
+    with pytest.raises(plot_replay.ToolError) as e:
+        plot_replay.read_replay(replay)
+    assert str(e.value) == f"{replay}:5: {says}"
+
+
+def test_every_row_wider_than_the_header_is_refused_at_the_first_and_a_narrower_one_too(tmp_path):
+    trace, replay = write_pair(str(tmp_path), ticks=[(t, x, y, a, f"{p},0") for t, x, y, a, p in TICKS])
+    with pytest.raises(plot_replay.ToolError, match=r"trace.csv.replay.csv:3: 9 fields, the header names 8$"):
+        plot_replay.read_replay(replay)
+    trace, replay = write_pair(str(tmp_path))
+    lines = open(replay).read().splitlines(keepends=True)
+    lines[5] = "1010000,120,110\n"  # line 6
+    lines.insert(4, "# a comment between rows\n\n")  # counted as the lines they are: now line 8
+    with open(replay, "w") as f:
+        f.writelines(lines)
+    with pytest.raises(plot_replay.ToolError, match=r"trace.csv.replay.csv:8: 3 fields, the header names 8$"):
+        plot_replay.read_replay(replay)
+
+
+def test_a_column_named_twice_is_refused(tmp_path):
+    path = tmp_path / "r.csv"
+    path.write_text("# input: t.csv (1 bytes)\nt_us,x,y,vx,vy,amplitude,dac,present,x\n0,1,2,0,0,0.5,0,1,3\n"
+                    "# summary: ticks=1\n")
+    with pytest.raises(plot_replay.ToolError, match=r"r.csv:2: column x is named twice$"):
+        plot_replay.read_replay(str(path))
+
+
+def test_errors_name_their_file_and_line(tmp_path, monkeypatch, capsys, ff_scene_render):
+    trace, replay = write_pair(str(tmp_path), meta=["scene: --scene 'heightmap"])
+    err = refused(capsys, monkeypatch, trace, replay, "-o", tmp_path / "p.png", "--bin", ff_scene_render)
+    assert err == f"plot_replay: {replay}:2: scene words --scene 'heightmap: No closing quotation\n"
+    with open(replay, "ab") as f:  # after its summary: read first by the tail check, then by the reader
+        f.write(b"\xff\n# summary: ticks=6\n")
+    err = refused(capsys, monkeypatch, trace, replay, "-o", tmp_path / "p.png", "--bin", ff_scene_render)
+    assert err.startswith(f"plot_replay: {replay}: not UTF-8 text (") and "0xff" in err
+    trace, replay = write_pair(str(tmp_path))
+    with open(trace, "ab") as f:
+        f.write(b"1040000,\xff,1,1\n")
+    with pytest.raises(plot_replay.ToolError, match=f"^{trace}: not UTF-8 text \\("):
+        plot_replay.read_trace(trace)
