@@ -626,7 +626,15 @@ def report(rows, m4, host_trackers, args):
         w("- " + line)
     w("")
     # -------------------------------------------------------- where the time goes
-    if have_m4:
+    missing = [cid for cid, r in (("neutral/closed-form", neutral), ("heightmap-top/closed-form", heightmap))
+               if not r or r["m4_tick"] is None]
+    if have_m4 and missing:
+        w("## Where the time goes (M4 instructions per tick)")
+        w("")
+        w("No %s row in this run (a filtered run?): the tick's pieces, set against neutral's, are left out." %
+          " or ".join(missing))
+        w("")
+    elif have_m4:
         w("## Where the time goes (M4 instructions per tick)")
         w("")
         comp = m4["components"]
@@ -767,6 +775,7 @@ def write_report(args):
         if m4["errors"]:
             sys.exit("make_report: the harness reported errors: " + "; ".join(m4["errors"]))
     rows = merge(host_cases, m4)
+    text = report(rows, m4, host_trackers, args)  # before any file is written: the three stay consistent
     inputs = ", ".join("%s %s" % (flag, value) for flag, value in
                        (("--host", args.host), ("--m4", args.m4), ("--cycles", args.cycles),
                         ("--m4-accuracy", args.m4_accuracy)) if value)
@@ -776,7 +785,6 @@ def write_report(args):
                                ("environment", args.environment or "not given"),
                                ("what", "every figure of %s, one row per scene and evaluation strategy" % args.md)])
     plot(rows, args.png, m4 is not None and bool(m4["cases"]))
-    text = report(rows, m4, host_trackers, args)
 
     ff_files.write_whole(args.md, lambda f: f.write(text))
     print("make_report: wrote %s, %s, %s (%d strategies)" % (args.md, args.csv, args.png, len(rows)))

@@ -621,6 +621,27 @@ def test_an_output_that_is_an_input_is_refused_before_anything_is_written(tmp_pa
     assert (tmp_path / "m4bench.txt").read_text() == harness and os.listdir(tmp_path / "out") == ["img"]
 
 
+def test_a_run_without_neutral_reports_without_the_comparison_and_writes_all_three_files(tmp_path):
+    # scripts/run-benchmarks --filter heightmap: no neutral/closed-form row to set the heightmap against
+    write_run(tmp_path)
+    host = tmp_path / "host" / "host_cases.csv"
+    host.write_text("".join(line for line in host.read_text().splitlines(keepends=True)
+                            if not line.startswith("neutral/")))
+    m4 = tmp_path / "m4bench.txt"
+    m4.write_text("".join(line for line in m4.read_text().splitlines(keepends=True) if ",neutral/" not in line))
+    args = args_for(tmp_path)
+    make_output_folders(args)
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    text = open(args.md).read()
+    assert section(text, "Where the time goes (M4 instructions per tick)") == [
+        "", "No neutral/closed-form row in this run (a filtered run?): the tick's pieces, set against neutral's, "
+        "are left out.", ""]
+    assert "neutral costs a small fraction" not in text
+    assert len(make_report.read_plain_csv(args.csv)) == 10 and os.path.getsize(args.png) > 0
+
+
 if __name__ == "__main__" and sys.argv[1:] == ["--update-golden"]:
     import tempfile
     import pathlib
