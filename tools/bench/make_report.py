@@ -597,7 +597,7 @@ def report(rows, m4, host_trackers, args):
     w(default_choice_text(rows, have_m4))
     w("")
     w("| scene | max error (LSB) | RMS (LSB) | M4 instr / evaluation | M4 instr / whole tick (mean, max) "
-      "| % of 90,000 | M4 preparation (instr, ms at 180 MHz) | host ns / evaluation | host ns / tick |")
+      "| % of 90,000 | M4 preparation (instr, ms at 180 MHz if 1 instruction = 1 cycle) | host ns / evaluation | host ns / tick |")
     w("|---|---|---|---|---|---|---|---|---|")
     for r in defaults:
         pct = 100 * r["m4_tick"] / BUDGET_CYCLES if r["m4_tick"] else None
@@ -719,7 +719,7 @@ def report(rows, m4, host_trackers, args):
           "Its cost is the number of field evaluations times the cost of one (the field's elements, see "
           "*Where the time goes*, plus |G|^2: a multiply-add; one square root at the end):")
         w("")
-        w("| scene | M4 instructions | ms at 180 MHz | field evaluations | instructions per evaluation "
+        w("| scene | M4 instructions | ms at 180 MHz if 1 instruction = 1 cycle | field evaluations | instructions per evaluation "
           "| max\|G\| relative error | host µs |")
         w("|---|---|---|---|---|---|---|")
         for r in closed:
