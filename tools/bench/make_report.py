@@ -211,7 +211,7 @@ def family(strategy):
     return FAMILIES[0]
 
 
-def plot(rows, path, have_m4):
+def plot(rows, path, have_m4, metadata=()):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -261,8 +261,9 @@ def plot(rows, path, have_m4):
     fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=9)
     fig.suptitle("Cost against error for every evaluation strategy (marker area ~ table + plan bytes; "
                  "errors below 1e-4 LSB drawn at 1e-4)")
-    ff_files.save_figure(fig, path, "tools/bench/make_report.py", "every evaluation strategy's cost against its error",
-                          dpi=90, bbox_inches="tight")
+    ff_files.save_figure(fig, path, "tools/bench/make_report.py", "; ".join(
+        ["every evaluation strategy's cost against its error"] + ["%s: %s" % kv for kv in metadata if kv[0] != "what"]),
+        dpi=90, bbox_inches="tight")
 
 
 def write_csv(rows, path, metadata):
@@ -779,12 +780,13 @@ def write_report(args):
     inputs = ", ".join("%s %s" % (flag, value) for flag, value in
                        (("--host", args.host), ("--m4", args.m4), ("--cycles", args.cycles),
                         ("--m4-accuracy", args.m4_accuracy)) if value)
-    write_csv(rows, args.csv, [("tool", "tools/bench/make_report.py"),
-                               ("date", datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")),
-                               ("input", inputs),
-                               ("environment", args.environment or "not given"),
-                               ("what", "every figure of %s, one row per scene and evaluation strategy" % args.md)])
-    plot(rows, args.png, m4 is not None and bool(m4["cases"]))
+    metadata = [("tool", "tools/bench/make_report.py"),
+                ("date", datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")),
+                ("input", inputs),
+                ("environment", args.environment or "not given"),  # the commit, compilers, ff-bench's options
+                ("what", "every figure of %s, one row per scene and evaluation strategy" % args.md)]
+    write_csv(rows, args.csv, metadata)
+    plot(rows, args.png, m4 is not None and bool(m4["cases"]), metadata)
 
     ff_files.write_whole(args.md, lambda f: f.write(text))
     print("make_report: wrote %s, %s, %s (%d strategies)" % (args.md, args.csv, args.png, len(rows)))

@@ -570,6 +570,13 @@ def test_main_writes_the_report_the_csv_and_the_figure(run, monkeypatch, capsys)
                                                   "evaluation strategy"]
     assert len(make_report.read_plain_csv(args.csv)) == 11
     assert open(args.md).read().startswith("# Benchmarks:") and os.path.getsize(args.png) > 0
+    from PIL import Image
+    with Image.open(args.png) as image:  # the figure names its inputs as the CSV does (docs/tools.md)
+        description = image.text["Description"]
+    assert description.startswith("every evaluation strategy's cost against its error; "
+                                  "tool: tools/bench/make_report.py; date: 20")
+    assert description.endswith(f"; input: --host {args.host}, --m4 {args.m4}, --cycles {args.cycles}, "
+                                f"--m4-accuracy {args.m4_accuracy}; environment: x")
 
 
 def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_line(tmp_path):
