@@ -451,6 +451,12 @@ def test_the_header_says_how_the_numbers_were_made(run):
     assert head.startswith("# Benchmarks: run time against error for every evaluation strategy\n")
     assert "(measured at start-up against a loop of known length: 40 instructions per count)" in head
     assert "- **Run**: core at test\n" in head
+    # what docs/benchmarks.csv holds: one row per scene and strategy, none of the per-scene cycle, tracker,
+    # component or accuracy figures (see write_csv's columns)
+    assert ("do not edit by hand. The per-strategy figures (*Built-in scenes at their default*, *Scene "
+            "preparation*, *Every strategy*) are in `docs/benchmarks.csv` too, one row per scene and strategy; "
+            "the cycle model's, the trackers', *Where the time goes* and the accuracy on the target are only "
+            "here.") in head
     host_only = make_report.report(run["rows"], None, run["trackers"], args_for(run["folder"], environment=""))
     assert "known length: not run)" in host_only and "**Run**" not in host_only
     assert "![M4 instructions per tick against max error, one point per strategy](img/benchmarks.png)" \
