@@ -58,6 +58,29 @@ def read_host(folder):
     return cases, trackers
 
 
+def error_grid_text(host_folder):
+    """The error grid ff-bench says it used ('# run: ..., error grid every S px, ...' in
+    host_cases.csv), its points counted as ReferenceGrid makes them (tools/bench/accuracy.cpp)."""
+    step = None
+    with open(os.path.join(host_folder, "host_cases.csv")) as f:
+        for line in f:
+            if line.startswith("# run:") and " error grid every " in line:
+                step = fnum(line.split(" error grid every ", 1)[1].split(" px", 1)[0])
+    if not step or step <= 0:
+        return "ff-bench's grid (its step not recorded in host_cases.csv"
+    xs, ys = [], []
+    x = 0.5
+    while x <= 799.0:
+        xs.append(x)
+        x += step
+    y = 0.5
+    while y <= 479.0:
+        ys.append(y)
+        y += step
+    return "the grid x = 0.5, %g, … %g, y = 0.5 … %g (%s points" % (
+        0.5 + step, xs[-1], ys[-1], "{:,}".format(len(xs) * len(ys)))
+
+
 def read_m4(path):
     m4 = {"cases": {}, "trackers": {}, "components": {}, "calibration": None, "done": None, "errors": [],
           "mode": None}
@@ -525,11 +548,11 @@ def report(rows, m4, host_trackers, args):
       "the cycle model's, the trackers', *Where the time goes* and the accuracy on the target are only here." % datetime.date.today().isoformat())
     w("")
     w("- **Error**: amplitude of the float core against an independent double-precision implementation "
-      "written from the [spec](spec.md#scenes) (`test/support/reference/`), on the grid x = 0.5, 1.5, … 798.5, "
-      "y = 0.5 … 478.5 (382,721 points, between pixel centres so never on a table node) and 16 directions "
-      "of motion; max|G| of the reference by a scan of every pixel plus a compass search to 1e-9 px. "
-      "In DAC LSB = 1/4095 of the amplitude range (strength 1). *max*: the worst sample; *p99*: 99 % of "
-      "samples are at most this; *interior max*: the worst at least 16 px inside the screen.")
+      "written from the [spec](spec.md#scenes) (`test/support/reference/`), on %s, between pixel centres so "
+      "never on a table node) and 16 directions of motion; max|G| of the reference by a scan of every pixel plus a compass search to 1e-9 px. "
+      "In DAC LSB = 1/4095 of the amplitude range (strength 1). *max*: the worst sample; *p99*: 99 %% of "
+      "samples are at most this; *interior max*: the worst at least 16 px inside the screen." %
+      error_grid_text(args.host))
     w("- **M4 instructions** (SysTick stopwatch, the *instr* columns outside the cycles section): the core "
       "cross-compiled with arm-none-eabi-gcc as the firmware is (`-O2`, `-fsingle-precision-constant`, "
       "Cortex-M4F hard float, the Teensyduino defines; `cmake/arm-none-eabi.cmake`) "

@@ -85,10 +85,11 @@ CYCLES = [
 ]
 
 
-def write_run(folder, m4_done=True, m4_errors=()):
+def write_run(folder, m4_done=True, m4_errors=(), grid_step=1):
     host = folder / "host"
     host.mkdir()
-    lines = ["# tool: ff-bench (a test)", HOST_HEADER]
+    lines = ["# tool: ff-bench (a test)", f"# run: full, error grid every {grid_step:g} px, not timed, 2 threads",
+             HOST_HEADER]
     for cid, v in HOST.items():
         scene, strategy = cid.split("/")
         (default, table, plan, fits, gevals, gcore, gref, mx, rms, p99, interior, wx, wy, checksum, h_eval, h_prep,
@@ -444,6 +445,23 @@ def test_every_strategy_has_its_row(run):
     host_only = make_report.report(make_report.merge(make_report.read_host(str(run["folder"] / "host"))[0], None),
                                    None, run["trackers"], args_for(run["folder"], cycles=None))
     assert section(host_only, "Every strategy")[-2].endswith("| – | – | – | 10 | 700 | – |")
+
+
+@pytest.mark.parametrize("run_line, grid", [
+    # x = 0.5 ... 798.5 and y = 0.5 ... 478.5 every px: 799 x 479 = 382,721
+    ("# run: full, error grid every 1 px, timed", "x = 0.5, 1.5, … 798.5, y = 0.5 … 478.5 (382,721 points"),
+    # every 4 px: x = 0.5 ... 796.5 (200), y = 0.5 ... 476.5 (120): 24,000
+    ("# run: full, error grid every 4 px, timed", "x = 0.5, 4.5, … 796.5, y = 0.5 … 476.5 (24,000 points"),
+    # every 40 px (--smoke): x 0.5 ... 760.5 (20), y 0.5 ... 440.5 (12): 240
+    ("# run: smoke, error grid every 40 px, not timed", "x = 0.5, 40.5, … 760.5, y = 0.5 … 440.5 (240 points"),
+    ("# date: 2026-11-30", "on ff-bench's grid (its step not recorded in host_cases.csv, between pixel centres"),
+])
+def test_the_error_grid_is_the_one_ff_bench_says_it_used(run, run_line, grid):
+    host = run["folder"] / "host" / "host_cases.csv"
+    host.write_text("".join(run_line + "\n" if line.startswith("# run:") else line
+                            for line in host.read_text().splitlines(keepends=True)))
+    text = make_report.report(run["rows"], run["m4"], run["trackers"], args_for(run["folder"]))
+    assert grid in text.split("## Goals")[0]
 
 
 def test_the_header_says_how_the_numbers_were_made(run):
