@@ -85,10 +85,11 @@ CYCLES = [
 ]
 
 
-def write_run(folder, m4_done=True, m4_errors=()):
+def write_run(folder, m4_done=True, m4_errors=(), grid_step=1):
     host = folder / "host"
     host.mkdir()
-    lines = ["# tool: ff-bench (a test)", HOST_HEADER]
+    lines = ["# tool: ff-bench (a test)", f"# run: full, error grid every {grid_step:g} px, not timed, 2 threads",
+             HOST_HEADER]
     for cid, v in HOST.items():
         scene, strategy = cid.split("/")
         (default, table, plan, fits, gevals, gcore, gref, mx, rms, p99, interior, wx, wy, checksum, h_eval, h_prep,
@@ -331,6 +332,10 @@ def test_without_the_cycle_model_or_the_accuracy_run_their_sections_are_left_out
 
 def test_the_defaults_table_has_each_built_in_scene_at_its_default(run):
     lines = section(run["text"], "Built-in scenes at their default")
+    # instructions are not cycles: a time from instructions says what it assumes
+    assert "| M4 preparation (instr, ms at 180 MHz if 1 instruction = 1 cycle) |" in lines[3]
+    assert "| scene | M4 instructions | ms at 180 MHz if 1 instruction = 1 cycle |" in "\n".join(
+        section(run["text"], "Scene preparation"))
     rows = [line for line in lines if line.startswith("| ") and not line.startswith("| scene")]
     assert rows[:2] == [
         # 150 / 90,000 = 0.17 %; 2,200 instructions = 0.0122 ms
@@ -390,14 +395,17 @@ def test_where_the_time_goes_leaves_the_rest_of_the_tick_to_the_pipeline(run):
     table = [line for line in lines if line.startswith("| ")]
     assert table[1:] == [
         # 3,000 per report, a report every 10 ticks
-        "| `Tracker::on_sample` (3,000 per report, one report every 10 ticks) | 300 | 300 |",
+        # timed with filtering on, which neutral (need_filter = false) never runs: not charged to neutral
+        "| `Tracker::on_sample` (3,000 per report with filtering, one report every 10 ticks) "
+        "| — (not timed without filtering) | 300 |",
         "| `Tracker::on_tick` (neutral: `need_filter = false`; heightmap: filtering, `recommended()`) | 50 | 200 |",
         "| `ScenePlan::amplitude` | — (at preparation) | 200 |",
         "| `AmplitudeMap::scale` | — (at preparation) | 40 |",
         "| `AmplitudeMap::dac_code` | — (at preparation) | 50 |",
         "| `SampleMailbox::take` (about one per tick) | 20 | 20 |",
-        # 150 - (300 + 50 + 20); 850 - (300 + 200 + 200 + 40 + 50 + 20)
-        "| rest: `HapticPipeline::tick` itself (slot selection, `TickOutput`, calls) | -220 | 40 |",
+        # 150 - (50 + 20), neutral's own on_sample included; 850 - (300 + 200 + 200 + 40 + 50 + 20)
+        "| rest: `HapticPipeline::tick` itself (slot selection, `TickOutput`, calls; neutral: and its "
+        "`on_sample`) | 80 | 40 |",
         "| **whole tick (measured)** | **150** | **850** |"]
     assert ("A tick with no finger on the glass: 106 instructions (`Tracker::on_tick` without a finger alone: 44). "
             "Field elements, one `element_gradient` call each: point sink 44.") in lines
@@ -439,11 +447,34 @@ def test_every_strategy_has_its_row(run):
     assert section(host_only, "Every strategy")[-2].endswith("| – | – | – | 10 | 700 | – |")
 
 
+@pytest.mark.parametrize("run_line, grid", [
+    # x = 0.5 ... 798.5 and y = 0.5 ... 478.5 every px: 799 x 479 = 382,721
+    ("# run: full, error grid every 1 px, timed", "x = 0.5, 1.5, … 798.5, y = 0.5 … 478.5 (382,721 points"),
+    # every 4 px: x = 0.5 ... 796.5 (200), y = 0.5 ... 476.5 (120): 24,000
+    ("# run: full, error grid every 4 px, timed", "x = 0.5, 4.5, … 796.5, y = 0.5 … 476.5 (24,000 points"),
+    # every 40 px (--smoke): x 0.5 ... 760.5 (20), y 0.5 ... 440.5 (12): 240
+    ("# run: smoke, error grid every 40 px, not timed", "x = 0.5, 40.5, … 760.5, y = 0.5 … 440.5 (240 points"),
+    ("# date: 2026-11-30", "on ff-bench's grid (its step not recorded in host_cases.csv, between pixel centres"),
+])
+def test_the_error_grid_is_the_one_ff_bench_says_it_used(run, run_line, grid):
+    host = run["folder"] / "host" / "host_cases.csv"
+    host.write_text("".join(run_line + "\n" if line.startswith("# run:") else line
+                            for line in host.read_text().splitlines(keepends=True)))
+    text = make_report.report(run["rows"], run["m4"], run["trackers"], args_for(run["folder"]))
+    assert grid in text.split("## Goals")[0]
+
+
 def test_the_header_says_how_the_numbers_were_made(run):
     head = run["text"].split("## Goals")[0]
     assert head.startswith("# Benchmarks: run time against error for every evaluation strategy\n")
     assert "(measured at start-up against a loop of known length: 40 instructions per count)" in head
     assert "- **Run**: core at test\n" in head
+    # what docs/benchmarks.csv holds: one row per scene and strategy, none of the per-scene cycle, tracker,
+    # component or accuracy figures (see write_csv's columns)
+    assert ("do not edit by hand. The per-strategy figures (*Built-in scenes at their default*, *Scene "
+            "preparation*, *Every strategy*) are in `docs/benchmarks.csv` too, one row per scene and strategy; "
+            "the cycle model's, the trackers', *Where the time goes* and the accuracy on the target are only "
+            "here.") in head
     host_only = make_report.report(run["rows"], None, run["trackers"], args_for(run["folder"], environment=""))
     assert "known length: not run)" in host_only and "**Run**" not in host_only
     assert "![M4 instructions per tick against max error, one point per strategy](img/benchmarks.png)" \
@@ -541,9 +572,15 @@ def test_the_host_cpu_is_the_model_name_linux_reports(monkeypatch):
 # ------------------------------------------------------------- the whole tool
 
 
+def make_output_folders(args):
+    for path in (args.md, args.csv, args.png):
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+
+
 def test_main_writes_the_report_the_csv_and_the_figure(run, monkeypatch, capsys):
     folder = run["folder"]
     args = args_for(folder)
+    make_output_folders(args)
     argv = ["make_report.py", "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv", args.csv,
             "--png", args.png, "--cycles", args.cycles, "--m4-accuracy", args.m4_accuracy, "--environment", "x"]
     monkeypatch.setattr(sys, "argv", argv)
@@ -557,6 +594,13 @@ def test_main_writes_the_report_the_csv_and_the_figure(run, monkeypatch, capsys)
                                                   "evaluation strategy"]
     assert len(make_report.read_plain_csv(args.csv)) == 11
     assert open(args.md).read().startswith("# Benchmarks:") and os.path.getsize(args.png) > 0
+    from PIL import Image
+    with Image.open(args.png) as image:  # the figure names its inputs as the CSV does (docs/tools.md)
+        description = image.text["Description"]
+    assert description.startswith("every evaluation strategy's cost against its error; "
+                                  "tool: tools/bench/make_report.py; date: 20")
+    assert description.endswith(f"; input: --host {args.host}, --m4 {args.m4}, --cycles {args.cycles}, "
+                                f"--m4-accuracy {args.m4_accuracy}; environment: x")
 
 
 def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_line(tmp_path):
@@ -570,6 +614,7 @@ def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_
     (tmp_path / "whole").mkdir()
     write_run(tmp_path / "whole")
     args = args_for(tmp_path / "whole")
+    make_output_folders(args)
     r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--md", args.md, "--csv", args.csv, "--png",
                         args.png], capture_output=True, text=True, env=env, cwd=str(tmp_path))
     assert r.returncode == 0 and r.stdout.startswith(f"make_report: wrote {args.md}"), r.stderr
@@ -587,6 +632,49 @@ def test_a_harness_run_that_crashed_or_failed_writes_nothing(tmp_path, monkeypat
     with pytest.raises(SystemExit) as stop:
         make_report.main()
     assert says in str(stop.value.code) and not os.path.exists(tmp_path / "out")
+
+
+def test_an_output_in_a_missing_folder_is_one_line_and_exit_2(tmp_path):
+    write_run(tmp_path)
+    args = args_for(tmp_path)  # out/ and out/img/ do not exist: not made
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png], capture_output=True, text=True)
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr == f"make_report: {args.csv}: no such folder: {tmp_path / 'out'}\n"
+    assert not os.path.exists(tmp_path / "out")
+
+
+def test_an_output_that_is_an_input_is_refused_before_anything_is_written(tmp_path):
+    write_run(tmp_path)
+    args = args_for(tmp_path)
+    make_output_folders(args)
+    harness = (tmp_path / "m4bench.txt").read_text()
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.m4, "--png", args.png], capture_output=True, text=True)
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr == f"make_report: output {args.m4} is the input {args.m4}: a tool never writes over its own input\n"
+    assert (tmp_path / "m4bench.txt").read_text() == harness and os.listdir(tmp_path / "out") == ["img"]
+
+
+def test_a_run_without_neutral_reports_without_the_comparison_and_writes_all_three_files(tmp_path):
+    # scripts/run-benchmarks --filter heightmap: no neutral/closed-form row to set the heightmap against
+    write_run(tmp_path)
+    host = tmp_path / "host" / "host_cases.csv"
+    host.write_text("".join(line for line in host.read_text().splitlines(keepends=True)
+                            if not line.startswith("neutral/")))
+    m4 = tmp_path / "m4bench.txt"
+    m4.write_text("".join(line for line in m4.read_text().splitlines(keepends=True) if ",neutral/" not in line))
+    args = args_for(tmp_path)
+    make_output_folders(args)
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    text = open(args.md).read()
+    assert section(text, "Where the time goes (M4 instructions per tick)") == [
+        "", "No neutral/closed-form row in this run (a filtered run?): the tick's pieces, set against neutral's, "
+        "are left out.", ""]
+    assert "neutral costs a small fraction" not in text
+    assert len(make_report.read_plain_csv(args.csv)) == 10 and os.path.getsize(args.png) > 0
 
 
 if __name__ == "__main__" and sys.argv[1:] == ["--update-golden"]:

@@ -22,10 +22,13 @@ def test_a_complete_write_replaces_the_file_and_leaves_no_partial(tmp_path):
     assert os.listdir(tmp_path) == ["summary.md"]
 
 
-def test_a_missing_folder_is_made(tmp_path):
+def test_a_missing_folder_is_refused_not_made(tmp_path):
+    # docs/tools.md: an output in a missing folder cannot be written (exit 2); a typo must not make folders
     path = tmp_path / "report" / "benchmarks.md"
-    ff_files.write_whole(str(path), lambda f: f.write("new\n"))
-    assert path.read_text() == "new\n"
+    with pytest.raises(FileNotFoundError) as e:
+        ff_files.write_whole(str(path), lambda f: f.write("new\n"))
+    assert ff_files.error_text(e.value) == f"{path}: no such folder: {tmp_path / 'report'}"
+    assert os.listdir(tmp_path) == []
 
 
 def test_a_failed_write_leaves_the_old_file_as_it_was(tmp_path):
@@ -142,3 +145,18 @@ def test_a_figure_takes_the_format_its_name_ends_with(tmp_path):
     assert svg.lstrip().startswith("<?xml") and "render_scene.py" in svg and "scene: vortex" in svg
     assert (tmp_path / "fig.pdf").read_bytes()[:5] == b"%PDF-"
     assert (tmp_path / "fig.out").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_an_output_that_is_an_input_under_any_name_is_refused(tmp_path, monkeypatch):
+    source = tmp_path / "trace.csv"
+    source.write_text("t_us,x,y,touch\n")
+    os.symlink(source, tmp_path / "soft.png")
+    os.link(source, tmp_path / "hard.png")
+    monkeypatch.chdir(tmp_path)
+    for output in (str(source), "trace.csv", "./sub/../trace.csv", "soft.png", "hard.png"):
+        with pytest.raises(ff_files.OutputIsInput) as e:
+            ff_files.refuse_overwriting_inputs([str(tmp_path / "fine.png"), output], [None, str(source)])
+        assert str(e.value) == f"output {output} is the input {source}: a tool never writes over its own input"
+    # another file, one not yet written, standard output, a device: no input of this tool
+    (tmp_path / "other.csv").write_text("t_us,x,y,touch\n")
+    ff_files.refuse_overwriting_inputs(["other.csv", "new.png", "-", "/dev/null"], [str(source)])

@@ -9,7 +9,8 @@ scene, including --scene-file ones): the amplitude map for position-only
 scenes, |G_norm| with downhill arrows for directional ones. Scene words
 given on the command line must select the same condition (the scene hash in
 the metadata), and the trace must be the replay's input (name and size):
-otherwise the plot is refused.
+otherwise the plot is refused. So is a replay without ff-replay's final
+'# summary' line: killed midway or cut short, it is not the whole run.
 
 Long replays stream through numpy: the amplitude is drawn as its minimum and
 maximum per pixel column, the path from at most --max-segments segments, so
@@ -24,6 +25,7 @@ Exit codes: 0 ok, 2 bad usage or input (one line on stderr, never a traceback).
 import argparse
 import csv
 import os
+import re
 import shlex
 import sys
 import warnings
@@ -47,37 +49,117 @@ COLUMNS_DRAWN = 1000  # pixel columns of the amplitude plot
 # ---- files ------------------------------------------------------------------
 
 def read_header(path):
-    """Metadata, column names and the number of lines before the first row."""
-    lines, meta = 0, {}
+    """Metadata, the line each metadata key is on, column names and the number
+    of lines before the first row."""
+    lines, meta, meta_lines = 0, {}, {}
     with open(path, encoding="utf-8-sig") as f:
         for line in f:
             lines += 1
             if line.startswith("#") or not line.strip():
-                meta.update(parse_metadata([line.rstrip("\n")]))
+                found = parse_metadata([line.rstrip("\n")])
+                meta.update(found)
+                meta_lines.update(dict.fromkeys(found, lines))
                 continue
-            return meta, [c.strip() for c in line.split(",")], lines
+            return meta, meta_lines, [c.strip() for c in line.split(",")], lines
     raise ToolError(f"{path}: no header row")
 
 
+def check_complete(path):
+    """ff-replay writes '# summary:' after its last row: a replay killed midway
+    (ff-replay leaves X.partial) or a capture of its output cut short, even at
+    a row's end, has no such last line."""
+    with open(path, "rb") as f:
+        f.seek(0, os.SEEK_END)
+        f.seek(max(0, f.tell() - 4096))
+        tail = [line.strip() for line in f.read().splitlines() if line.strip()]
+    if not tail or not tail[-1].startswith(b"# summary:"):
+        raise ToolError(f"{path}: the replay is incomplete: no summary line (ff-replay writes it last)")
+
+
 def read_replay(path):
-    meta, names, skip = read_header(path)
-    missing = [c for c in REPLAY_COLUMNS if c not in names]
-    if missing:
-        raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
-    cols = [names.index(c) for c in REPLAY_COLUMNS]
-    with open(path, encoding="utf-8-sig") as f, warnings.catch_warnings():
-        warnings.simplefilter("ignore", UserWarning)  # "input contained no data": said below, in one line
-        try:
-            data = np.loadtxt(f, delimiter=",", comments="#", skiprows=skip, usecols=cols, ndmin=2)
-        except ValueError as e:
-            raise ToolError(f"{path}: {e}") from None
+    """Metadata, the replay's columns and the line of each metadata key; a row
+    out of spec (docs/spec.md#replay-output) is refused with its line."""
+    try:
+        meta, meta_lines, names, skip = read_header(path)
+        duplicated = sorted({c for c in names if names.count(c) > 1})
+        if duplicated:
+            raise ToolError(f"{path}:{skip}: column {', '.join(duplicated)} is named twice")
+        missing = [c for c in REPLAY_COLUMNS if c not in names]
+        if missing:
+            raise ToolError(f"{path}: not an ff-replay output (no column {', '.join(missing)})")
+        check_complete(path)
+        with open(path, encoding="utf-8-sig") as f, warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # "input contained no data": said below, in one line
+            try:
+                # every column, so that a row wider than the header is seen
+                data = np.loadtxt(f, delimiter=",", comments="#", skiprows=skip, ndmin=2)
+            except ValueError:
+                raise ToolError(first_bad_row(path, names, skip)) from None
+    except UnicodeDecodeError as e:
+        raise ToolError(f"{path}: not UTF-8 text ({e})") from None
     if len(data) == 0:
         raise ToolError(f"{path}: no ticks")
-    return meta, {c: data[:, i] for i, c in enumerate(REPLAY_COLUMNS)}
+    if data.shape[1] != len(names):  # every row as wide, and wider than the header
+        raise ToolError(f"{path}:{line_of_row(path, skip, 0)}: {data.shape[1]} fields, the header names {len(names)}")
+    columns = {c: data[:, names.index(c)] for c in REPLAY_COLUMNS}
+    check_rows(path, skip, columns)
+    return meta, columns, meta_lines
+
+
+def check_rows(path, skip, columns):
+    """Ranges of docs/spec.md#replay-output: ticks one after another, a finite
+    position, amplitude in [0, 1], present 0 or 1; the first row out of them is named."""
+    t, amplitude, present = columns["t_us"], columns["amplitude"], columns["present"]
+    later = np.ones(len(t), dtype=bool)
+    later[1:] = t[1:] > t[:-1]
+    checks = [(~np.isfinite(t), lambda i: f"t_us {t[i]:.0f} is not a finite time"),
+              (~later, lambda i: f"t_us {t[i]:.0f} is not after the previous tick's {t[i - 1]:.0f}")]
+    checks += [(~np.isfinite(columns[c]), lambda i, c=c: f"{c} {columns[c][i]:g} is not a finite position")
+               for c in ("x", "y")]
+    checks += [(~((amplitude >= 0) & (amplitude <= 1)), lambda i: f"amplitude {amplitude[i]:g} is outside [0, 1]"),
+               (~((present == 0) | (present == 1)), lambda i: f"present {present[i]:g} is not 0 or 1")]
+    firsts = [(int(np.argmax(bad)), n) for n, (bad, _) in enumerate(checks) if bad.any()]
+    if firsts:
+        row, n = min(firsts)
+        raise ToolError(f"{path}:{line_of_row(path, skip, row)}: {checks[n][1](row)}")
+
+
+def data_rows(path, skip):
+    """(line number, fields) of each row after the header, as np.loadtxt reads
+    them: '#' starts a comment, blank lines are skipped. Only to name a bad row."""
+    with open(path, encoding="utf-8-sig") as f:
+        for number, line in enumerate(f, start=1):
+            text = line.split("#", 1)[0].strip()
+            if number > skip and text:
+                yield number, text.split(",")
+
+
+def line_of_row(path, skip, row):
+    return next(number for n, (number, _) in enumerate(data_rows(path, skip)) if n == row)
+
+
+def first_bad_row(path, names, skip):
+    """The first row np.loadtxt could not read, as file:line: why."""
+    for number, fields in data_rows(path, skip):
+        if len(fields) != len(names):
+            return f"{path}:{number}: {len(fields)} fields, the header names {len(names)}"
+        for name, field in zip(names, fields):
+            try:
+                float(field)
+            except ValueError:
+                return f"{path}:{number}: {name} '{field.strip()}' is not a number"
+    return f"{path}: not a replay np.loadtxt can read"  # not reached: loadtxt and float() agree
 
 
 def read_trace(path):
     """t_us, x, y, touch of every report (csv: rows may have empty x, y)."""
+    try:
+        return _read_trace(path)
+    except UnicodeDecodeError as e:
+        raise ToolError(f"{path}: not UTF-8 text ({e})") from None
+
+
+def _read_trace(path):
     t, x, y, touch = [], [], [], []
     with open(path, newline="", encoding="utf-8-sig") as f:
         rows = csv.reader(line for line in f if not line.startswith("#"))
@@ -100,6 +182,18 @@ def read_trace(path):
 
 # ---- checks -----------------------------------------------------------------
 
+def screen_scale(meta, meta_lines, replay_path):
+    """x and y factors from the trace's units to screen pixels: ff-replay --screen WxH
+    scales the trace's reports by 800/W and 480/H before the tracker sees them, and
+    says so in its '# screen: WxH scaled to 800x480' line (none in an older replay)."""
+    if "screen" not in meta:
+        return 1.0, 1.0
+    match = re.match(r"(\d+)[xX](\d+)(?: |$)", meta["screen"])
+    if not match or int(match[1]) == 0 or int(match[2]) == 0:
+        raise ToolError(f"{replay_path}:{meta_lines['screen']}: screen '{meta['screen']}' is not WxH with W, H > 0")
+    return WIDTH / int(match[1]), HEIGHT / int(match[2])
+
+
 def check_trace(meta, trace_path, replay_path):
     """The replay's metadata names its input as 'NAME (N bytes)'."""
     if "input" not in meta:
@@ -111,12 +205,15 @@ def check_trace(meta, trace_path, replay_path):
         raise ToolError(f"{replay_path} is the replay of {meta['input']}, not of {expected}")
 
 
-def scene_for(meta, words, binary, replay_path):
+def scene_for(meta, meta_lines, words, binary, replay_path):
     """The words to draw with: those given (checked against the replay's hash) or the replay's own."""
     if not words:
         if "scene" not in meta:
             return None
-        words = shlex.split(meta["scene"])
+        try:
+            words = shlex.split(meta["scene"])
+        except ValueError as e:  # quoting: "No closing quotation"
+            raise ToolError(f"{replay_path}:{meta_lines['scene']}: scene words {meta['scene']}: {e}") from None
     scene_meta, _ = sample(binary, words, 100.0, 0.0)
     if "scene_hash" in meta and scene_meta.get("scene_hash") != meta["scene_hash"]:
         raise ToolError(f"{replay_path} was rendered with '{meta.get('scene')}' (scene hash {meta['scene_hash']}), "
@@ -188,11 +285,14 @@ def path_segments(x, y, amplitude, present, max_segments):
 
 
 def plot(args, words):
-    meta, replay = read_replay(args.replay)
+    ff_files.refuse_overwriting_inputs([args.output], [args.trace, args.replay])
+    meta, replay, meta_lines = read_replay(args.replay)
     trace = read_trace(args.trace)
     check_trace(meta, args.trace, args.replay)
+    sx, sy = screen_scale(meta, meta_lines, args.replay)
+    trace["x"], trace["y"] = trace["x"] * sx, trace["y"] * sy  # where the tracker saw them
     binary = find_binary(args.bin)
-    words = scene_for(meta, words, binary, args.replay)
+    words = scene_for(meta, meta_lines, words, binary, args.replay)
 
     t0 = replay["t_us"][0]
     seconds = (replay["t_us"] - t0) * 1e-6
@@ -248,6 +348,17 @@ def plot(args, words):
     plt.close(fig)
 
 
+def at_least_one(text):
+    """An argparse type: a whole number from 1 on (--max-segments divides by it)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text} is not a whole number from 1 on")
+    return value
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
                                  usage="%(prog)s trace replay -o PNG [--from S] [--to S] [scene words...]")
@@ -257,7 +368,7 @@ def main():
     ap.add_argument("--from", dest="t_from", type=float, default=None, help="first second to draw (from the start)")
     ap.add_argument("--to", dest="t_to", type=float, default=None, help="last second to draw")
     ap.add_argument("--title", default=None)
-    ap.add_argument("--max-segments", type=int, default=20000, help="most path segments drawn (longer paths thinned)")
+    ap.add_argument("--max-segments", type=at_least_one, default=20000, help="most path segments drawn (longer paths thinned)")
     ap.add_argument("--bin", default=None, help="path to ff-scene-render (default: build/native, or $FF_SCENE_RENDER)")
     args, words = ap.parse_known_args()
     try:

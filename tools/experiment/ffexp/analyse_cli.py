@@ -101,6 +101,7 @@ def run(argv):
         if torn:  # left out by the reader; said here, so that an edited file's last trial is not lost unseen
             print(f"ff-analyse: {torn}: left out as an unfinished trial", file=sys.stderr)
     group = analysis.group_statistics(participants)
+    os.makedirs(args.output, exist_ok=True)  # -o names the report's folder, made here (ff_files makes none)
     names = figures.group_figures(participants, group, args.output)
     if not args.no_participant_pages:
         for p in participants:
