@@ -53,12 +53,15 @@ class SensorSimulator {
   // A report stamped at t_rel_us of the finger as the sensor scanned it
   // r.latency_us earlier. Each effect is added only when on, so that with
   // all of them off the numbers are exactly those of the plain model.
-  void measure(Report& r) {
+  // False if the finger was not on the screen at the scan (it landed
+  // between the scan and the stamp): there is nothing to report.
+  bool measure(Report& r) {
     const SensorOptions& o = o_.sensor;
     r.latency_us = o.latency_us;
     if (o.latency_spread_us > 0.0) r.latency_us += latency_rng_.uniform(0.0, o.latency_spread_us);
     const double scan_s = (static_cast<double>(r.t_rel_us) - r.latency_us) * 1e-6;
     const TrueState s = motion_.at(scan_s);
+    if (!s.touching) return false;
     Point seen = s.position;
     if (tremor_.enabled()) {
       const Point shake = tremor_.at(scan_s);
@@ -74,6 +77,7 @@ class SensorSimulator {
     }
     r.x = quantise(seen.x + o.noise_px * noise_.gaussian());
     r.y = quantise(seen.y + o.noise_px * noise_.gaussian());
+    return true;
   }
 
   // Reports on a jittered grid while the finger is down; one touch = 0 report
@@ -95,13 +99,16 @@ class SensorSimulator {
       const double jitter = n == 0 ? 0.0 : std::clamp(o_.sensor.jitter_us * timing_.gaussian(), -max_jitter, max_jitter);
       Report r;
       r.t_rel_us = static_cast<int64_t>(std::llround(nominal + jitter));
-      const bool touching = truth(r.t_rel_us).touching;
+      bool touching = truth(r.t_rel_us).touching;
       if (touching) {
         r.touch = true;
         r.event = was_touching ? SampleEvent::Normal : SampleEvent::TouchDown;
-        measure(r);
-        out.push_back(r);
-        last = r;
+        if (measure(r)) {
+          out.push_back(r);
+          last = r;
+        } else {
+          touching = was_touching;  // scanned before the finger landed: it lands in a later report
+        }
       } else if (was_touching) {
         r.x = last.x;
         r.y = last.y;
