@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include <sstream>
+#include <vector>
 
 namespace ff::ffctl {
 
@@ -22,6 +23,7 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
   std::string line;
   uint32_t base = 0;  // extended segment (type 02) or linear (type 04) address
   int line_no = 0, records = 0;
+  std::vector<uint32_t> written_by(image.bytes.size(), 0);  // the line that wrote each byte (0: none)
   bool ended = false;
   auto fail = [&](const std::string& why) {
     error = "line " + std::to_string(line_no) + ": " + why;
@@ -51,7 +53,17 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
       case 0x00: {
         const uint32_t address = base + offset;
         if (address + count > image.bytes.size()) return fail("data beyond the 1 MiB flash");
-        for (size_t i = 0; i < count; ++i) image.bytes[address + i] = rec[4 + i];
+        for (size_t i = 0; i < count; ++i) {
+          const size_t at = address + i;
+          if (written_by[at] != 0 && image.bytes[at] != rec[4 + i]) {
+            char where[16];
+            std::snprintf(where, sizeof where, "0x%06zX", at);
+            return fail(std::string("overlaps line ") + std::to_string(written_by[at]) + " at " + where +
+                        " with different data");
+          }
+          image.bytes[at] = rec[4 + i];
+          written_by[at] = static_cast<uint32_t>(line_no);
+        }
         if (address + count > image.highest) image.highest = address + count;
         break;
       }

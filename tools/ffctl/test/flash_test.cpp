@@ -65,6 +65,9 @@ TEST(IntelHex, EachMalformedRecordIsRefusedWithItsLineAndReason) {
       {hex_record(0, 0x02, {0x10}) + end, "line 1: extended segment address needs 2 bytes"},
       {hex_record(0, 0x04, {0x00, 0x00, 0x00}) + end, "line 1: extended linear address needs 2 bytes"},
       {hex_record(0, 0x04, {0x00, 0x01}) + end, "an end-of-file record but no data"},
+      // Two records for one byte that disagree: which one the flash holds would depend on their order.
+      {hex_record(0x20, 0x00, {1, 2, 3, 4}) + hex_record(0x22, 0x00, {3, 9}) + end,
+       "line 2: overlaps line 1 at 0x000023 with different data"},
   };
   for (const auto& c : cases) {
     FlashImage image;
@@ -72,6 +75,18 @@ TEST(IntelHex, EachMalformedRecordIsRefusedWithItsLineAndReason) {
     EXPECT_FALSE(parse_intel_hex(c.text, image, error)) << c.text;
     EXPECT_EQ(error, c.error) << c.text;
   }
+}
+
+TEST(IntelHex, RecordsThatRepeatTheSameBytesAreRead) {
+  // Some linkers write a section twice with the same bytes: nothing to choose between.
+  FlashImage image;
+  std::string error;
+  ASSERT_TRUE(parse_intel_hex(hex_record(0x20, 0x00, {1, 2, 3, 4}) + hex_record(0x22, 0x00, {3, 4, 5}) +
+                                  hex_record(0, 0x01, {}),
+                              image, error))
+      << error;
+  EXPECT_EQ(image.bytes[0x24], 5);
+  EXPECT_EQ(image.highest, 0x25u);
 }
 
 TEST(IntelHex, DataIsRefusedPastTheFlashEvenWhereItsAddressWrapsAt4GiB) {
