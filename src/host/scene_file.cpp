@@ -94,13 +94,15 @@ std::string number_text(float v) {
   return o.str();
 }
 
-// Values a scene cannot mean are refused with the key that carries them.
+// Values a scene cannot mean are refused with the key that carries them, as
+// the core's preparation (ScenePlan::prepare) would refuse them later without
+// a line: a feather of 0 is a step the profile's smoothstep divides by.
 bool check_element(const FieldElement& e, const std::string& kind, std::string& err) {
   struct Bound { const char* key; float value; bool zero_ok; };
   const Bound bounds[] = {
-      {"radius", e.point.radius, true},       {"feather", e.point.feather, true},
+      {"radius", e.point.radius, true},       {"feather", e.point.feather, false},
       {"a", e.valley.a, false},               {"band", e.valley.band_half_width, true},
-      {"band", e.valley.band_feather, true},  {"length", e.tunnel.length, false},
+      {"band", e.valley.band_feather, false}, {"length", e.tunnel.length, false},
       {"width", e.tunnel.width_start, false}, {"width", e.tunnel.width_end, false},
       {"scale", e.tunnel.scale, false},       {"wavelength", e.texture.wavelength_x, false},
       {"wavelength", e.texture.wavelength_y, false},
@@ -114,6 +116,9 @@ bool check_element(const FieldElement& e, const std::string& kind, std::string& 
   }
   if (e.kind == ElementKind::PathSink && e.valley.curve.kind == CurveKind::Sine && !(e.valley.curve.wavelength > 0.0f)) {
     return err = "curve sine: the wavelength must be > 0", false;
+  }
+  if (e.kind == ElementKind::PathSink && e.valley.curve.kind == CurveKind::Cubic && !(e.valley.curve.length > 0.0f)) {
+    return err = "curve cubic: the length L " + number_text(e.valley.curve.length) + " must be > 0", false;
   }
   return true;
 }

@@ -217,6 +217,9 @@ TEST(SceneFile, ErrorsSayWhichLineAndWhy) {
       {"evaluation table 4 int16 slope\n", "gradient or height"},
       {"rendering position\nbias\n", "line 2: bias needs a number"},
       {"rendering constant sideways\n", "line 1: unexpected 'sideways'"},
+      {"rendering position\nelement point_sink feather 0\n", "line 2: element point_sink: 'feather' 0 must be > 0"},
+      {"element path_sink band 0 0\n", "line 1: element path_sink: 'band' 0 must be > 0"},
+      {"element path_sink curve cubic -200 100 240 -600\n", "line 1: curve cubic: the length L -600 must be > 0"},
       {"", "line 1: no directives"},
   };
   for (const Case& c : cases) {
@@ -243,6 +246,10 @@ TEST(SceneFile, RefusesValuesItWouldOtherwiseClampOrIgnore) {
       "element tunnel width 0 20\n",
       "element texture wavelength 0 10\n",
       "evaluation table 0\nelement vortex centre 1 1\n",
+      "element point_sink feather 0\n",  // the core divides by the feathers and the length
+      "element path_sink band 10 0\n",
+      "element path_sink curve cubic -200 100 240 0\n",
+      "element path_sink curve cubic -200 100 240 -600\n",
       "",                          // nothing at all: would render flat
       "# only a comment\n",
       "rendering directional\n",  // no element: flat
