@@ -312,9 +312,15 @@ bool read_scene_file(const std::string& path, SceneDefinition& out, std::string&
     error = path + ": " + why;
     return false;
   }
-  std::stringstream buf;
-  buf << in.rdbuf();
-  if (!parse_scene_text(buf.str(), out, error)) {
+  // One byte more than allowed tells a file at the limit from a larger one.
+  std::string text(kMaxSceneFileBytes + 1, '\0');
+  in.read(&text[0], static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (text.size() > kMaxSceneFileBytes) {
+    error = path + ": larger than 1 MiB: not a scene file (a scene is a few KB)";
+    return false;
+  }
+  if (!parse_scene_text(text, out, error)) {
     error = path + ": " + error;
     return false;
   }

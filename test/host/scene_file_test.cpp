@@ -317,6 +317,26 @@ TEST(SceneFile, ALeadingByteOrderMarkIsSkipped) {
   EXPECT_EQ(err.rfind("line 2: unknown directive", 0), 0u) << err;
 }
 
+TEST(SceneFile, RefusesAFileLargerThanAnySceneWithoutReadingItAll) {
+  // /dev/zero never ends: it was read whole until std::bad_alloc (exit 134).
+  SceneDefinition s;
+  std::string err;
+  EXPECT_FALSE(read_scene_file("/dev/zero", s, err));
+  EXPECT_EQ(err, "/dev/zero: larger than 1 MiB: not a scene file (a scene is a few KB)");
+  // 1 MiB exactly (a valid scene padded with comment lines) is still read; one byte more is not.
+  const std::string path = support::scratch_path("scene_file_one_mib.txt");
+  std::string text = "rendering constant\nconstant 0.25\n";
+  const std::string comment = "# padding\n";
+  while (text.size() + comment.size() <= kMaxSceneFileBytes) text += comment;
+  text += std::string(kMaxSceneFileBytes - text.size() - 1, '#') + "\n";
+  ASSERT_EQ(text.size(), 1048576u);
+  { std::ofstream(path, std::ios::binary) << text; }
+  EXPECT_TRUE(read_scene_file(path, s, err)) << err;
+  { std::ofstream(path, std::ios::binary) << text << "\n"; }
+  EXPECT_FALSE(read_scene_file(path, s, err));
+  EXPECT_EQ(err, path + ": larger than 1 MiB: not a scene file (a scene is a few KB)");
+}
+
 TEST(SceneFile, RefusesADirectoryAnEmptyFileAndAMissingOne) {
   SceneDefinition s;
   std::string err;
