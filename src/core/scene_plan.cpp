@@ -68,10 +68,13 @@ bool valid_element(const FieldElement& e) {
 }
 
 // |G| without overflow or underflow of the squares: scale by the larger
-// component; 0 for a non-finite G. In flash (only the rare fallback search).
+// component. A non-finite G gives infinity, so the search's maximum says the
+// field is not finite and preparation refuses it. In flash (only the rare
+// fallback search).
 __attribute__((noinline)) float safe_length(Vec2 g) {
+  if (!std::isfinite(g.x) || !std::isfinite(g.y)) return INFINITY;
   const float m = std::fmax(std::fabs(g.x), std::fabs(g.y));
-  if (!(m > 0.0f) || !std::isfinite(m)) return 0.0f;
+  if (!(m > 0.0f)) return 0.0f;
   const Vec2 u = (1.0f / m) * g;
   return m * length(u);
 }
@@ -182,11 +185,14 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
 
   if (def.rendering == Rendering::Directional) {
     const float max_g = next.find_max_gradient();
+    // A field or max|G| past float on the screen would normalise to NaN or 0
+    // at every tick: refused, as a table's non-finite node is.
+    if (!std::isfinite(max_g)) return PrepareStatus::NonFiniteField;
     // In the definition's units; weights near 1e36 take it past float: saturate.
     const float max_in_units = max_g * next.field_scale_;
     next.stats_.max_gradient = std::isfinite(max_in_units) ? max_in_units : FLT_MAX;
     // A field that is flat everywhere renders 0.5 (no direction to favour).
-    next.inv_two_max_ = (max_g > 0.0f && std::isfinite(max_g)) ? 0.5f / max_g : 0.0f;
+    next.inv_two_max_ = max_g > 0.0f ? 0.5f / max_g : 0.0f;
   }
   *this = next;
   return PrepareStatus::Ok;
@@ -251,7 +257,8 @@ float ScenePlan::find_max_gradient() {
   if (count_ == 1 && elements_[0].kind == ElementKind::Texture && evaluation_ == Evaluation::ClosedForm) {
     const TextureParams& t = elements_[0].texture;
     if (t.wavelength_x <= kScreenMaxY && t.wavelength_y <= kScreenMaxY) {
-      return std::fabs(elements_[0].weight * t.height) * 2.0f * kPi / std::fmin(t.wavelength_x, t.wavelength_y);
+      // 2 pi / lambda first: |w h| near FLT_MAX must not overflow when the maximum does not.
+      return std::fabs(elements_[0].weight * t.height) * (2.0f * kPi / std::fmin(t.wavelength_x, t.wavelength_y));
     }
   }
   // A lone vortex: |G| = |w| |p - c|, largest at the corner farthest from the centre.

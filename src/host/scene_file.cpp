@@ -13,6 +13,47 @@ namespace ff::host {
 
 namespace {
 
+// Length of the decimal number at the start of s ([+-] digits [. digits]
+// [e [+-] digits]), 0 if there is none; *nonzero_digit says whether its
+// digits before the exponent are not all 0. strtof alone would also take
+// hex floats (0x1p3), inf and nan.
+size_t decimal_length(const char* s, bool* nonzero_digit) {
+  size_t i = (s[0] == '+' || s[0] == '-') ? 1 : 0;
+  size_t digits = 0;
+  *nonzero_digit = false;
+  auto run = [&]() {
+    while (s[i] >= '0' && s[i] <= '9') {
+      *nonzero_digit |= s[i] != '0';
+      ++i;
+      ++digits;
+    }
+  };
+  run();
+  if (s[i] == '.') {
+    ++i;
+    run();
+  }
+  if (digits == 0) return 0;
+  if (s[i] == 'e' || s[i] == 'E') {
+    size_t j = i + 1 + ((s[i + 1] == '+' || s[i + 1] == '-') ? 1 : 0);
+    if (s[j] < '0' || s[j] > '9') return i;
+    while (s[j] >= '0' && s[j] <= '9') ++j;
+    i = j;
+  }
+  return i;
+}
+
+// A decimal float at the start of s, of `length` characters: false (with
+// why) if it is too large for a float, or so small that it would read as 0.
+bool decimal_value(const char* s, size_t length, bool nonzero_digit, float& out, std::string& why) {
+  const std::string text(s, length);
+  const float v = std::strtof(text.c_str(), nullptr);
+  if (!std::isfinite(v)) return why = text + " is too large for a float", false;
+  if (v == 0.0f && nonzero_digit) return why = text + " is too small for a float (it would be 0)", false;
+  out = v;
+  return true;
+}
+
 class Words {
  public:
   explicit Words(const std::string& line) {
@@ -23,25 +64,47 @@ class Words {
   bool empty() const { return words_.empty(); }
   bool done() const { return next_ >= words_.size(); }
   std::string take() { return done() ? std::string() : words_[next_++]; }
+  // The word the last number() read, as typed (errors quote it: 1.0000001,
+  // not 1 with six digits).
+  const std::string& last() const { return last_; }
+  // The word last read into `value` as typed, or its value printed if none was.
+  std::string typed(const float& value) const {
+    for (auto it = typed_.rbegin(); it != typed_.rend(); ++it) {
+      if (it->first == &value) return it->second;
+    }
+    std::ostringstream o;
+    o << value;
+    return o.str();
+  }
+  // Why the last number() or point() refused its word ("" if it was no number at all).
+  const std::string& why() const { return why_; }
   bool number(float& out) {
+    why_.clear();
     if (done()) return false;
     const std::string& w = words_[next_];
-    char* end = nullptr;
-    const float v = std::strtof(w.c_str(), &end);
-    if (end == w.c_str() || end != w.c_str() + w.size() || !std::isfinite(v)) return false;
-    out = v;
+    bool nonzero = false;
+    const size_t n = decimal_length(w.c_str(), &nonzero);
+    if (n == 0 || n != w.size()) return not_decimal(w);
+    if (!decimal_value(w.c_str(), n, nonzero, out, why_)) return false;
+    last_ = w;
+    typed_.emplace_back(&out, w);
     ++next_;
     return true;
   }
   bool point(Vec2& out) {  // "x,y", after peek_point()
+    why_.clear();
     const std::string& w = words_[next_];
-    char* end = nullptr;
-    const float x = std::strtof(w.c_str(), &end);
-    if (end == w.c_str() || *end != ',') return false;
-    const char* ys = end + 1;
-    const float y = std::strtof(ys, &end);
-    if (end == ys || end != w.c_str() + w.size() || !std::isfinite(x) || !std::isfinite(y)) return false;
-    out = {x, y};
+    bool x_nonzero = false, y_nonzero = false;
+    const size_t nx = decimal_length(w.c_str(), &x_nonzero);
+    if (nx == 0 || w[nx] != ',') return false;
+    const char* ys = w.c_str() + nx + 1;
+    const size_t ny = decimal_length(ys, &y_nonzero);
+    if (ny == 0 || nx + 1 + ny != w.size()) return false;
+    Vec2 p;
+    if (!decimal_value(w.c_str(), nx, x_nonzero, p.x, why_) || !decimal_value(ys, ny, y_nonzero, p.y, why_)) {
+      return false;
+    }
+    out = p;
     ++next_;
     return true;
   }
@@ -50,9 +113,23 @@ class Words {
   }
 
  private:
+  bool not_decimal(const std::string& w) {
+    char* end = nullptr;
+    std::strtof(w.c_str(), &end);
+    // What strtof reads but a scene file does not: say so rather than "needs a number".
+    if (end == w.c_str() + w.size() && !w.empty()) why_ = w + " is not a decimal number";
+    return false;
+  }
+
   std::vector<std::string> words_;
   size_t next_ = 0;
+  std::string last_;
+  std::string why_;
+  std::vector<std::pair<const float*, std::string>> typed_;
 };
+
+// ": why" after a message, if the last number had a reason to be refused.
+std::string reason(const Words& w) { return w.why().empty() ? std::string() : ": " + w.why(); }
 
 bool parse_curve(Words& w, PathCurve& curve, std::string& err) {
   const std::string kind = w.take();
@@ -79,7 +156,7 @@ bool parse_curve(Words& w, PathCurve& curve, std::string& err) {
     int n = 0;
     while (w.peek_point()) {
       if (n == kMaxPolylinePoints) return err = "polyline has more than 16 points", false;
-      if (!w.point(pts[n++])) return err = "polyline points are x,y pairs", false;
+      if (!w.point(pts[n++])) return err = "polyline points are x,y pairs" + reason(w), false;
     }
     curve = PathCurve::polyline(pts, n);
     if (curve.count == 0) return err = "polyline needs 2..16 points with increasing x", false;
@@ -88,32 +165,32 @@ bool parse_curve(Words& w, PathCurve& curve, std::string& err) {
   return err = "unknown curve '" + kind + "' (cubic, sine, polyline)", false;
 }
 
-std::string number_text(float v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
-// Values a scene cannot mean are refused with the key that carries them.
-bool check_element(const FieldElement& e, const std::string& kind, std::string& err) {
-  struct Bound { const char* key; float value; bool zero_ok; };
+// Values a scene cannot mean are refused with the key that carries them, as
+// the core's preparation (ScenePlan::prepare) would refuse them later without
+// a line: a feather of 0 is a step the profile's smoothstep divides by.
+bool check_element(const FieldElement& e, const std::string& kind, const Words& w, std::string& err) {
+  // value refers to the element's own float, so typed() finds the word read into it.
+  struct Bound { const char* key; const float& value; bool zero_ok; };
   const Bound bounds[] = {
-      {"radius", e.point.radius, true},       {"feather", e.point.feather, true},
+      {"radius", e.point.radius, true},       {"feather", e.point.feather, false},
       {"a", e.valley.a, false},               {"band", e.valley.band_half_width, true},
-      {"band", e.valley.band_feather, true},  {"length", e.tunnel.length, false},
+      {"band", e.valley.band_feather, false}, {"length", e.tunnel.length, false},
       {"width", e.tunnel.width_start, false}, {"width", e.tunnel.width_end, false},
       {"scale", e.tunnel.scale, false},       {"wavelength", e.texture.wavelength_x, false},
       {"wavelength", e.texture.wavelength_y, false},
   };
   for (const Bound& b : bounds) {
     if (b.zero_ok ? b.value < 0.0f : b.value <= 0.0f) {
-      err = std::string("element ") + kind + ": '" + b.key + "' " + number_text(b.value) + " must be " +
+      err = std::string("element ") + kind + ": '" + b.key + "' " + w.typed(b.value) + " must be " +
             (b.zero_ok ? ">= 0" : "> 0");
       return false;
     }
   }
   if (e.kind == ElementKind::PathSink && e.valley.curve.kind == CurveKind::Sine && !(e.valley.curve.wavelength > 0.0f)) {
     return err = "curve sine: the wavelength must be > 0", false;
+  }
+  if (e.kind == ElementKind::PathSink && e.valley.curve.kind == CurveKind::Cubic && !(e.valley.curve.length > 0.0f)) {
+    return err = "curve cubic: the length L " + w.typed(e.valley.curve.length) + " must be > 0", false;
   }
   return true;
 }
@@ -146,9 +223,9 @@ bool parse_element(Words& w, FieldElement& e, std::string& err) {
     else if (key == "wavelength") ok = w.number(e.texture.wavelength_x) && w.number(e.texture.wavelength_y);
     else if (key == "height") ok = w.number(e.texture.height);
     else return err = "unknown key '" + key + "' for element " + kind, false;
-    if (!ok) return err = "'" + key + "' needs finite number(s)", false;
+    if (!ok) return err = "'" + key + "' needs finite number(s)" + reason(w), false;
   }
-  return check_element(e, kind, err);
+  return check_element(e, kind, w, err);
 }
 
 }  // namespace
@@ -156,7 +233,10 @@ bool parse_element(Words& w, FieldElement& e, std::string& err) {
 bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string& error) {
   SceneDefinition s;
   s.rendering = Rendering::Directional;
-  std::istringstream in(text);
+  // A UTF-8 byte order mark (some editors write one) is not part of the first
+  // directive; every trace reader skips it too.
+  const bool bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+  std::istringstream in(bom ? text.substr(3) : text);
   std::string line;
   int line_no = 0;
   auto fail = [&](const std::string& msg) {
@@ -178,22 +258,22 @@ bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string
       else if (r == "directional") s.rendering = Rendering::Directional;
       else return fail("rendering is constant, position or directional (got '" + r + "')");
     } else if (key == "constant") {
-      if (!w.number(s.constant)) return fail("constant needs a number");
+      if (!w.number(s.constant)) return fail("constant needs a number" + reason(w));
       if (!(s.constant >= 0.0f && s.constant <= 1.0f)) {
-        return fail("constant " + number_text(s.constant) + " is outside [0, 1] (an amplitude)");
+        return fail("constant " + w.last() + " is outside [0, 1] (an amplitude)");
       }
     } else if (key == "bias") {
-      if (!w.number(s.bias)) return fail("bias needs a number");
-      if (!(s.bias >= -1.0f && s.bias <= 1.0f)) return fail("bias " + number_text(s.bias) + " is outside [-1, 1]");
+      if (!w.number(s.bias)) return fail("bias needs a number" + reason(w));
+      if (!(s.bias >= -1.0f && s.bias <= 1.0f)) return fail("bias " + w.last() + " is outside [-1, 1]");
     } else if (key == "evaluation") {
       const std::string e = w.take();
       if (e == "closed") {
         s.evaluation = Evaluation::ClosedForm;
       } else if (e == "table") {
         s.evaluation = Evaluation::Table;
-        if (!w.number(s.table.spacing_px)) return fail("evaluation table needs the spacing in px");
+        if (!w.number(s.table.spacing_px)) return fail("evaluation table needs the spacing in px" + reason(w));
         if (!(s.table.spacing_px >= 1.0f && s.table.spacing_px <= 100.0f)) {
-          return fail("table spacing " + number_text(s.table.spacing_px) + " is outside [1, 100] px");
+          return fail("table spacing " + w.last() + " is outside [1, 100] px");
         }
         const std::string storage = w.take();
         if (storage == "int16" || storage.empty()) s.table.storage = TableStorage::Int16;
@@ -232,9 +312,15 @@ bool read_scene_file(const std::string& path, SceneDefinition& out, std::string&
     error = path + ": " + why;
     return false;
   }
-  std::stringstream buf;
-  buf << in.rdbuf();
-  if (!parse_scene_text(buf.str(), out, error)) {
+  // One byte more than allowed tells a file at the limit from a larger one.
+  std::string text(kMaxSceneFileBytes + 1, '\0');
+  in.read(&text[0], static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (text.size() > kMaxSceneFileBytes) {
+    error = path + ": larger than 1 MiB: not a scene file (a scene is a few KB)";
+    return false;
+  }
+  if (!parse_scene_text(text, out, error)) {
     error = path + ": " + error;
     return false;
   }

@@ -17,7 +17,7 @@ class Fnv1a64 {
     for (int i = 0; i < 4; ++i) byte(static_cast<uint8_t>(v >> (8 * i)));
   }
   void f32(float v) {
-    if (v == 0.0f) v = 0.0f;  // -0 and 0 render the same
+    if (v == 0.0f) v = 0.0f;  // -0 and 0 define the same value
     uint32_t bits;
     std::memcpy(&bits, &v, sizeof bits);
     u32(bits);
@@ -39,8 +39,9 @@ void add_curve(Fnv1a64& h, const PathCurve& c) {
   for (int i = 0; i < c.count && i < kMaxPolylinePoints; ++i) h.vec(c.points[i]);
 }
 
-// Only the parameters the element's kind reads, so unused defaults cannot
-// make two identical scenes differ.
+// Only the parameters of the element's kind, so another kind's defaults
+// cannot make two identical definitions differ (a kind's own parameters count
+// even where the rendering does not read them).
 void add_element(Fnv1a64& h, const FieldElement& e) {
   h.byte(static_cast<uint8_t>(e.kind));
   h.f32(e.weight);

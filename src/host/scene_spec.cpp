@@ -3,7 +3,10 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
+#include "frictionfield/core/scene_plan.hpp"
 #include "frictionfield/core/scenes.hpp"
 #include "frictionfield/host/scene_file.hpp"
 
@@ -191,6 +194,16 @@ bool make_condition(const SceneSpec& spec, Condition& out, std::string& error) {
   c.amplitude.strength = spec.strength;
   c.amplitude.idle_amplitude = spec.idle_amplitude;
   if (spec.inverted_dac) c.amplitude.calibration = DacCalibration::inverted();
+  // What the core's preparation refuses (a table too large for its slot, a
+  // vortex in a height table, a field past float) the device would refuse
+  // too, after it was touched: prepared here as the device does, one slot.
+  auto plan = std::make_unique<ScenePlan>();
+  std::vector<unsigned char> table(kTableSlotBytes);
+  const PrepareStatus status = plan->prepare(c.scene, table.data(), table.size());
+  if (status != PrepareStatus::Ok) {
+    error = std::string("cannot prepare the scene: ") + to_string(status);
+    return false;
+  }
   out = c;
   return true;
 }

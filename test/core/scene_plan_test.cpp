@@ -345,6 +345,40 @@ TEST(ScenePlan, RefusesAHeightTableThatOverflows) {
   EXPECT_EQ(plan.prepare(s, nullptr, 0), PrepareStatus::Ok);
 }
 
+TEST(ScenePlan, RefusesAClosedFormFieldThatOverflows) {
+  // Two saddles centred at x = 3e38: each G_x = x - 3e38, so the sum is
+  // about -6e38 on the whole screen, past FLT_MAX = 3.4e38: -inf, and the
+  // normalised gradient would be NaN (0 * inf). Found by the scene_file fuzzer.
+  ScenePlan plan;
+  ASSERT_EQ(plan.prepare(scenes::heightmap(Target::Top), nullptr, 0), PrepareStatus::Ok);
+  SceneDefinition twice;
+  twice.rendering = Rendering::Directional;
+  twice.add(FieldElement::saddle({3e38f, 0.0f}));
+  twice.add(FieldElement::saddle({3e38f, 0.0f}));
+  EXPECT_EQ(plan.prepare(twice, nullptr, 0), PrepareStatus::NonFiniteField);
+  EXPECT_EQ(plan.needs(), Needs::PositionAndDirection);  // the old scene stays
+  EXPECT_GT(plan.stats().max_gradient, 0.9f);
+  // One saddle at (3e38, 3e38): both components (-3e38, 3e38 - y) are finite
+  // but |G| = 3e38 sqrt(2) = 4.2e38 is not: refused as well.
+  SceneDefinition corner;
+  corner.rendering = Rendering::Directional;
+  corner.add(FieldElement::saddle({3e38f, 3e38f}));
+  EXPECT_EQ(plan.prepare(corner, nullptr, 0), PrepareStatus::NonFiniteField);
+  // One saddle at (3e38, 0): |G| is about 3e38, inside float: prepared.
+  SceneDefinition once;
+  once.rendering = Rendering::Directional;
+  once.add(FieldElement::saddle({3e38f, 0.0f}));
+  ASSERT_EQ(plan.prepare(once, nullptr, 0), PrepareStatus::Ok);
+  EXPECT_TRUE(is_finite(plan.normalized_gradient({400.0f, 240.0f})));
+  // A lone texture of height 1e38 and wavelength 100 px: max|G| =
+  // 1e38 * 2 pi / 100 = 6.283e36, finite although 1e38 * 2 pi is not.
+  SceneDefinition bumps;
+  bumps.rendering = Rendering::Directional;
+  bumps.add(FieldElement::sine_texture(100.0f, 100.0f, 1e38f));
+  ASSERT_EQ(plan.prepare(bumps, nullptr, 0), PrepareStatus::Ok);
+  EXPECT_NEAR(static_cast<double>(plan.stats().max_gradient) / 6.283185e36, 1.0, 1e-5);
+}
+
 TEST(ScenePlan, MaxGradientOfHugeWeightsSaturatesInsteadOfOverflowing) {
   // A saddle of weight 1e36 centred on the screen: |G| = |p - c| reaches
   // sqrt(400^2 + 240^2) = 466.5 at the corners, so max|G| = 4.7e38 in the

@@ -217,6 +217,9 @@ TEST(SceneFile, ErrorsSayWhichLineAndWhy) {
       {"evaluation table 4 int16 slope\n", "gradient or height"},
       {"rendering position\nbias\n", "line 2: bias needs a number"},
       {"rendering constant sideways\n", "line 1: unexpected 'sideways'"},
+      {"rendering position\nelement point_sink feather 0\n", "line 2: element point_sink: 'feather' 0 must be > 0"},
+      {"element path_sink band 0 0\n", "line 1: element path_sink: 'band' 0 must be > 0"},
+      {"element path_sink curve cubic -200 100 240 -600\n", "line 1: curve cubic: the length L -600 must be > 0"},
       {"", "line 1: no directives"},
   };
   for (const Case& c : cases) {
@@ -243,6 +246,10 @@ TEST(SceneFile, RefusesValuesItWouldOtherwiseClampOrIgnore) {
       "element tunnel width 0 20\n",
       "element texture wavelength 0 10\n",
       "evaluation table 0\nelement vortex centre 1 1\n",
+      "element point_sink feather 0\n",  // the core divides by the feathers and the length
+      "element path_sink band 10 0\n",
+      "element path_sink curve cubic -200 100 240 0\n",
+      "element path_sink curve cubic -200 100 240 -600\n",
       "",                          // nothing at all: would render flat
       "# only a comment\n",
       "rendering directional\n",  // no element: flat
@@ -257,6 +264,77 @@ TEST(SceneFile, RefusesValuesItWouldOtherwiseClampOrIgnore) {
   std::string err;
   EXPECT_TRUE(parse_scene_text("rendering constant\nconstant 1\n", s, err)) << err;
   EXPECT_FLOAT_EQ(s.constant, 1.0f);
+}
+
+TEST(SceneFile, NumbersAreDecimalAndNeverSilentlyZero) {
+  struct Case { const char* text; const char* error; };
+  const Case cases[] = {
+      // strtof reads these as 8, 16 and 1: docs/spec.md says numbers are decimal.
+      {"element vortex weight 0x1p3\n", "line 1: 'weight' needs finite number(s): 0x1p3 is not a decimal number"},
+      {"element vortex centre 0X10 5\n", "line 1: 'centre' needs finite number(s): 0X10 is not a decimal number"},
+      {"rendering constant\nconstant 0x1p0\n", "line 2: constant needs a number: 0x1p0 is not a decimal number"},
+      // 1e-999 is below the smallest float (1.4e-45): it would be a weight of 0, the element dropped.
+      {"element vortex weight 1e-999\n",
+       "line 1: 'weight' needs finite number(s): 1e-999 is too small for a float (it would be 0)"},
+      {"element path_sink curve polyline 0,1e-999 9,0\n",
+       "line 1: polyline points are x,y pairs: 1e-999 is too small for a float (it would be 0)"},
+      {"element vortex weight 1e39\n", "line 1: 'weight' needs finite number(s): 1e39 is too large for a float"},
+      // Printed as typed: float(1.0000001) = 1.00000012 shows as 1 with six digits.
+      {"rendering constant\nconstant 1.0000001\n", "line 2: constant 1.0000001 is outside [0, 1] (an amplitude)"},
+      {"rendering position\nbias -1.0000001\nelement vortex\n", "line 2: bias -1.0000001 is outside [-1, 1]"},
+      {"evaluation table 0.9999999\nelement vortex\n", "line 1: table spacing 0.9999999 is outside [1, 100] px"},
+      {"element point_sink radius -1e-45\n", "line 1: element point_sink: 'radius' -1e-45 must be >= 0"},
+  };
+  for (const Case& c : cases) {
+    SceneDefinition s;
+    std::string err;
+    EXPECT_FALSE(parse_scene_text(c.text, s, err)) << c.text;
+    EXPECT_EQ(err, c.error) << c.text;
+  }
+  // Zero written as zero stays zero; a subnormal is not 0; decimal forms strtof and the docs share.
+  SceneDefinition s;
+  std::string err;
+  ASSERT_TRUE(parse_scene_text("element vortex weight 1 centre 0e-999 -0.000\nelement vortex weight 1e-45\n"
+                               "element vortex weight +.5e+1 centre 5. 1E2\n",
+                               s, err))
+      << err;
+  EXPECT_EQ(s.elements[0].point.centre.x, 0.0f);
+  EXPECT_GT(s.elements[1].weight, 0.0f);
+  EXPECT_EQ(s.elements[2].weight, 5.0f);
+  EXPECT_EQ(s.elements[2].point.centre.x, 5.0f);
+  EXPECT_EQ(s.elements[2].point.centre.y, 100.0f);
+}
+
+TEST(SceneFile, ALeadingByteOrderMarkIsSkipped) {
+  // An editor's UTF-8 BOM before 'rendering' made it "unknown directive '\xEF\xBB\xBFrendering'".
+  SceneDefinition s;
+  std::string err;
+  ASSERT_TRUE(parse_scene_text("\xEF\xBB\xBFrendering constant\nconstant 0.25\n", s, err)) << err;
+  EXPECT_EQ(s.rendering, Rendering::Constant);
+  EXPECT_EQ(s.constant, 0.25f);
+  // Only at the start: elsewhere it is still not a directive.
+  EXPECT_FALSE(parse_scene_text("rendering constant\n\xEF\xBB\xBF" "constant 0.25\n", s, err));
+  EXPECT_EQ(err.rfind("line 2: unknown directive", 0), 0u) << err;
+}
+
+TEST(SceneFile, RefusesAFileLargerThanAnySceneWithoutReadingItAll) {
+  // /dev/zero never ends: it was read whole until std::bad_alloc (exit 134).
+  SceneDefinition s;
+  std::string err;
+  EXPECT_FALSE(read_scene_file("/dev/zero", s, err));
+  EXPECT_EQ(err, "/dev/zero: larger than 1 MiB: not a scene file (a scene is a few KB)");
+  // 1 MiB exactly (a valid scene padded with comment lines) is still read; one byte more is not.
+  const std::string path = support::scratch_path("scene_file_one_mib.txt");
+  std::string text = "rendering constant\nconstant 0.25\n";
+  const std::string comment = "# padding\n";
+  while (text.size() + comment.size() <= kMaxSceneFileBytes) text += comment;
+  text += std::string(kMaxSceneFileBytes - text.size() - 1, '#') + "\n";
+  ASSERT_EQ(text.size(), 1048576u);
+  { std::ofstream(path, std::ios::binary) << text; }
+  EXPECT_TRUE(read_scene_file(path, s, err)) << err;
+  { std::ofstream(path, std::ios::binary) << text << "\n"; }
+  EXPECT_FALSE(read_scene_file(path, s, err));
+  EXPECT_EQ(err, path + ": larger than 1 MiB: not a scene file (a scene is a few KB)");
 }
 
 TEST(SceneFile, RefusesADirectoryAnEmptyFileAndAMissingOne) {

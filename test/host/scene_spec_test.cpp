@@ -140,6 +140,32 @@ TEST(SceneSpec, EachSceneNameBuildsThatScene) {
   }
 }
 
+TEST(SceneSpec, WhatTheCorePreparationRefusesIsRefusedWithItsReason) {
+  // A vortex has no height to tabulate; a 1 px float gradient table is
+  // 801 x 481 nodes x 2 channels x 4 bytes = 3.1 MB, far over the 96 KiB
+  // slot; two saddles at x = 3e38 add up to a gradient of -6e38, past float.
+  const std::string vortex = scene_file("evaluation table 8 float height\nelement vortex centre 400 240\n");
+  const std::string saddles = support::scratch_path("scene_spec_two_saddles_at_3e38.txt");
+  std::ofstream(saddles) << "element saddle centre 3e38 0\nelement saddle centre 3e38 0\n";
+  const std::string invalid = "cannot prepare the scene: invalid parameter (NaN, infinite or out of range)";
+  const struct { std::vector<std::string> words; std::string error; } cases[] = {
+      {{"--scene-file", vortex}, invalid},
+      {{"--scene", "vortex", "--evaluation", "table", "--table-source", "height"}, invalid},
+      {{"--scene", "heightmap", "--evaluation", "table", "--table-spacing", "1", "--table-storage", "float"},
+       "cannot prepare the scene: table larger than the RAM budget"},
+      {{"--scene-file", saddles},
+       "cannot prepare the scene: field not finite on the screen (heights or gradients overflow float)"},
+  };
+  for (const auto& c : cases) {
+    const Parsed p = parse(c.words);
+    ASSERT_TRUE(p.ok) << p.error;
+    Condition condition;
+    std::string error;
+    EXPECT_FALSE(make_condition(p.spec, condition, error)) << c.words[1];
+    EXPECT_EQ(error, c.error) << c.words[1];
+  }
+}
+
 TEST(SceneSpec, EveryOptionReachesTheCondition) {
   TunnelParams tunnel;
   tunnel.x_start = 50.0f;
@@ -151,7 +177,7 @@ TEST(SceneSpec, EveryOptionReachesTheCondition) {
                                   "--width-start", "40", "--width-end", "30", "--tunnel-scale", "10"})),
             condition_hash(of(scenes::steering_tunnel(tunnel, scenes::TunnelMode::Diverging))));
 
-  const Condition table = built({"--scene", "vortex", "--evaluation", "table", "--table-spacing", "8",
+  const Condition table = built({"--scene", "bump-map", "--evaluation", "table", "--table-spacing", "8",
                                  "--table-storage", "float", "--table-source", "height"});
   EXPECT_EQ(table.scene.evaluation, Evaluation::Table);
   EXPECT_EQ(table.scene.table.spacing_px, 8.0f);
@@ -179,7 +205,7 @@ TEST(SceneSpec, TheWordsWrittenOutBuildTheSameCondition) {
       {"--scene", "frictionmap", "--target", "bottom", "--strength", "0.66"},
       {"--scene", "tunnel-converging", "--tunnel-x-start", "50", "--tunnel-length", "300", "--width-start", "40",
        "--width-end", "30", "--tunnel-scale", "10"},
-      {"--scene", "vortex", "--evaluation", "table", "--table-spacing", "8", "--table-storage", "float",
+      {"--scene", "bump-map", "--evaluation", "table", "--table-spacing", "8", "--table-storage", "float",
        "--table-source", "height", "--idle-amplitude", "0.2", "--inverted-dac"},
       {"--scene-file", path},
   };

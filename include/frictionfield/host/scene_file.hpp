@@ -13,6 +13,7 @@
 //   element vortex weight 1 centre 400 240
 //   element saddle weight 1 centre 400 240
 //   element texture weight 1 wavelength 160 160 height 20
+#include <cstddef>
 #include <string>
 
 #include "frictionfield/core/scene.hpp"
@@ -21,6 +22,10 @@ namespace ff::host {
 
 // false with "line N: message" in `error`.
 bool parse_scene_text(const std::string& text, SceneDefinition& out, std::string& error);
+// The largest file read_scene_file reads: 8 elements of 16-point polylines
+// are a few KB, and /dev/zero or a trace given by mistake must not fill memory.
+constexpr size_t kMaxSceneFileBytes = 1024 * 1024;
+// false with "PATH: why" in `error` (a file over kMaxSceneFileBytes is refused unread beyond that).
 bool read_scene_file(const std::string& path, SceneDefinition& out, std::string& error);
 // The same format back (parse(format(s)) == s for every field the format carries).
 std::string format_scene_text(const SceneDefinition& scene);

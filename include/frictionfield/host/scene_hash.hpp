@@ -1,8 +1,12 @@
 #pragma once
-// One fingerprint of a condition (scene and amplitude settings), so a file can
-// say which condition produced it and a reader can check it was given the
-// same one: FNV-1a 64 over a canonical little-endian encoding of every field
-// set_condition() reads (floats by their bits, -0 as 0; enums as bytes).
+// One fingerprint of a condition's definition (scene and amplitude settings),
+// so a file can say which condition produced it and a reader can check it was
+// given the same one: FNV-1a 64 over a canonical little-endian encoding of the
+// definition as normalised (elements in order, each with the parameters of its
+// kind; floats by their bits, -0 as 0; enums as bytes). It names the
+// definition, not the rendering: definitions that render identically (a point
+// sink's unused radius in a directional scene, elements swapped, all weights
+// doubled) can hash differently (docs/tools.md, "Scene hash").
 // Every tool that names a condition in its output uses this, nothing else.
 #include <cstdint>
 #include <string>

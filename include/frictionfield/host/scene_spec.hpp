@@ -45,7 +45,9 @@ std::string resolved_scene(const SceneSpec& spec);
 
 // Builds the condition; false with a readable message on error. Values out
 // of range (strength outside (0, 1], idle amplitude outside [0, 1], tunnel
-// widths or lengths <= 0, ...) are refused, never clamped.
+// widths or lengths <= 0, ...) are refused, never clamped; so is a scene the
+// core's preparation refuses (the PrepareStatus in words), before any device
+// is touched.
 bool make_condition(const SceneSpec& spec, Condition& out, std::string& error);
 
 // The words that select this condition, only those that apply to the scene

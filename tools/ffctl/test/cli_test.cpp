@@ -249,6 +249,18 @@ TEST(FfctlCli, BadUsageIsExitTwoBeforeAnyDeviceIsTouched) {
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
     EXPECT_EQ(r.err.find("no reply"), std::string::npos) << bad << ": " << r.err;
   }
+  // Scenes the parser takes but the core's preparation refuses: the device
+  // would refuse them too, so they are refused before it is asked.
+  const std::string vortex_in_heights = support::scratch_path("ffctl_vortex_height_table.scene");
+  std::ofstream(vortex_in_heights) << "evaluation table 8 float height\nelement vortex centre 400 240\n";
+  const std::string table_too_large = support::scratch_path("ffctl_table_too_large.scene");
+  std::ofstream(table_too_large) << "evaluation table 1 float gradient\nelement vortex centre 400 240\n";
+  for (const std::string& file : {vortex_in_heights, table_too_large}) {
+    r = ffctl("--udp 127.0.0.1:9 scene --scene-file " + file);
+    EXPECT_EQ(r.exit_code, 2) << file << ": " << r.err;
+    EXPECT_NE(r.err.find("cannot prepare the scene: "), std::string::npos) << file << ": " << r.err;
+    EXPECT_EQ(r.err.find("no reply"), std::string::npos) << file << ": " << r.err;
+  }
   // The USB commands without a device: list says so (or lists what is there), --serial is an option.
   r = ffctl("--serial 0123456 list");
   EXPECT_EQ(r.exit_code, 0) << r.err;
