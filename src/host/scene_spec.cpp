@@ -114,12 +114,25 @@ bool check_ranges(const SceneSpec& spec, const std::string& scene, std::string& 
   return true;
 }
 
+// A path as one shell word (POSIX quoting, as Python's shlex.split reads it):
+// the words in metadata must split back into the words typed, whatever the
+// file is called. Plain names stay as they are.
+std::string shell_quoted(const std::string& word) {
+  const bool plain = !word.empty() && word.find_first_not_of(
+                                          "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./+-=:,@%") ==
+                                          std::string::npos;
+  if (plain) return word;
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 }  // namespace
 
 std::string scene_words(const SceneSpec& spec) {
   const std::string scene = resolved_scene(spec);
   std::string w = "--scene " + scene;
-  if (scene == "file") w += " --scene-file " + spec.scene_file;
+  if (scene == "file") w += " --scene-file " + shell_quoted(spec.scene_file);
   if (uses_target(scene)) w += " --target " + spec.target;
   w += " --strength " + number(spec.strength);
   if (is_tunnel(scene)) {

@@ -224,6 +224,16 @@ TEST(SceneSpec, SceneWordsNameOnlyWhatApplies) {
   EXPECT_EQ(scene_words(parse({"--scene", "vortex", "--target", "top"}).spec), "--scene vortex --strength 1");
 }
 
+TEST(SceneSpec, AScenePathIsOneShellWordWhateverItsName) {
+  // Unquoted, "my scene's.txt" split into two words with an open quote: a
+  // scene file with an apostrophe or a space could not be drawn again from
+  // a file's metadata (render_scene.py, plot_replay.py split with shlex).
+  EXPECT_EQ(scene_words(parse({"--scene-file", "my scene's.txt"}).spec),
+            "--scene file --scene-file 'my scene'\\''s.txt' --strength 1");
+  EXPECT_EQ(scene_words(parse({"--scene-file", "dir/plain-1.txt"}).spec),
+            "--scene file --scene-file dir/plain-1.txt --strength 1");
+}
+
 TEST(SceneSpec, TheHashNamesTheConditionNotTheWords) {
   // FNV-1a 64 of nothing is its offset basis (the published constant).
   EXPECT_EQ(hash_hex(0xcbf29ce484222325ull), "cbf29ce484222325");

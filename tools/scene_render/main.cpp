@@ -2,8 +2,10 @@
 // (render_scene.py and plot_replay.py turn this into pictures): the
 // normalised field and the amplitude felt when moving in a chosen direction.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -70,6 +72,11 @@ int main(int argc, char** argv) {
       std::printf("%.1f,%.1f,%.5f,%.5f,%.5f\n", static_cast<double>(x), static_cast<double>(y),
                   static_cast<double>(g.x), static_cast<double>(g.y), static_cast<double>(a));
     }
+  }
+  // A full disk or a closed pipe: the rows did not all arrive (docs/tools.md: exit 2).
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::cerr << "ff-scene-render: cannot write standard output: " << std::strerror(errno) << "\n";
+    return ff::host::kExitBadUsage;
   }
   return ff::host::kExitOk;
 }

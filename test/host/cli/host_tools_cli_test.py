@@ -244,6 +244,12 @@ class ReplayOutput(Case):
         self.assertEqual(res.returncode, 2)
         self.assertIn("--white-noise-px nan: not a finite number", res.stderr)
 
+    def test_scene_render_into_a_full_disk_exits_2(self):
+        with open("/dev/full", "w") as full:
+            res = subprocess.run([SCENE_RENDER, "--step", "10"], stdout=full, stderr=subprocess.PIPE, text=True)
+        self.assertEqual(res.returncode, 2)
+        self.assertEqual(res.stderr, "ff-scene-render: cannot write standard output: No space left on device\n")
+
     def test_a_header_without_the_columns_names_the_file_and_line(self):
         trace = self.path("t.csv")
         write_trace(trace, [(0, 1, 2)], header="time,x,y", prefix="# from a logger\n")

@@ -55,6 +55,14 @@ def test_titles_carry_only_words_that_apply(tmp_path, run_tool, ff_scene_render)
     assert "scene file mine.txt" in res.stdout
 
 
+def test_a_scene_file_named_with_an_apostrophe_and_a_space_draws(tmp_path, run_tool, ff_scene_render):
+    scene = tmp_path / "my scene's.txt"
+    scene.write_text("rendering constant\nconstant 0.3\n")
+    res = run_tool(SCRIPT, "--scene-file", scene, "-o", tmp_path / "f.png", "--bin", ff_scene_render)
+    assert res.returncode == 0, res.stderr
+    assert "scene file my scene's.txt" in res.stdout
+
+
 def test_a_missing_build_is_one_clear_line(tmp_path, run_tool):
     res = run_tool(SCRIPT, "--scene", "heightmap", "-o", tmp_path / "x.png", "--bin", tmp_path / "nothing")
     assert res.returncode == 2
