@@ -1,5 +1,9 @@
 #include "scene_command.hpp"
 
+#include <memory>
+
+#include "frictionfield/core/haptic_pipeline.hpp"
+
 namespace ff::ffctl {
 
 bool condition_message(const host::SceneSpec& spec, protocol::ConditionMessage& out, std::string& error) {
@@ -28,6 +32,15 @@ bool condition_message(const host::SceneSpec& spec, protocol::ConditionMessage& 
   } else {
     m.kind = protocol::ConditionKind::General;
     m.scene = c.scene;
+  }
+  // The device prepares the condition with this same core: one it would
+  // refuse (too costly to prepare within its watchdog, a table over its slot)
+  // is refused here, before anything is sent.
+  auto pipeline = std::make_unique<HapticPipeline>();
+  const PrepareStatus status = pipeline->set_condition(m.to_condition());
+  if (status != PrepareStatus::Ok) {
+    error = std::string("the device would refuse the scene: ") + to_string(status);
+    return false;
   }
   out = m;
   return true;
