@@ -2,6 +2,7 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
 
 #include "frictionfield/core/fastrun.hpp"
@@ -16,11 +17,46 @@ const char* to_string(PrepareStatus s) {
     case PrepareStatus::TableTooLarge: return "table larger than the RAM budget";
     case PrepareStatus::InvalidSampledMap: return "invalid sampled height map";
     case PrepareStatus::NonFiniteField: return "field not finite on the screen (heights or gradients overflow float)";
+    case PrepareStatus::TooCostlyToPrepare:
+      return "too costly to prepare within the device's watchdog (fewer elements, longer textures or coarser table)";
   }
   return "?";
 }
 
 namespace {
+
+// The preparation cost model, in M4 instructions: preparation's work is field
+// evaluations, so counting and pricing them bounds its time. Measured under
+// qemu mps2-an386 -icount shift=0 (one instruction per ns), preparing scenes
+// of 2 and of 8 elements of one kind (32 px search, 8 px tables): per element
+// and evaluation at most 190 (a texture in the search; sine or 16-point
+// polyline valleys in an int16 height table: 184-187), and beside the
+// elements at most ~65 per search evaluation and ~165 per int16 node and pass.
+// The dearest whole evaluations measured: 1,582 (search, 8 textures), 1,735
+// (int16 height table of 8 16-point polyline valleys at 7 px); the model
+// prices them at 1,880 and 1,960. One element's gradient, height or profile:
+constexpr uint32_t kTermInstructions = 220;
+// The search's own work per evaluation (|G|^2, or the scaled pass's division
+// and root; the candidates' bookkeeping):
+constexpr uint32_t kSearchEvaluationInstructions = 120;
+// A search evaluation of a table: height central differences, four bilinear
+// samples, is the dearest (510, docs/benchmarks.md "Every strategy"):
+constexpr uint32_t kTableReadInstructions = 600;
+// A table fill's own work per node and pass (int16 quantisation and store, a
+// sampled map's node lookup):
+constexpr uint32_t kTableNodeInstructions = 200;
+// The compass search's evaluations from one candidate, so that a search's
+// cost is known before it runs: a climb through the ten step halvings takes
+// a few dozen; a longer one stops where it is (a max|G| found a little low
+// saturates the steepest amplitudes, never more).
+constexpr uint32_t kMaxCompassEvaluations = 512;
+constexpr int kCandidates = 6;
+
+// a + b, saturated: the stat stays meaningful under a benchmark's raised budget.
+uint32_t add_saturated(uint32_t a, uint64_t b) {
+  const uint64_t sum = a + b;
+  return sum > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(sum);
+}
 
 bool finite_positive(float v) { return std::isfinite(v) && v > 0.0f; }
 
@@ -81,8 +117,8 @@ __attribute__((noinline)) float safe_length(Vec2 g) {
 
 }  // namespace
 
-PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
-                                 size_t table_capacity) {
+PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory, size_t table_capacity,
+                                 uint32_t max_instructions) {
   if (def.element_count > kMaxSceneElements) return PrepareStatus::TooManyElements;
   if (def.rendering != Rendering::Constant && def.rendering != Rendering::PositionOnly &&
       def.rendering != Rendering::Directional) {
@@ -132,13 +168,18 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
   }
 
   next.evaluation_ = sampled ? Evaluation::Table : def.evaluation;
+  // Priced before any work: the table's fill (if any) and one max|G| search.
+  const bool directional = def.rendering == Rendering::Directional;
+  auto too_costly = [&](uint64_t fill_instructions) {
+    const uint64_t search = directional ? next.search_instruction_bound() : 0;
+    return fill_instructions + search > max_instructions;
+  };
   if (next.evaluation_ == Evaluation::Table) {
     const TableConfig& tc = def.table;
     const float spacing = sampled ? sm.spacing_px : tc.spacing_px;
     if (!finite_positive(spacing) || spacing < 0.25f || spacing > kScreenMaxY) {
       return PrepareStatus::InvalidParameter;
     }
-    const bool directional = def.rendering == Rendering::Directional;
     next.table_source_ = sampled ? TableSource::HeightCentralDifferences : tc.source;
     const bool heights = directional && next.table_source_ == TableSource::HeightCentralDifferences;
     if (heights && has_vortex) return PrepareStatus::InvalidParameter;  // a vortex has no height
@@ -149,6 +190,11 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
     if (GridTable::bytes_needed(cols, rows, channels, storage) > table_capacity) {
       return PrepareStatus::TableTooLarge;
     }
+    // int16 takes a pass for the range first (GridTable::fill).
+    const uint64_t passes = storage == TableStorage::Int16 ? 2 : 1;
+    const uint64_t node_instructions = kTableNodeInstructions + uint64_t{kTermInstructions} * next.count_;
+    const uint64_t fill_instructions = passes * cols * rows * node_instructions;
+    if (too_costly(fill_instructions)) return PrepareStatus::TooCostlyToPrepare;
     if (!next.table_.init(table_memory, table_capacity, cols, rows, spacing, channels, storage)) {
       return PrepareStatus::TableTooLarge;
     }
@@ -178,13 +224,18 @@ PrepareStatus ScenePlan::prepare(const SceneDefinition& def, void* table_memory,
     });
     if (!finite) return PrepareStatus::NonFiniteField;
     next.stats_.gradient_evaluations += evaluations;
+    next.stats_.modelled_instructions =
+        add_saturated(next.stats_.modelled_instructions, evaluations * node_instructions);
     next.stats_.table_bytes = static_cast<uint32_t>(next.table_.bytes());
     next.stats_.table_cols = cols;
     next.stats_.table_rows = rows;
+  } else if (too_costly(0)) {
+    return PrepareStatus::TooCostlyToPrepare;
   }
 
-  if (def.rendering == Rendering::Directional) {
-    const float max_g = next.find_max_gradient();
+  if (directional) {
+    float max_g = 0.0f;
+    if (!next.find_max_gradient(max_instructions, &max_g)) return PrepareStatus::TooCostlyToPrepare;
     // A field or max|G| past float on the screen would normalise to NaN or 0
     // at every tick: refused, as a table's non-finite node is.
     if (!std::isfinite(max_g)) return PrepareStatus::NonFiniteField;
@@ -248,25 +299,55 @@ FF_FASTRUN __attribute__((flatten)) float ScenePlan::amplitude(Vec2 position, Ve
   return 0.5f;
 }
 
-float ScenePlan::find_max_gradient() {
+// The lone texture and the lone vortex of a closed-form scene have their
+// maximum in closed form (find_max_gradient): no search.
+bool ScenePlan::max_gradient_in_closed_form() const {
+  if (count_ != 1 || evaluation_ != Evaluation::ClosedForm) return false;
+  if (elements_[0].kind == ElementKind::Vortex) return true;
+  const TextureParams& t = elements_[0].texture;
+  return elements_[0].kind == ElementKind::Texture && t.wavelength_x <= kScreenMaxY && t.wavelength_y <= kScreenMaxY;
+}
+
+uint32_t ScenePlan::search_evaluation_instructions() const {
+  const uint32_t field = evaluation_ == Evaluation::Table ? kTableReadInstructions : kTermInstructions * count_;
+  return kSearchEvaluationInstructions + field;
+}
+
+uint64_t ScenePlan::search_instruction_bound() const {
+  if (max_gradient_in_closed_form()) return 0;
+  const float step = scan_step();
+  uint64_t evaluations = static_cast<uint64_t>(static_cast<int>(kScreenMaxX / step) + 2) *
+                         static_cast<uint64_t>(static_cast<int>(kScreenMaxY / step) + 2);
+  for (int e = 0; e < count_; ++e) {  // the seeds of search_max_gradient
+    const FieldElement& el = elements_[e];
+    if (el.kind == ElementKind::PathSink && el.valley.curve.kind == CurveKind::Polyline) {
+      evaluations += 4u * static_cast<uint64_t>(el.valley.curve.count - 1);
+    }
+    if (el.kind == ElementKind::Tunnel) evaluations += 8;
+  }
+  evaluations += uint64_t{kCandidates} * kMaxCompassEvaluations;
+  return evaluations * search_evaluation_instructions();
+}
+
+bool ScenePlan::find_max_gradient(uint64_t max_instructions, float* max_g) {
   // Coarse scan of the screen (edges included), then a compass search from
   // the best few nodes: ~700 field evaluations instead of 384k pixels, so a
   // closed-form scene prepares in under 2 ms on the M4 (docs/benchmarks.md).
   // A lone texture (the bump map) has its maximum in closed form:
   // |G| = |w h| 2 pi / lambda at a crest, if a whole period fits on the screen.
-  if (count_ == 1 && elements_[0].kind == ElementKind::Texture && evaluation_ == Evaluation::ClosedForm) {
+  if (max_gradient_in_closed_form() && elements_[0].kind == ElementKind::Texture) {
     const TextureParams& t = elements_[0].texture;
-    if (t.wavelength_x <= kScreenMaxY && t.wavelength_y <= kScreenMaxY) {
-      // 2 pi / lambda first: |w h| near FLT_MAX must not overflow when the maximum does not.
-      return std::fabs(elements_[0].weight * t.height) * (2.0f * kPi / std::fmin(t.wavelength_x, t.wavelength_y));
-    }
+    // 2 pi / lambda first: |w h| near FLT_MAX must not overflow when the maximum does not.
+    *max_g = std::fabs(elements_[0].weight * t.height) * (2.0f * kPi / std::fmin(t.wavelength_x, t.wavelength_y));
+    return true;
   }
   // A lone vortex: |G| = |w| |p - c|, largest at the corner farthest from the centre.
-  if (count_ == 1 && elements_[0].kind == ElementKind::Vortex && evaluation_ == Evaluation::ClosedForm) {
+  if (max_gradient_in_closed_form()) {
     const Vec2 c = elements_[0].point.centre;
     const float dx = std::fmax(std::fabs(c.x), std::fabs(kScreenMaxX - c.x));
     const float dy = std::fmax(std::fabs(c.y), std::fabs(kScreenMaxY - c.y));
-    return std::fabs(elements_[0].weight) * std::hypot(dx, dy);
+    *max_g = std::fabs(elements_[0].weight) * std::hypot(dx, dy);
+    return true;
   }
   // The scan must resolve the finest feature: |G| of a texture peaks twice
   // per wavelength, so an eighth of the shortest one, and six candidates for
@@ -281,22 +362,33 @@ float ScenePlan::find_max_gradient() {
   // the search's own code is what got cheaper (search_max_gradient).
   // Squares first (no division or root per evaluation); the scaled search
   // of old only for fields whose squares leave float's normal range.
+  // The scaled search is a second whole search: priced again (a scene whose
+  // field is tiny everywhere may fit once but not twice).
   bool out_of_range = false;
   const float best_squared = search_max_gradient(true, &out_of_range);
-  return out_of_range ? search_max_gradient(false, &out_of_range) : std::sqrt(best_squared);
+  if (!out_of_range) {
+    *max_g = std::sqrt(best_squared);
+    return true;
+  }
+  if (stats_.modelled_instructions + search_instruction_bound() > max_instructions) return false;
+  *max_g = search_max_gradient(false, &out_of_range);
+  return true;
 }
 
-// In RAM on the M4 (no flash wait states), with the field's evaluation in this
-// file compiled in (flatten: 2.5 KB of RAM): preparation evaluates ~800 times.
-FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool squared, bool* out_of_range) {
+float ScenePlan::scan_step() const {
   float scan_step = 32.0f;
   for (int e = 0; e < count_; ++e) {
     if (elements_[e].kind != ElementKind::Texture) continue;
     const TextureParams& t = elements_[e].texture;
     scan_step = std::fmin(scan_step, 0.125f * std::fmin(t.wavelength_x, t.wavelength_y));
   }
-  const float kStep = std::fmax(scan_step, 2.0f);
-  constexpr int kCandidates = 6;
+  return std::fmax(scan_step, 2.0f);
+}
+
+// In RAM on the M4 (no flash wait states), with the field's evaluation in this
+// file compiled in (flatten: 2.5 KB of RAM): preparation evaluates ~800 times.
+FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool squared, bool* out_of_range) {
+  const float kStep = scan_step();
   Vec2 best_p[kCandidates];
   float best_m[kCandidates];  // |G|^2 if squared, else |G|
   for (int i = 0; i < kCandidates; ++i) best_m[i] = -1.0f;
@@ -390,7 +482,8 @@ FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool sq
     Vec2 p = best_p[c];
     Vec2 from = p;  // where the last move came from: known to be lower
     float m = best_m[c];
-    for (float step = 0.5f * kStep; step >= 1.0f / 32.0f;) {
+    const uint32_t compass_limit = evaluations + kMaxCompassEvaluations;
+    for (float step = 0.5f * kStep; step >= 1.0f / 32.0f && evaluations + 4 <= compass_limit;) {
       const Vec2 moves[4] = {{step, 0}, {-step, 0}, {0, step}, {0, -step}};
       bool moved = false;
       for (const Vec2& d : moves) {
@@ -412,6 +505,8 @@ FF_FASTRUN __attribute__((flatten)) float ScenePlan::search_max_gradient(bool sq
   // Below 2^-100, squares of the smaller values underflow: not resolved.
   if (squared && best < 0x1p-100f) *out_of_range = true;
   stats_.gradient_evaluations += evaluations;
+  stats_.modelled_instructions =
+      add_saturated(stats_.modelled_instructions, uint64_t{evaluations} * search_evaluation_instructions());
   return best;
 }
 

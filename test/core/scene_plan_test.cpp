@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "frictionfield/core/haptic_pipeline.hpp"
 #include "frictionfield/core/scenes.hpp"
 
 namespace ff {
@@ -377,6 +378,125 @@ TEST(ScenePlan, RefusesAClosedFormFieldThatOverflows) {
   bumps.add(FieldElement::sine_texture(100.0f, 100.0f, 1e38f));
   ASSERT_EQ(plan.prepare(bumps, nullptr, 0), PrepareStatus::Ok);
   EXPECT_NEAR(static_cast<double>(plan.stats().max_gradient) / 6.283185e36, 1.0, 1e-5);
+}
+
+// The review's worst scenes: valleys along a 16-point zigzag (the dearest
+// element: a 15-segment walk per evaluation).
+PathCurve zigzag() {
+  const Vec2 pts[16] = {{0, 100}, {50, 300}, {100, 120}, {150, 330}, {200, 90}, {250, 360}, {300, 80}, {350, 380},
+                        {400, 70}, {450, 390}, {500, 60}, {550, 400}, {600, 50}, {650, 410}, {700, 40}, {750, 420}};
+  return PathCurve::polyline(pts, 16);
+}
+
+SceneDefinition zigzag_valleys(int count, float weight) {
+  SceneDefinition s;
+  s.rendering = Rendering::Directional;
+  for (int i = 1; i <= count; ++i) s.add(FieldElement::path_sink(zigzag(), 0.1f * static_cast<float>(i), weight));
+  return s;
+}
+
+TEST(ScenePlan, RefusesTheReviewsWorstScenesAsTooCostlyToPrepare) {
+  // Measured under qemu before the budget: 127.5 M, 260.7 M and 68.7 M M4
+  // instructions, past the 1 s hardware watchdog at 2 cycles per instruction.
+  // 7 valleys + a 16 px texture: a 16 / 8 = 2 px scan, (799 / 2 + 2) x
+  // (479 / 2 + 2) = 401 x 241 = 96,641 evaluations of 8 terms at 120 + 8 x 220
+  // = 1,880 instructions: 182 M > 36 M.
+  SceneDefinition closed = zigzag_valleys(7, 1.0f);
+  closed.add(FieldElement::sine_texture(16, 16, 1));
+  SceneDefinition tiny = zigzag_valleys(7, 1e-20f);  // |G|^2 underflows: was searched twice
+  tiny.add(FieldElement::sine_texture(16, 16, 1e-20f));
+  // 8 valleys, 4 px int16 table: 201 x 121 nodes, twice (the range first),
+  // at 200 + 8 x 220 = 1,960: 95.3 M > 36 M.
+  SceneDefinition table = zigzag_valleys(8, 1.0f);
+  table.evaluation = Evaluation::Table;
+  table.table = {4.0f, TableStorage::Int16, TableSource::TabulatedGradient};
+  SceneDefinition heights = table;
+  heights.table.source = TableSource::HeightCentralDifferences;
+  Arena arena;
+  for (const SceneDefinition* s : {&closed, &tiny, &table, &heights}) {
+    ScenePlan plan;
+    ASSERT_EQ(plan.prepare(scenes::heightmap(Target::Top), nullptr, 0), PrepareStatus::Ok);
+    EXPECT_EQ(plan.prepare(*s, arena.data(), arena.size()), PrepareStatus::TooCostlyToPrepare);
+    // Refused before any work, and the old scene stays.
+    EXPECT_EQ(plan.stats().gradient_evaluations, 770u);
+    EXPECT_EQ(plan.needs(), Needs::PositionAndDirection);
+  }
+  EXPECT_STRNE(to_string(PrepareStatus::TooCostlyToPrepare), "?");
+  // The host's pipeline (ffctl, ff-sim) refuses it the same way.
+  auto pipeline = std::make_unique<HapticPipeline>();
+  Condition c;
+  c.scene = closed;
+  EXPECT_EQ(pipeline->set_condition(c), PrepareStatus::TooCostlyToPrepare);
+}
+
+TEST(ScenePlan, CountedPreparationWorkStaysWithinTheBudget) {
+  // Accepted scenes spend at most the budget, priced from their counted
+  // evaluations: 7 point sinks + a 48 px texture (a 6 px scan, 135 x 81 =
+  // 10,935 evaluations + 6 x 512 compass at most, x 1,880 = 26.3 M: fits);
+  // the review's 7 valleys with a 40 px texture instead (a 5 px scan, 161 x 97
+  // = 15,617 + 7 x 15 x 4 seeds + 3,072 = 19,109 x 1,880 = 35.9 M: just fits;
+  // 21.3 M instructions under qemu); an 8 px int16 table of the 8 valleys
+  // (101 x 61 nodes x 2 x 1,960 = 24.2 M + a 32 px search of the table, 3,968
+  // x 720 = 2.9 M); and every built-in scene.
+  SceneDefinition textured;
+  textured.rendering = Rendering::Directional;
+  for (int i = 0; i < 7; ++i) textured.add(FieldElement::point_sink({100.0f * static_cast<float>(i + 1), 240.0f}));
+  textured.add(FieldElement::sine_texture(48, 48, 10));
+  SceneDefinition valleys_textured = zigzag_valleys(7, 1.0f);
+  valleys_textured.add(FieldElement::sine_texture(40, 40, 1));
+  SceneDefinition table = zigzag_valleys(8, 1.0f);
+  table.evaluation = Evaluation::Table;
+  table.table = {8.0f, TableStorage::Int16, TableSource::TabulatedGradient};
+  std::vector<SceneDefinition> accepted = {textured,           valleys_textured, table,
+                                           scenes::neutral(),  scenes::familiarisation_path(),
+                                           scenes::bump_map(), scenes::vortex()};
+  for (Target t : {Target::Top, Target::Middle, Target::Bottom}) {
+    accepted.push_back(scenes::heightmap(t));
+    accepted.push_back(scenes::frictionmap(t));
+    accepted.push_back(scenes::pilot_c_valley(t));
+  }
+  for (scenes::TunnelMode mode : {scenes::TunnelMode::Converging, scenes::TunnelMode::Diverging}) {
+    accepted.push_back(scenes::steering_tunnel(TunnelParams{}, mode));
+  }
+  Arena arena;
+  for (const SceneDefinition& s : accepted) {
+    ScenePlan plan;
+    ASSERT_EQ(plan.prepare(s, arena.data(), arena.size()), PrepareStatus::Ok);
+    EXPECT_LE(plan.stats().modelled_instructions, kMaxPreparationInstructions);
+  }
+  ScenePlan plan;
+  ASSERT_EQ(plan.prepare(textured, nullptr, 0), PrepareStatus::Ok);
+  // 10,935 scan evaluations and a few dozen per compass climb, 1,880 each.
+  EXPECT_GE(plan.stats().gradient_evaluations, 10935u);
+  EXPECT_LE(plan.stats().gradient_evaluations, 10935u + 6u * 512u);
+  EXPECT_EQ(plan.stats().modelled_instructions, plan.stats().gradient_evaluations * 1880u);
+}
+
+TEST(ScenePlan, RefusesASecondScaledSearchPastTheBudget) {
+  // The textured scene above with every |G| near 1e-20: |G|^2 underflows, so
+  // the search is run again scaled. One search fits (<= 26.3 M), two do not
+  // (>= 10,935 x 1,880 = 20.6 M spent + 26.3 M): refused rather than
+  // stalling the loop.
+  SceneDefinition tiny;
+  tiny.rendering = Rendering::Directional;
+  for (int i = 0; i < 7; ++i) {
+    tiny.add(FieldElement::point_sink({100.0f * static_cast<float>(i + 1), 240.0f}, 1e-20f));
+  }
+  tiny.add(FieldElement::sine_texture(48, 48, 1e-20f));
+  ScenePlan plan;
+  EXPECT_EQ(plan.prepare(tiny, nullptr, 0), PrepareStatus::TooCostlyToPrepare);
+  // Two point sinks at 1e-20 beside a flat texture of weight 1 (the weights
+  // are normalised by 1: the sinks' |G| stays near 1e-20): a 32 px search
+  // (26 x 16 = 416 + 3,072 at most, x 780 = 2.7 M) fits twice; max|G| = 2e-20 beside
+  // both, where their unit pulls add.
+  SceneDefinition pair;
+  pair.rendering = Rendering::Directional;
+  pair.add(FieldElement::point_sink({300.0f, 240.0f}, 1e-20f));
+  pair.add(FieldElement::point_sink({500.0f, 240.0f}, 1e-20f));
+  pair.add(FieldElement::sine_texture(4000, 4000, 1e-30f));
+  ASSERT_EQ(plan.prepare(pair, nullptr, 0), PrepareStatus::Ok);
+  EXPECT_LE(plan.stats().modelled_instructions, kMaxPreparationInstructions);
+  EXPECT_NEAR(plan.stats().max_gradient / 2e-20f, 1.0f, 1e-3f);
 }
 
 TEST(ScenePlan, MaxGradientOfHugeWeightsSaturatesInsteadOfOverflowing) {

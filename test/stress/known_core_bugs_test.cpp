@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include "frictionfield/core/haptic_pipeline.hpp"
@@ -18,15 +19,17 @@ namespace ff {
 namespace {
 
 // A scene file's text, parsed into `s` and prepared in closed form; null
-// (and a test failure) if it does not parse or prepare.
-std::unique_ptr<ScenePlan> prepared_scene_text(const char* text, SceneDefinition& s) {
+// (and a test failure) if it does not parse or prepare. `max_instructions`:
+// the preparation budget (raised to test the search of a scene the device refuses).
+std::unique_ptr<ScenePlan> prepared_scene_text(const char* text, SceneDefinition& s,
+                                               uint32_t max_instructions = kMaxPreparationInstructions) {
   std::string error;
   if (!host::parse_scene_text(text, s, error)) {
     ADD_FAILURE() << error;
     return nullptr;
   }
   auto plan = std::make_unique<ScenePlan>();
-  const PrepareStatus status = plan->prepare(s, nullptr, 0);
+  const PrepareStatus status = plan->prepare(s, nullptr, 0, max_instructions);
   if (status != PrepareStatus::Ok) {
     ADD_FAILURE() << to_string(status);
     return nullptr;
@@ -36,9 +39,10 @@ std::unique_ptr<ScenePlan> prepared_scene_text(const char* text, SceneDefinition
 
 // The core's max|G| of a scene text against the double reference scan, within
 // `relative` of it; the prepared plan (null if the text did not prepare).
-std::unique_ptr<ScenePlan> expect_max_gradient_of_reference(const char* text, double relative) {
+std::unique_ptr<ScenePlan> expect_max_gradient_of_reference(const char* text, double relative,
+                                                            uint32_t max_instructions = kMaxPreparationInstructions) {
   SceneDefinition s;
-  auto plan = prepared_scene_text(text, s);
+  auto plan = prepared_scene_text(text, s, max_instructions);
   if (plan == nullptr) return nullptr;
   const double truth = reference::ReferenceScene(s).max_gradient();
   EXPECT_NEAR(static_cast<double>(plan->stats().max_gradient), truth, relative * truth);
@@ -205,7 +209,16 @@ TEST(CoreRegressions, MaxGradientMissesInterferingTexturePeaks) {
       "element texture weight 0.973061323 wavelength 382.124603 176.37915 height -20.1299171\n"
       "element texture weight 20.6443539 wavelength 20.745903 35.8538437 height 12.9968691\n"
       "element point_sink weight 4.59806776 centre 325.678223 -23.409893 radius 11.8105936 feather 46.1646957\n";
-  expect_max_gradient_of_reference(text, 1e-3);  // the reference 122.76; was 113.30
+  // Since the preparation budget the device refuses it (a 20.7 px texture: a
+  // 2.6 px scan of 310 x 186 nodes at 7 elements, 101 M modelled
+  // instructions, docs/spec.md#preparation-cost); the search is still the
+  // host tools' and the benchmarks'.
+  SceneDefinition s;
+  std::string error;
+  ASSERT_TRUE(host::parse_scene_text(text, s, error)) << error;
+  auto plan = std::make_unique<ScenePlan>();
+  EXPECT_EQ(plan->prepare(s, nullptr, 0), PrepareStatus::TooCostlyToPrepare);
+  expect_max_gradient_of_reference(text, 1e-3, UINT32_MAX);  // the reference 122.76; was 113.30
 }
 
 // Bug 9, fixed in 5091243 (scene_plan.cpp, find_max_gradient, after 718ec94): a
@@ -301,7 +314,9 @@ TEST(CoreRegressions, AWavelengthSoShortThePhaseOverflowsRendersInRange) {
     }
     s.add(FieldElement::point_sink({400.0f, 240.0f}, 1e-3f));
     auto plan = std::make_unique<ScenePlan>();
-    const PrepareStatus status = plan->prepare(s, nullptr, 0);  // the max|G| search evaluates the field
+    // The max|G| search evaluates the field. The texture's 2 px scan is past
+    // the device's preparation budget (refused there); what is tested is the search.
+    const PrepareStatus status = plan->prepare(s, nullptr, 0, UINT32_MAX);
     EXPECT_TRUE(status == PrepareStatus::Ok || status == PrepareStatus::NonFiniteField) << to_string(status);
     for (float x : {0.0f, 6.2e-39f, 1.0f, 400.0f, 800.0f}) {
       for (float y : {0.0f, 240.0f, 480.0f}) {

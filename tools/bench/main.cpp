@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -69,7 +70,8 @@ void measure_scene_accuracy(const ReferenceGrid& grid, std::vector<CaseResult*>&
     for (size_t i = next++; i < results.size(); i = next++) {
       CaseResult& r = *results[i];
       ScenePlan plan;
-      r.status = plan.prepare(case_definition(r.bench_case), table, kTableBytes);
+      // Every strategy, those past the Teensy's table slot or preparation budget too.
+      r.status = plan.prepare(case_definition(r.bench_case), table, kTableBytes, UINT32_MAX);
       if (r.status != PrepareStatus::Ok) continue;
       r.stats = plan.stats();
       r.accuracy = grid.measure(plan);

@@ -137,5 +137,29 @@ TEST(SceneCommand, WordsThatMakeNoConditionSaySo) {
   EXPECT_NE(scene.error.find("unknown scene 'moon'"), std::string::npos) << scene.error;
 }
 
+TEST(SceneCommand, AScenePastThePreparationBudgetIsRefusedBeforeItIsSent) {
+  // 7 valleys along a 16-point zigzag and a 16 px texture: a 2 px max|G| scan
+  // of 401 x 241 nodes at 8 elements each, 182 M modelled M4 instructions
+  // against 36 M (docs/spec.md#preparation-cost); the Teensy took 127.5 M
+  // instructions and its hardware watchdog reset it before the Ack.
+  SceneDefinition s;
+  s.rendering = Rendering::Directional;
+  const Vec2 zigzag[16] = {{0, 100},  {50, 300},  {100, 120}, {150, 330}, {200, 90},  {250, 360},
+                           {300, 80}, {350, 380}, {400, 70},  {450, 390}, {500, 60},  {550, 400},
+                           {600, 50}, {650, 410}, {700, 40},  {750, 420}};
+  for (int i = 1; i <= 7; ++i) {
+    s.add(FieldElement::path_sink(PathCurve::polyline(zigzag, 16), 0.1f * static_cast<float>(i), 1.0f));
+  }
+  s.add(FieldElement::sine_texture(16, 16, 1));
+  const std::string path = support::scratch_path("scene_command_too_costly.scene");
+  {
+    std::ofstream out(path);
+    out << host::format_scene_text(s);
+  }
+  const Parsed p = parse({"--scene-file", path});
+  EXPECT_FALSE(p.ok);
+  EXPECT_EQ(p.error, "cannot prepare the scene: " + std::string(to_string(PrepareStatus::TooCostlyToPrepare)));
+}
+
 }  // namespace
 }  // namespace ff::ffctl
