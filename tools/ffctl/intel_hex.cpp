@@ -23,7 +23,14 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
   std::string line;
   uint32_t base = 0;  // extended segment (type 02) or linear (type 04) address
   int line_no = 0, records = 0;
-  std::vector<uint32_t> written_by(image.bytes.size(), 0);  // the line that wrote each byte (0: none)
+  // Which bytes a record wrote (a bit each: 128 KiB, cheap to clear per file),
+  // and each data record's span, to name the line an overlap disagrees with.
+  std::vector<bool> written(image.bytes.size());
+  struct Span {
+    uint32_t address, count;
+    int line;
+  };
+  std::vector<Span> spans;
   bool ended = false;
   auto fail = [&](const std::string& why) {
     error = "line " + std::to_string(line_no) + ": " + why;
@@ -55,15 +62,20 @@ bool parse_intel_hex(const std::string& text, FlashImage& image, std::string& er
         if (address + count > image.bytes.size()) return fail("data beyond the 1 MiB flash");
         for (size_t i = 0; i < count; ++i) {
           const size_t at = address + i;
-          if (written_by[at] != 0 && image.bytes[at] != rec[4 + i]) {
+          if (written[at] && image.bytes[at] != rec[4 + i]) {
+            int earlier = 0;
+            for (const Span& sp : spans) {
+              if (at >= sp.address && at < sp.address + sp.count) earlier = sp.line;
+            }
             char where[16];
             std::snprintf(where, sizeof where, "0x%06zX", at);
-            return fail(std::string("overlaps line ") + std::to_string(written_by[at]) + " at " + where +
+            return fail(std::string("overlaps line ") + std::to_string(earlier) + " at " + where +
                         " with different data");
           }
           image.bytes[at] = rec[4 + i];
-          written_by[at] = static_cast<uint32_t>(line_no);
+          written[at] = true;
         }
+        spans.push_back({address, static_cast<uint32_t>(count), line_no});
         if (address + count > image.highest) image.highest = address + count;
         break;
       }
