@@ -54,14 +54,14 @@ class SensorSimulator {
   // r.latency_us earlier. Each effect is added only when on, so that with
   // all of them off the numbers are exactly those of the plain model.
   // False if the finger was not on the screen at the scan (it landed
-  // between the scan and the stamp): there is nothing to report.
+  // between the scan and the stamp): there is nothing to report, but every
+  // random draw is made, so that the other reports stay as they were.
   bool measure(Report& r) {
     const SensorOptions& o = o_.sensor;
     r.latency_us = o.latency_us;
     if (o.latency_spread_us > 0.0) r.latency_us += latency_rng_.uniform(0.0, o.latency_spread_us);
     const double scan_s = (static_cast<double>(r.t_rel_us) - r.latency_us) * 1e-6;
     const TrueState s = motion_.at(scan_s);
-    if (!s.touching) return false;
     Point seen = s.position;
     if (tremor_.enabled()) {
       const Point shake = tremor_.at(scan_s);
@@ -77,7 +77,7 @@ class SensorSimulator {
     }
     r.x = quantise(seen.x + o.noise_px * noise_.gaussian());
     r.y = quantise(seen.y + o.noise_px * noise_.gaussian());
-    return true;
+    return s.touching;  // drawn all the same: the reports after it keep their noise
   }
 
   // Reports on a jittered grid while the finger is down; one touch = 0 report
