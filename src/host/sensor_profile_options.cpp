@@ -59,8 +59,10 @@ std::string sensor_profile_flags(const SensorProfile& p) {
   std::snprintf(buf, sizeof buf,
                 "--white-noise-px %.3g --correlated-noise-px %.3g --correlation-time-ms %.3g --tremor-px %.3g "
                 "--tremor-hz %.4g --report-rate-hz %.4g --jitter-us %.3g --latency-us %u",
-                double{p.white_noise_px}, double{p.correlated_noise_px}, double{p.correlation_time_ms},
-                double{p.tremor_px}, double{p.tremor_hz}, double{p.report_rate_hz}, double{p.jitter_us},
+                static_cast<double>(p.white_noise_px), static_cast<double>(p.correlated_noise_px),
+                static_cast<double>(p.correlation_time_ms), static_cast<double>(p.tremor_px),
+                static_cast<double>(p.tremor_hz), static_cast<double>(p.report_rate_hz),
+                static_cast<double>(p.jitter_us),
                 static_cast<unsigned>(p.latency_us));
   return buf;
 }

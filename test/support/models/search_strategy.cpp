@@ -114,15 +114,21 @@ class Planner {
   // finger first sweeps into the field, from the far right back to the start.
   void across_stroke() {
     const Point here = motion_.position();
+    // The draws are sequenced bow, speed, target: the order GCC evaluated
+    // them in when they were one call's arguments, so the traces made then
+    // are unchanged, and now the same with every compiler.
     if (here.x > 680.0) {
-      // One call, as before: the order its arguments draw in is the compiler's.
-      straight_stroke(clamp_to_screen({rng_.uniform(60.0, 160.0), 240.0 + 30.0 * rng_.gaussian()}), speed(),
-                      20.0 * rng_.gaussian());
+      const double bow = 20.0 * rng_.gaussian();
+      const double peak = speed();
+      const Point target = clamp_to_screen({rng_.uniform(60.0, 160.0), 240.0 + 30.0 * rng_.gaussian()});
+      straight_stroke(target, peak, bow);
       return;
     }
     if (here.x < 150.0) {
-      straight_stroke(clamp_to_screen({rng_.uniform(180.0, 500.0), rng_.uniform(100.0, 380.0)}), speed(),
-                      20.0 * rng_.gaussian());
+      const double bow = 20.0 * rng_.gaussian();
+      const double peak = speed();
+      const Point target = clamp_to_screen({rng_.uniform(180.0, 500.0), rng_.uniform(100.0, 380.0)});
+      straight_stroke(target, peak, bow);
       return;
     }
     downwards_ = here.y < 240.0 ? true : (here.y > 240.0 ? false : !downwards_);
@@ -130,7 +136,9 @@ class Planner {
     const double centre = 240.0 + 40.0 * rng_.gaussian();
     const double y1 = downwards_ ? centre + reach / 2.0 : centre - reach / 2.0;
     const double x1 = here.x + rng_.uniform(-20.0, 90.0);
-    straight_stroke(clamp_to_screen({x1, y1}), speed(), 10.0 * rng_.gaussian());
+    const double bow = 10.0 * rng_.gaussian();
+    const double peak = speed();
+    straight_stroke(clamp_to_screen({x1, y1}), peak, bow);
   }
 
   // A bowed stroke to p1 with the effects of MotionOptions applied.
