@@ -400,6 +400,7 @@ TEST(Report, GoalCheckAndTable) {
   fine.heightmap_rms = 0.08;
   fine.frictionmap_rms = 0.03;
   fine.lag_ms = 1.5;
+  thesis.moving_ticks = fine.moving_ticks = 100;
   const std::vector<ReportRow> rows = {{"thesis", "low", thesis}, {"recommended()", "low", fine}};
   const std::vector<GoalCheck> goal = check_goal(rows, "recommended()");
   ASSERT_EQ(goal.size(), 1u);
@@ -483,6 +484,28 @@ TEST(Report, TheWholeReportOnRowsWrittenByHand) {
   std::ostringstream empty;
   write_report(empty, {}, "nothing", 50.0);
   EXPECT_EQ(empty.str().find("Each row"), std::string::npos);
+}
+
+// A recording of a resting finger has no ticks while moving: the ratios are
+// 0/0, so the goal line says it is not judged instead of printing "nan %";
+// and a baseline without error leaves nothing to compare against.
+TEST(Report, GoalIsNotJudgedWithoutMovingTicksOrBaselineError) {
+  Metrics rest = report_metrics(0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 100.0);
+  rest.moving_ticks = 0;
+  std::ostringstream out;
+  write_report(out, {{"thesis", "recorded", rest}, {"recommended()", "recorded", rest}}, "1 recording", 50.0);
+  EXPECT_NE(out.str().find("Goal (recorded noise): recommended(): not judged: no ticks while the finger moves.\n"),
+            std::string::npos)
+      << out.str();
+  EXPECT_EQ(out.str().find("nan"), std::string::npos) << out.str();
+
+  const std::vector<GoalCheck> perfect_baseline =
+      check_goal({{"thesis", "low", report_metrics(1.0, 1.0, 1.0, 0.0, 0.05, 0.1, 1.0)},
+                  {"recommended()", "low", report_metrics(1.0, 1.0, 1.0, 0.01, 0.01, 0.1, 1.0)}},
+                 "recommended()");
+  ASSERT_EQ(perfect_baseline.size(), 1u);
+  EXPECT_EQ(perfect_baseline[0].not_judged, "the baseline's amplitude error is 0");
+  EXPECT_FALSE(perfect_baseline[0].met());
 }
 
 TEST(Report, MarkedSectionIsReplacedOrAppended) {

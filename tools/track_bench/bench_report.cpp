@@ -34,6 +34,10 @@ std::vector<GoalCheck> check_goal(const std::vector<ReportRow>& rows, const std:
       g.heightmap_ratio = r.metrics.heightmap_rms / base.metrics.heightmap_rms;
       g.lag_ms = r.metrics.lag_ms;
       g.frictionmap_ratio = r.metrics.frictionmap_rms / base.metrics.frictionmap_rms;
+      if (base.metrics.moving_ticks == 0 || r.metrics.moving_ticks == 0)
+        g.not_judged = "no ticks while the finger moves";
+      else if (!(base.metrics.heightmap_rms > 0.0 && base.metrics.frictionmap_rms > 0.0))
+        g.not_judged = "the baseline's amplitude error is 0";
       checks.push_back(g);
     }
   }
@@ -76,6 +80,10 @@ void write_report(std::ostream& out, const std::vector<ReportRow>& rows, const s
   }
   for (const std::string& name : candidates) {
     for (const GoalCheck& g : check_goal(rows, name)) {
+      if (!g.not_judged.empty()) {
+        out << "Goal (" << g.noise << " noise): " << name << ": not judged: " << g.not_judged << ".\n";
+        continue;
+      }
       out << "Goal (" << g.noise << " noise): " << name << ": heightmap error " << fixed(100.0 * g.heightmap_ratio, 0)
           << " % of the thesis pipeline's (<= 50 %), lag " << fixed(g.lag_ms, 2) << " ms (<= 2), frictionmap error "
           << fixed(100.0 * g.frictionmap_ratio, 0) << " % of the thesis pipeline's (<= 100 %): "
