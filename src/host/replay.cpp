@@ -21,10 +21,14 @@ namespace {
 // ahead of the rows behind it (a clock glitch, more than kMaxHoldUs), which
 // arrives with the next one instead of holding the whole trace back; smaller
 // inversions keep docs/spec.md's rule (the tracker then judges the earlier
-// stamp). Monotonic traces: the spec exactly.
+// stamp). More than kMaxGlitchRun such rows in a row are not glitches but a
+// clock that stepped back (a log restarted, two logs joined): they arrive at
+// their stamps, and replay() ends where the clock steps back. Monotonic
+// traces: the spec exactly.
 // Arrivals are worked out backwards over a window of rows; the window looks
-// kLookahead rows past the rows it hands out, so only a chain of more than
-// kLookahead glitches in a row could be judged differently from the whole file.
+// kLookahead rows past the rows it hands out, and a run of glitches carries
+// its length over from the rows handed out, so a streamed trace arrives as
+// the whole file would.
 class ArrivalQueue {
  public:
   explicit ArrivalQueue(const RowSource& source) : source_(source) {}
@@ -36,7 +40,15 @@ class ArrivalQueue {
     arrival = rows_.front().arrival;
     return true;
   }
+  // The arrival of the row after the next one; false if there is none. (Past
+  // the window's final rows it may still be lowered by a glitch after it.)
+  bool peek_second(uint64_t& arrival) const {
+    if (rows_.size() < 2) return false;
+    arrival = rows_[1].arrival;
+    return true;
+  }
   void pop() {
+    glitch_run_ = rows_.front().glitch ? glitch_run_ + 1 : 0;
     rows_.pop_front();
     --ready_;
   }
@@ -55,24 +67,36 @@ class ArrivalQueue {
   struct Pending {
     TraceRow row;
     uint64_t arrival;
+    bool glitch;  // stamped far ahead of the next row's arrival
   };
   static constexpr size_t kBlock = 4096;
   static constexpr size_t kLookahead = 64;
+  static constexpr size_t kMaxGlitchRun = 8;
+  static_assert(kMaxGlitchRun < kLookahead, "a run's length must be known before its rows are handed out");
 
   bool refill() {
     TraceRow r;
     while (!ended_ && rows_.size() < kBlock + kLookahead) {
-      if (source_(r)) rows_.push_back({r, r.t_us});
+      if (source_(r)) rows_.push_back({r, r.t_us, false});
       else ended_ = true;
     }
     if (rows_.empty()) return false;
     uint64_t next_arrival = UINT64_MAX;
     for (size_t i = rows_.size(); i-- > 0;) {
-      const TraceRow& r = rows_[i].row;
-      const bool glitch = next_arrival != UINT64_MAX && r.t_us > next_arrival + kMaxHoldUs;
-      if (r.taken_us >= 0) rows_[i].arrival = nearest_tick_takes(static_cast<uint64_t>(r.taken_us));
-      else rows_[i].arrival = glitch ? next_arrival : r.t_us;
-      next_arrival = rows_[i].arrival;
+      Pending& p = rows_[i];
+      p.glitch = p.row.taken_us < 0 && next_arrival != UINT64_MAX && p.row.t_us > next_arrival + kMaxHoldUs;
+      if (p.row.taken_us >= 0) p.arrival = nearest_tick_takes(static_cast<uint64_t>(p.row.taken_us));
+      else p.arrival = p.glitch ? next_arrival : p.row.t_us;
+      next_arrival = p.arrival;
+    }
+    // A run too long for glitches: the clock stepped back after it.
+    for (size_t begin = 0; begin < rows_.size();) {
+      size_t end = begin;
+      while (end < rows_.size() && rows_[end].glitch) ++end;
+      const size_t run = end - begin + (begin == 0 ? glitch_run_ : 0);
+      if (run > kMaxGlitchRun)
+        for (size_t i = begin; i < end; ++i) rows_[i].arrival = rows_[i].row.t_us;
+      begin = end == begin ? end + 1 : end;
     }
     ready_ = ended_ ? rows_.size() : rows_.size() - kLookahead;
     return true;
@@ -87,7 +111,8 @@ class ArrivalQueue {
   static constexpr uint64_t kMaxHoldUs = 20000;
   const RowSource& source_;
   std::deque<Pending> rows_;
-  size_t ready_ = 0;  // rows at the front whose arrival is final
+  size_t ready_ = 0;       // rows at the front whose arrival is final
+  size_t glitch_run_ = 0;  // glitches in a row just before the front
   bool ended_ = false;
 };
 
@@ -110,27 +135,39 @@ ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const Ti
   // replay's tracker that clock too (a first stamp 100 s ahead is then a
   // glitch, not the time every later report must follow).
   if (t0 >= kTickPeriodUs) pipeline.tick(static_cast<uint32_t>(t0 - kTickPeriodUs));
+  // A row, and the one after it, stamped far behind the latest report: the clock stepped back.
+  const auto far_behind = [&](uint64_t t) { return t < last_due && last_due - t > options.max_step_back_us; };
+  const auto steps_back = [&](uint64_t next_arrival) {
+    uint64_t second = 0;
+    return far_behind(next_arrival) && queue.peek_second(second) && far_behind(second);
+  };
+  // A clock fault: the replay ends at the last plausible report.
+  bool more = true;
+  const auto end_at = [&](uint64_t next_arrival) {
+    summary.time_jump = true;
+    summary.time_jump_from_us = last_due;
+    summary.time_jump_to_us = next_arrival;
+    summary.rows_after_time_jump = queue.discard_rest();
+    more = false;
+  };
   double amplitude_sum = 0.0;
   summary.amplitude_min = 1.0f;
   uint64_t extra_left = options.extra_ticks;
-  bool more = true;
   for (uint64_t k = 0;; ++k) {
     const uint64_t now = t0 + k * kTickPeriodUs;
     if (now < t0) break;  // stamps near 2^64 (the reader refuses them): the tick time wrapped
     // Samples due at or before this tick, in file order; the tracker judges their stamps.
     while (more && (more = queue.peek(row, arrival)) && arrival <= now) {
+      if (steps_back(arrival)) {
+        end_at(arrival);
+        break;
+      }
       pipeline.post_sample({static_cast<uint32_t>(row.t_us), row.x, row.y, row.touch});
       ++summary.samples;
       last_due = std::max(last_due, arrival);
       queue.pop();
     }
-    if (more && arrival > last_due && arrival - last_due > options.max_gap_us) {
-      summary.time_jump = true;
-      summary.time_jump_from_us = last_due;
-      summary.time_jump_to_us = arrival;
-      summary.rows_after_time_jump = queue.discard_rest();
-      more = false;
-    }
+    if (more && arrival > last_due && arrival - last_due > options.max_gap_us) end_at(arrival);
     const TickOutput out = pipeline.tick(static_cast<uint32_t>(now));
     ++summary.ticks;
     summary.ticks_with_finger += out.present ? 1 : 0;

@@ -204,6 +204,71 @@ TEST(Replay, AFirstRowStampedFarAheadDoesNotSkipTheRowsBehindIt) {
   EXPECT_EQ(s.rejected_samples(), 1u);  // the glitch alone
 }
 
+// Rows replayed as ff-replay streams them, a clock stepping back more than
+// 20 ms (twice in a row) ending the replay.
+ReplaySummary replay_ending_at_a_step_back(const std::vector<TraceRow>& rows) {
+  size_t next = 0;
+  const RowSource source = [&](TraceRow& r) { return next < rows.size() ? (r = rows[next++], true) : false; };
+  auto p = std::make_unique<HapticPipeline>();
+  ReplayOptions options;
+  options.max_step_back_us = kClockStepBackUs;
+  return replay(source, *p, nullptr, options);
+}
+
+TEST(Replay, AClockSteppingBackEndsTheReplayWhereverItFallsInTheStream) {
+  // Two logs joined: `first` rows at 200 Hz from 1 s, then the clock restarts
+  // at 0.2 s. Each row ahead of the restart looked like a glitch to the one
+  // after it, so all of them arrived with the restart at once and flooded the
+  // mailbox. Now the first log replays on its own clock and the replay ends
+  // at its last row. The restart is put around the streaming window's edge
+  // (4096 rows handed out, 64 looked ahead), where the run in view may be short, and near the start.
+  for (const size_t first : {9, 100, 4090, 4100, 4104, 4105, 4150, 4160, 4170}) {
+    std::vector<TraceRow> rows;
+    for (size_t i = 0; i < first; ++i) rows.push_back({1'000'000 + 5000 * i, 400, 240, true});
+    for (size_t i = 0; i < 300; ++i) rows.push_back({200'000 + 5000 * i, 400, 240, true});
+    const ReplaySummary s = replay_ending_at_a_step_back(rows);
+    const uint64_t last = 1'000'000 + 5000 * (first - 1);
+    EXPECT_TRUE(s.time_jump) << first;
+    EXPECT_EQ(s.time_jump_from_us, last) << first;
+    EXPECT_EQ(s.time_jump_to_us, 200'000u) << first;
+    EXPECT_EQ(s.rows_after_time_jump, 300u) << first;
+    EXPECT_EQ(s.samples, first) << first;
+    EXPECT_EQ(s.ticks, (last - 1'000'000) / kTickPeriodUs + 1) << first;
+    EXPECT_EQ(s.faults[Fault::MailboxOverflow], 0u) << first;
+  }
+}
+
+TEST(Replay, UpToEightStampsFarAheadInARowAreGlitchesNotAClockStep) {
+  // 8 rows in a row stamped 100 s ahead arrive with the row after them; a
+  // ninth makes them a clock that stepped back, and the replay ends.
+  for (const size_t ahead : {size_t{1}, size_t{8}, size_t{9}}) {
+    std::vector<TraceRow> rows;
+    for (uint64_t i = 0; i < 200; ++i) rows.push_back({1'000'000 + 5000 * i, 400, 240, true});
+    for (size_t i = 0; i < ahead; ++i) rows[100 + i].t_us += 100'000'000;
+    const ReplaySummary s = replay_ending_at_a_step_back(rows);
+    if (ahead <= 8) {
+      EXPECT_FALSE(s.time_jump) << ahead;
+      EXPECT_EQ(s.samples, 200u) << ahead;
+      EXPECT_EQ(s.ticks, 199u * 5000u / kTickPeriodUs + 1) << ahead;
+    } else {
+      EXPECT_TRUE(s.time_jump);
+      EXPECT_EQ(s.time_jump_from_us, rows[108].t_us);
+      EXPECT_EQ(s.time_jump_to_us, rows[109].t_us);
+      EXPECT_EQ(s.rows_after_time_jump, 91u);
+    }
+  }
+}
+
+TEST(Replay, OneRowFarBehindIsASampleTheTrackerDropsNotAClockStep) {
+  std::vector<TraceRow> rows;
+  for (uint64_t i = 0; i < 200; ++i) rows.push_back({1'000'000 + 5000 * i, 400, 240, true});
+  rows[100].t_us = 200'000;
+  const ReplaySummary s = replay_ending_at_a_step_back(rows);
+  EXPECT_FALSE(s.time_jump);
+  EXPECT_EQ(s.samples, 200u);
+  EXPECT_EQ(s.rejected_samples(), 1u);
+}
+
 TEST(Replay, ARowWithItsTakenTimeGoesToTheTickThatTookItWhateverItsStamp) {
   // Stamps 1000, 1200, 1400 would all be taken by the ticks from 1000 on; the
   // device took them at 1700, 2201 and 2699 (its ticks are micros() in an

@@ -77,7 +77,8 @@ int main(int argc, char** argv) {
       "Output: '#' metadata lines (tool, version, date, scene words and hash, tracker, strength,\n"
       "calibration, input), then one row per 500 us tick: t_us,x,y,vx,vy,amplitude,dac,present\n"
       "(present = 1: a finger was tracked at that tick), then a '# summary' line.\n"
-      "A gap between reports longer than --max-gap-s is a clock fault: the replay ends at the last\n"
+      "A gap between reports longer than --max-gap-s is a clock fault, and so is a clock stepping back\n"
+      "(two rows in a row stamped over 20 ms before the latest report): the replay ends at the last\n"
       "plausible report and reports the rows it left out.\n"
       "An ffctl recording replays as the device rendered it: each report at the tick that took it\n"
       "(taken_us), with the sensor profile its '# sensor-profile' line names (unless flags are given).\n\n"
@@ -210,6 +211,7 @@ int main(int argc, char** argv) {
   ff::host::ReplayOptions options;
   options.extra_ticks = static_cast<uint64_t>(extra_ms * 1000.0 / ff::kTickPeriodUs);
   options.max_gap_us = static_cast<uint64_t>(max_gap_s * 1e6);
+  options.max_step_back_us = ff::host::kClockStepBackUs;
   uint64_t done = 0;
   const ff::host::ReplaySummary summary = ff::host::replay(
       source, *pipeline,
@@ -274,7 +276,16 @@ int main(int argc, char** argv) {
                  "ff-replay: %u samples off the 800x480 screen: is the trace in another screen's coordinates? "
                  "(--screen WxH)\n", f[ff::Fault::OffScreen]);
   }
-  if (summary.time_jump) {
+  if (summary.time_jump && summary.time_jump_to_us < summary.time_jump_from_us) {
+    std::fprintf(stderr,
+                 "ff-replay: the clock steps back from t_us %llu to %llu (two rows in a row more than %llu ms "
+                 "behind: a log restarted or two joined): the replay ends at the last plausible report; "
+                 "%llu rows left out\n",
+                 static_cast<unsigned long long>(summary.time_jump_from_us),
+                 static_cast<unsigned long long>(summary.time_jump_to_us),
+                 static_cast<unsigned long long>(ff::host::kClockStepBackUs / 1000),
+                 static_cast<unsigned long long>(summary.rows_after_time_jump));
+  } else if (summary.time_jump) {
     std::fprintf(stderr,
                  "ff-replay: time jump from t_us %llu to %llu (more than --max-gap-s %g): the replay ends at the "
                  "last plausible report; %llu rows left out\n",

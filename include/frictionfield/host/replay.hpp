@@ -9,6 +9,10 @@
 // between reports longer than `max_gap_us` cannot come from a session (a
 // clock fault, a corrupt stamp): the replay ends at the last plausible report
 // instead of ticking through the gap, and says how many rows it left out.
+// So does a clock that steps back (two rows in a row stamped more than
+// `max_step_back_us` before the latest report delivered: a log restarted or
+// two logs joined), which would otherwise flood the mailbox with every row
+// behind the tick clock at once.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -26,7 +30,8 @@ struct ReplaySummary {
   float amplitude_mean = 0.0f;
   float amplitude_max = 0.0f;
   FaultCounters faults;
-  // Implausible time jump: the stamp that ended the replay and the rows after it.
+  // Implausible time jump, forwards or back: the stamp that ended the replay
+  // and the rows after it.
   bool time_jump = false;
   uint64_t time_jump_from_us = 0;
   uint64_t time_jump_to_us = 0;
@@ -40,9 +45,14 @@ using TickSink = std::function<void(uint64_t t_us, const TickOutput& out)>;
 // Fills the next row; false at the end of the trace.
 using RowSource = std::function<bool(TraceRow& row)>;
 
+// ff-replay's step back: more than the 20 ms by which a late-read stamp
+// may fall behind the one before (docs/spec.md#tick-timing).
+inline constexpr uint64_t kClockStepBackUs = 20000;
+
 struct ReplayOptions {
   uint64_t extra_ticks = 0;             // after the last sample: time-outs play out
   uint64_t max_gap_us = UINT64_MAX;     // a longer gap ends the replay (see above)
+  uint64_t max_step_back_us = UINT64_MAX;  // so does a longer step back, twice in a row
 };
 
 // Runs to the tick at or after the last sample, plus `extra_ticks`.

@@ -326,6 +326,22 @@ class BoundedReplay(Case):
         self.assertIn("rows_left_out=1", meta["summary"])
         self.assertEqual(run(REPLAY, "--strict", "-q", trace, "-o", out).returncode, 1)
 
+    def test_two_logs_joined_end_the_output_where_the_clock_steps_back(self):
+        # The first log 1 .. 2 s, then a second whose clock starts again at 0:
+        # the second used to arrive all at once (mailbox_overflow) after the first.
+        trace, out = self.path("t.csv"), self.path("r.csv")
+        first = [(1_000_000 + t, x, y, touch) for t, x, y, touch in stroke(201)]
+        write_trace(trace, first + stroke(50))
+        res = run(REPLAY, trace, "-o", out)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertIn("the clock steps back from t_us 2000000 to 0", res.stderr)
+        self.assertIn("50 rows left out", res.stderr)
+        self.assertNotIn("mailbox_overflow", res.stderr)
+        meta, _, ticks = read_replay(out)
+        self.assertEqual(len(ticks), 1000000 // TICK_US + 1 + 100000 // TICK_US)  # 1 s + 100 ms extra
+        self.assertIn("samples=201 rejected=0 rows_left_out=50", meta["summary"])
+        self.assertEqual(run(REPLAY, "--strict", "-q", trace, "-o", out).returncode, 1)
+
     @unittest.skipIf(os.environ.get("FF_SANITIZED"), "AddressSanitizer's quarantine keeps freed memory")
     def test_memory_does_not_grow_with_the_trace(self):
         def peak_kib(n):
