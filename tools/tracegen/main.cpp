@@ -165,6 +165,22 @@ std::string sensor_words(const SensorOptions& s) {
                 s.period_jitter_us, s.correlated_noise_px, s.correlated_noise_tau_s * 1e3, s.drift_px, s.drift_tau_s);
 }
 
+// "missing 1 of 2, jumps 0 of 3": the kinds of which fewer found a site than
+// were asked for ("" if all did).
+std::string unplaced_words(const FaultOptions& asked, const FaultOptions& placed) {
+  std::string words;
+  const auto kind = [&words](const char* name, int a, int p) {
+    if (p < a) words += format("%s%s %d of %d", words.empty() ? "" : ", ", name, p, a);
+  };
+  kind("missing", asked.missing, placed.missing);
+  kind("late", asked.late, placed.late);
+  kind("jumps", asked.jumps, placed.jumps);
+  kind("duplicates", asked.duplicates, placed.duplicates);
+  kind("non-finite", asked.non_finite, placed.non_finite);
+  kind("off-screen", asked.off_screen, placed.off_screen);
+  return words;
+}
+
 std::string fault_words(const FaultOptions& f) {
   const std::string start =
       f.wrap ? "the 32-bit clock wraps mid-stroke" : "first report at t_us " + std::to_string(f.start_us);
@@ -172,7 +188,8 @@ std::string fault_words(const FaultOptions& f) {
                 f.jumps, f.duplicates, f.non_finite, f.off_screen, start.c_str());
 }
 
-ff::host::Metadata metadata(const TraceOptions& o, const std::string& trace_class, const std::string& command) {
+ff::host::Metadata metadata(const TraceOptions& o, const GeneratedTrace& trace, const std::string& trace_class,
+                            const std::string& command) {
   ff::host::Metadata m = {{"tool", std::string("ff-tracegen ") + ff::host::project_version()},
                           {"command", command},
                           {"seed", std::to_string(o.seed)}};
@@ -180,6 +197,8 @@ ff::host::Metadata metadata(const TraceOptions& o, const std::string& trace_clas
   m.push_back({"motion", motion_words(o)});
   m.push_back({"sensor", sensor_words(o.sensor)});
   m.push_back({"faults", fault_words(o.faults)});
+  const std::string unplaced = unplaced_words(o.faults, trace.faults_placed);
+  if (!unplaced.empty()) m.push_back({"faults-placed", unplaced + " (no room for the rest)"});
   return m;
 }
 
@@ -251,33 +270,43 @@ int main(int argc, char** argv) {
   app.add_option("--class", cli.trace_class, class_help)->check(CLI::IsMember(known_classes));
 
   auto* motion = "Motion";
-  app.add_option("--strategy", cli.strategy, "along: back and forth along the paths; across: strokes across them; "
-                                             "mixed: both in turn")
-      ->capture_default_str()->check(CLI::IsMember({"along", "across", "mixed"}))->group(motion);
-  app.add_option("--paths", cli.paths, "Which path(s) the along-strategy follows: all, top, middle, bottom")
-      ->capture_default_str()->check(CLI::IsMember({"all", "top", "middle", "bottom"}))->group(motion);
-  app.add_option("--speed-min", o.motion.speed_min_mm_s, "Slowest stroke's peak speed (mm/s)")
-      ->capture_default_str()->check(CLI::Range(1.0, 5000.0))->group(motion);
-  app.add_option("--speed-max", o.motion.speed_max_mm_s, "Fastest stroke's peak speed (mm/s)")
-      ->capture_default_str()->check(CLI::Range(1.0, 5000.0))->group(motion);
-  app.add_option("--dwell-max", o.motion.dwell_max_s, "Longest pause at a reversal (s; uniform from 0)")
-      ->capture_default_str()->check(CLI::Range(0.0, 10.0))->group(motion);
-  app.add_option("--rests", o.motion.rests, "Rests: the finger stays still on the screen for 0.6-2 s")
-      ->capture_default_str()->check(CLI::Range(0, kMaxFaultsOfAKind))->group(motion);
-  app.add_option("--lifts", o.motion.lifts, "Lift-offs: the finger leaves for 0.15-0.6 s and lands elsewhere")
-      ->capture_default_str()->check(CLI::Range(0, kMaxFaultsOfAKind))->group(motion);
-  app.add_option("--slow-strokes", o.motion.slow_fraction, "Share of strokes that are slow: peak 20-70 px/s "
-                                                           "(4-14 mm/s), lasting 0.8-2 s")
-      ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
-  app.add_option("--hesitations", o.motion.hesitation_fraction, "Share of strokes that stop mid-way for 0.08-0.3 s")
-      ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
-  app.add_option("--reversals", o.motion.reversal_fraction, "Share of strokes that turn straight back (no dwell) "
-                                                            "for 15-40 % of their length")
-      ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion);
-  app.add_flag("--rest-only", o.motion.rest_only, "No strokes: the finger rests at the middle of the screen for "
-                                                  "--duration (with tremor if asked), a calibration recording "
-                                                  "for ff-track-bench --calibrate")
-      ->group(motion);
+  std::vector<CLI::Option*> strokes;  // what --rest-only leaves out
+  strokes.push_back(app.add_option("--strategy", cli.strategy,
+                                   "along: back and forth along the paths; across: strokes across them; "
+                                   "mixed: both in turn")
+                        ->capture_default_str()->check(CLI::IsMember({"along", "across", "mixed"}))->group(motion));
+  strokes.push_back(app.add_option("--paths", cli.paths,
+                                   "Which path(s) the along-strategy follows: all, top, middle, bottom")
+                        ->capture_default_str()->check(CLI::IsMember({"all", "top", "middle", "bottom"}))
+                        ->group(motion));
+  strokes.push_back(app.add_option("--speed-min", o.motion.speed_min_mm_s, "Slowest stroke's peak speed (mm/s)")
+                        ->capture_default_str()->check(CLI::Range(1.0, 5000.0))->group(motion));
+  strokes.push_back(app.add_option("--speed-max", o.motion.speed_max_mm_s, "Fastest stroke's peak speed (mm/s)")
+                        ->capture_default_str()->check(CLI::Range(1.0, 5000.0))->group(motion));
+  strokes.push_back(app.add_option("--dwell-max", o.motion.dwell_max_s, "Longest pause at a reversal (s; uniform from 0)")
+                        ->capture_default_str()->check(CLI::Range(0.0, 10.0))->group(motion));
+  strokes.push_back(app.add_option("--rests", o.motion.rests, "Rests: the finger stays still on the screen for 0.6-2 s")
+                        ->capture_default_str()->check(CLI::Range(0, kMaxFaultsOfAKind))->group(motion));
+  strokes.push_back(app.add_option("--lifts", o.motion.lifts,
+                                   "Lift-offs: the finger leaves for 0.15-0.6 s and lands elsewhere")
+                        ->capture_default_str()->check(CLI::Range(0, kMaxFaultsOfAKind))->group(motion));
+  strokes.push_back(app.add_option("--slow-strokes", o.motion.slow_fraction,
+                                   "Share of strokes that are slow: peak 20-70 px/s (4-14 mm/s), lasting 0.8-2 s")
+                        ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion));
+  strokes.push_back(app.add_option("--hesitations", o.motion.hesitation_fraction,
+                                   "Share of strokes that stop mid-way for 0.08-0.3 s")
+                        ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion));
+  strokes.push_back(app.add_option("--reversals", o.motion.reversal_fraction,
+                                   "Share of strokes that turn straight back (no dwell) for 15-40 % of their length")
+                        ->capture_default_str()->check(CLI::Range(0.0, 1.0))->group(motion));
+  CLI::Option* rest_only =
+      app.add_flag("--rest-only", o.motion.rest_only,
+                   "No strokes: the finger rests at the middle of the screen for --duration (with tremor if "
+                   "asked), a calibration recording for ff-track-bench --calibrate; with --all-faults, no rests "
+                   "or lifts")
+          ->group(motion);
+  // A resting finger makes no strokes: an option about them would be ignored.
+  for (CLI::Option* stroke_option : strokes) rest_only->excludes(stroke_option);
   app.add_option("--tremor-px", o.tremor.amplitude_px, "Tremor amplitude, peak per axis (px; physiological "
                                                        "0.5-2.5 px = 0.1-0.5 mm); in the reports, not in x_true")
       ->capture_default_str()->check(CLI::Range(0.0, 50.0))->group(motion);
@@ -402,7 +431,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ff-tracegen: %s\n", out.error().c_str());
     return ff::host::kExitBadUsage;
   }
-  ff::host::write_metadata(out.stream(), metadata(o, cli.trace_class, command));
+  ff::host::write_metadata(out.stream(), metadata(o, trace, cli.trace_class, command));
   write_trace(out.stream(), trace, cli.events);
   std::string summary = format("rows=%zu strokes=%d rests=%d lifts=%d %s", trace.samples.size(), counts.strokes,
                                counts.rests, counts.lifts, counts.rows_by_kind.c_str());
@@ -419,7 +448,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "ff-tracegen: %s\n", ticks.error().c_str());
       return ff::host::kExitBadUsage;
     }
-    ff::host::Metadata m = metadata(o, cli.trace_class, command);
+    ff::host::Metadata m = metadata(o, trace, cli.trace_class, command);
     m.insert(m.begin() + 1, {"what", "the true finger at every 500 us tick of the trace " + cli.output});
     ff::host::write_metadata(ticks.stream(), m);
     Progress progress;
@@ -433,5 +462,11 @@ int main(int argc, char** argv) {
                                  cli.truth_ticks.c_str());
   }
   if (!cli.quiet) print_summary(trace, o, counts);
+  // Said also with -q: the trace holds fewer faults than its command asks for.
+  if (const std::string unplaced = unplaced_words(o.faults, trace.faults_placed); !unplaced.empty())
+    std::fprintf(stderr,
+                 "ff-tracegen: warning: not every fault found a site (%s): each needs 8 ordinary reports of a "
+                 "finger on either side, away from the others; a longer --duration makes room\n",
+                 unplaced.c_str());
   return 0;
 }

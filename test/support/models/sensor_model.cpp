@@ -41,6 +41,8 @@ class SensorSimulator {
     plan_faults(reports);
     return apply_faults(reports);
   }
+  // The faults of each kind that found a site (FaultOptions' counts).
+  const FaultOptions& placed() const { return placed_; }
 
  private:
   TrueState truth(int64_t t_rel_us) const { return motion_.at(static_cast<double>(t_rel_us) * 1e-6); }
@@ -130,9 +132,11 @@ class SensorSimulator {
   // Picks `count` sites, each a run of 1..max_run ordinary reports with 8
   // ordinary reports on either side that no other site uses, so that each
   // fault is seen on its own, away from touch-downs and lifts.
-  void pick(const std::vector<Report>& reports, int count, Plan plan, int max_run) {
+  // Returns how many found a site.
+  int pick(const std::vector<Report>& reports, int count, Plan plan, int max_run) {
     const int n = static_cast<int>(reports.size());
-    for (int placed = 0, attempts = 0; placed < count && attempts < 1000 * (count + 1); ++attempts) {
+    int placed = 0;
+    for (int attempts = 0; placed < count && attempts < 1000 * (count + 1); ++attempts) {
       const int run = faults_.integer(1, max_run);
       const int i = faults_.integer(0, std::max(0, n - 1));
       const int lo = i - 8, hi = i + run + 8;
@@ -147,18 +151,20 @@ class SensorSimulator {
       for (int k = i; k < i + run; ++k) plans_[static_cast<size_t>(k)] = plan;
       ++placed;
     }
+    return placed;
   }
 
   void plan_faults(const std::vector<Report>& reports) {
     plans_.assign(reports.size(), Plan::None);
     taken_.assign(reports.size(), false);
     const FaultOptions& f = o_.faults;
-    pick(reports, f.missing, Plan::Missing, 6);
-    pick(reports, f.late, Plan::Late, 1);
-    pick(reports, f.jumps, Plan::Jump, 3);
-    pick(reports, f.duplicates, Plan::Duplicate, 1);
-    pick(reports, f.non_finite, Plan::NonFinite, 1);
-    pick(reports, f.off_screen, Plan::OffScreen, 1);
+    placed_ = f;
+    placed_.missing = pick(reports, f.missing, Plan::Missing, 6);
+    placed_.late = pick(reports, f.late, Plan::Late, 1);
+    placed_.jumps = pick(reports, f.jumps, Plan::Jump, 3);
+    placed_.duplicates = pick(reports, f.duplicates, Plan::Duplicate, 1);
+    placed_.non_finite = pick(reports, f.non_finite, Plan::NonFinite, 1);
+    placed_.off_screen = pick(reports, f.off_screen, Plan::OffScreen, 1);
   }
 
   std::vector<Report> apply_faults(const std::vector<Report>& in) {
@@ -256,6 +262,7 @@ class SensorSimulator {
   GaussMarkov correlated_x_, correlated_y_, drift_x_, drift_y_;
   std::vector<Plan> plans_;
   std::vector<bool> taken_;
+  FaultOptions placed_;
 };
 
 // Motion time (s) at which the 32-bit clock should wrap: between two reports
@@ -315,7 +322,9 @@ GeneratedTrace generate_trace(const TraceOptions& options) {
     Random tremor_rng(options.seed, Stream::Tremor);
     trace.tremor = Tremor(options.tremor, tremor_rng);
   }
-  const std::vector<Report> reports = SensorSimulator(trace.motion, trace.tremor, options).run();
+  SensorSimulator sensor(trace.motion, trace.tremor, options);
+  const std::vector<Report> reports = sensor.run();
+  trace.faults_placed = sensor.placed();
 
   trace.start_us = options.faults.start_us;
   if (options.faults.wrap) trace.start_us = kClockWrap - static_cast<uint64_t>(wrap_point_us(trace.motion, reports));

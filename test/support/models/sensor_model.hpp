@@ -98,6 +98,9 @@ struct GeneratedTrace {
   uint64_t start_us = 0;  // file time of motion time 0 (= the first report)
   std::vector<TraceSample> samples;
   int events[static_cast<int>(SampleEvent::kCount)] = {};  // rows of each kind
+  // The faults asked for that found a site (each needs ordinary reports
+  // around it): fewer than asked when the trace is too short or too busy.
+  FaultOptions faults_placed;
 
   // The true finger at a file time.
   TrueState truth_at(uint64_t t_us) const;

@@ -9,6 +9,7 @@ import csv
 import io
 import math
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -565,6 +566,38 @@ class TracegenClasses(unittest.TestCase):
                     made = f.read()
             without_command = lambda text: [l for l in text.splitlines() if not l.startswith("# command: ")]
             self.assertEqual(without_command(made), without_command(stored), name)
+
+    def test_faults_without_room_are_named_in_the_metadata_and_warned_of(self):
+        # 40 gaps cannot fit into 1 s of reports, each with 8 ordinary reports
+        # on either side: the trace says how many it holds, and so does stderr,
+        # also with -q. Gaps are counted from the stamps (a step over 1.5 periods).
+        res = run(TRACEGEN, "-q", "--duration", "1", "--missing", "40")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        meta = dict(read_metadata(res.stdout))
+        self.assertEqual(meta["faults"].split(",")[0], "missing 40")
+        placed = re.fullmatch(r"missing (\d+) of 40 \(no room for the rest\)", meta["faults-placed"])
+        self.assertIsNotNone(placed, meta["faults-placed"])
+        touching = [int(r["t_us"]) for r in read_trace(res.stdout) if r["touch"] == "1"]
+        gaps = sum(1 for a, b in zip(touching, touching[1:]) if b - a > 7500)
+        self.assertEqual(gaps, int(placed.group(1)))
+        self.assertLess(gaps, 40)
+        self.assertIn(f"warning: not every fault found a site (missing {gaps} of 40)", res.stderr)
+        # Room for all: neither the line nor the warning.
+        res = run(TRACEGEN, "-q", "--duration", "10", "--missing", "3", "--jumps", "2")
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertNotIn("faults-placed", dict(read_metadata(res.stdout)))
+        self.assertEqual(res.stderr, "")
+
+    def test_rest_only_refuses_the_options_about_strokes(self):
+        for option in (["--rests", "2"], ["--lifts", "1"], ["--strategy", "along"], ["--slow-strokes", "0.5"],
+                       ["--speed-max", "100"]):
+            res = run(TRACEGEN, "-q", "--rest-only", *option)
+            self.assertEqual(res.returncode, 2, option)
+            self.assertIn(option[0], res.stderr)
+            self.assertIn("--rest-only", res.stderr)
+            self.assertEqual(res.stdout, "")
+        # A class's own stroke settings are not the user's: --rest-only takes the class's sensor.
+        self.assertEqual(run(TRACEGEN, "-q", "--rest-only", "--class", "realistic-200hz", "--duration", "2").returncode, 0)
 
     def test_bad_values_exit_2(self):
         self.assertEqual(run(TRACEGEN, "--class", "no-such-class").returncode, 2)
