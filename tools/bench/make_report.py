@@ -19,6 +19,39 @@ PREPARE_GOAL_INSTR = 360_000  # 2 ms at 180 MHz, 1 instruction ~ 1 cycle
 TICK_GOAL_INSTR = 1_000
 ERROR_GOAL_LSB = 1.0
 
+# The columns the report reads from each of ff-bench's, the cycle model's and ff-m4accuracy's CSVs.
+HOST_CASE_COLUMNS = ("id", "scene", "strategy", "builtin", "default", "table_bytes", "plan_bytes", "fits_teensy",
+                     "gradient_evaluations", "max_g_core", "max_g_ref", "max_lsb", "rms_lsb", "p99_lsb",
+                     "max_interior_lsb", "worst_x", "worst_y", "worst_direction_deg", "eval_checksum", "host_eval_ns",
+                     "host_prepare_us", "host_tick_ns")
+HOST_CASE_WHOLE_NUMBERS = ("table_bytes", "plan_bytes", "fits_teensy", "gradient_evaluations", "eval_checksum")
+CYCLE_NUMBERS = ("cycles_best_mean", "cycles_worst_mean", "cycles_best_p99.9", "cycles_worst_p99.9", "cycles_best_max",
+                 "cycles_worst_max", "prepare_ms_best", "prepare_ms_worst")  # added up or given to %.2f
+CYCLE_COLUMNS = ("scene", "instructions_mean", "instructions_p99.9", "instructions_max", "worst_tick_kind",
+                 "prepare_instructions", "isr_best", "isr_worst") + CYCLE_NUMBERS
+ACCURACY_COLUMNS = ("scene", "points", "raw_max_lsb", "scaled_max_lsb", "scaled_rms_lsb", "code_max_lsb", "codes_off")
+
+# ff-m4bench's lines (tools/m4bench/main.cpp; its '#' lines name the fields): every field after the kind is a
+# whole number but a mode, an id or a name. A tracker line from before its setup costs were timed ends at max_instr.
+M4_FIELDS = {
+    "m4bench": ("mode",),
+    "calibration": ("instructions_per_count",),
+    "case": ("id", "default", "prepare_instr", "gradient_evaluations", "table_bytes", "plan_bytes", "eval_instr",
+             "evaluations", "eval_checksum", "tick_instr", "ticks", "tick_max_instr", "tick_dac_sum",
+             "pipeline_prepare_instr"),
+    "tracker": ("name", "instr", "ticks", "max_instr", "configure_instr", "fade_noise_instr"),
+    "component": ("name", "instr", "count"),
+    "stopwatch_overhead_milli": ("overhead_milli",),
+    "done": ("failures",),
+}
+M4_TEXT_FIELDS = ("mode", "id", "name")
+M4_OPTIONAL_FIELDS = ("configure_instr", "fade_noise_instr")
+M4_DIVISORS = {"case": "evaluations", "tracker": "ticks", "component": "count"}  # what a total is divided by
+
+
+class BadInput(Exception):
+    """An input file that is malformed or incomplete: one line, exit 2 (docs/tools.md)."""
+
 
 def parse_args():
     p = argparse.ArgumentParser(description=__doc__)
@@ -42,19 +75,22 @@ def fnum(text):
     return v if math.isfinite(v) else None
 
 
-def without_metadata(f):
-    return (line for line in f if not line.startswith("#"))
+def text_lines(path):
+    """The lines of an input; one that is not UTF-8 text is refused with its name (a UnicodeDecodeError has none)."""
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as f:
+            return f.readlines()
+    except UnicodeDecodeError as e:
+        raise BadInput("%s: not UTF-8 text (%s)" % (path, e)) from None
 
 
 def read_host(folder):
-    with open(os.path.join(folder, "host_cases.csv"), newline="") as f:
-        cases = list(csv.DictReader(without_metadata(f)))
+    cases = read_plain_csv(os.path.join(folder, "host_cases.csv"), HOST_CASE_COLUMNS, HOST_CASE_WHOLE_NUMBERS)
     trackers = {}
     path = os.path.join(folder, "host_trackers.csv")
     if os.path.exists(path):
-        with open(path, newline="") as f:
-            for row in csv.DictReader(without_metadata(f)):
-                trackers[row["config"]] = fnum(row["host_update_ns"])
+        for row in read_plain_csv(path, ("config", "host_update_ns")):
+            trackers[row["config"]] = fnum(row["host_update_ns"])
     return cases, trackers
 
 
@@ -86,38 +122,77 @@ def read_m4(path):
           "mode": None}
     if not path:
         return None
-    with open(path) as f:
-        for line in f:
-            fields = line.strip().split(",")
-            kind = fields[0]
-            if kind == "m4bench":
-                m4["mode"] = fields[1]
-            elif kind == "calibration":
-                m4["calibration"] = int(fields[1])
-            elif kind == "case":
-                (_, cid, default, prepare, grad_evals, table_bytes, plan_bytes, eval_instr, evaluations,
-                 checksum, tick_instr, ticks, tick_max, tick_dac_sum, pipeline_prepare) = fields
-                m4["cases"][cid] = {
-                    "prepare": int(prepare), "gradient_evaluations": int(grad_evals),
-                    "table_bytes": int(table_bytes), "plan_bytes": int(plan_bytes),
-                    "eval": int(eval_instr) / int(evaluations), "checksum": int(checksum),
-                    "tick": int(tick_instr) / int(ticks) if int(ticks) > 0 else None,
-                    "tick_max": int(tick_max) if int(ticks) > 0 else None,
-                    "pipeline_prepare": int(pipeline_prepare) if int(pipeline_prepare) >= 0 else None,
-                }
-            elif kind == "tracker":
-                m4["trackers"][fields[1]] = {"mean": int(fields[2]) / int(fields[3]), "max": int(fields[4]),
-                                             "configure": int(fields[5]) if len(fields) > 5 else None,
-                                             "fade_noise": int(fields[6]) if len(fields) > 6 else None}
-            elif kind == "component":
-                m4["components"][fields[1]] = int(fields[2]) / int(fields[3])
-            elif kind == "stopwatch_overhead_milli":
-                m4["stopwatch"] = int(fields[1]) / 1000
-            elif kind == "error":
-                m4["errors"].append(",".join(fields[1:]))
-            elif kind == "done":
-                m4["done"] = int(fields[1])
+    for number, line in enumerate(text_lines(path), start=1):
+        fields = line.strip().split(",")
+        kind = fields[0]
+        if kind in M4_FIELDS:
+            check_m4_line(path, number, fields)
+        if kind == "m4bench":
+            m4["mode"] = fields[1]
+        elif kind == "calibration":
+            m4["calibration"] = int(fields[1])
+        elif kind == "case":
+            (_, cid, default, prepare, grad_evals, table_bytes, plan_bytes, eval_instr, evaluations,
+             checksum, tick_instr, ticks, tick_max, tick_dac_sum, pipeline_prepare) = fields
+            m4["cases"][cid] = {
+                "prepare": int(prepare), "gradient_evaluations": int(grad_evals),
+                "table_bytes": int(table_bytes), "plan_bytes": int(plan_bytes),
+                "eval": int(eval_instr) / int(evaluations), "checksum": int(checksum),
+                "tick": int(tick_instr) / int(ticks) if int(ticks) > 0 else None,
+                "tick_max": int(tick_max) if int(ticks) > 0 else None,
+                "pipeline_prepare": int(pipeline_prepare) if int(pipeline_prepare) >= 0 else None,
+            }
+        elif kind == "tracker":
+            m4["trackers"][fields[1]] = {"mean": int(fields[2]) / int(fields[3]), "max": int(fields[4]),
+                                         "configure": int(fields[5]) if len(fields) > 5 else None,
+                                         "fade_noise": int(fields[6]) if len(fields) > 6 else None}
+        elif kind == "component":
+            m4["components"][fields[1]] = int(fields[2]) / int(fields[3])
+        elif kind == "stopwatch_overhead_milli":
+            m4["stopwatch"] = int(fields[1]) / 1000
+        elif kind == "error":
+            m4["errors"].append(",".join(fields[1:]))
+        elif kind == "done":
+            m4["done"] = int(fields[1])
     return m4
+
+
+def check_m4_line(path, number, fields):
+    """A line of a kind the report reads, cut short, too long or with a count that is no whole number (or 0 where
+    it divides), is refused with its line: a half-written or edited file, never figures made up from it."""
+    kind = fields[0]
+    names = M4_FIELDS[kind]
+    fewest, most = 1 + len([n for n in names if n not in M4_OPTIONAL_FIELDS]), 1 + len(names)
+    if not fewest <= len(fields) <= most:
+        wanted = "%d" % most if fewest == most else "%d to %d" % (fewest, most)
+        raise BadInput("%s:%d: a %s line of %d fields, ff-m4bench writes %s" % (
+            path, number, kind, len(fields), wanted))
+    for name, value in zip(names, fields[1:]):
+        if name in M4_TEXT_FIELDS:
+            continue
+        try:
+            count = int(value)
+        except ValueError:
+            raise BadInput("%s:%d: %s %s '%s' is not a whole number" % (path, number, kind, name, value)) from None
+        if name == M4_DIVISORS.get(kind) and count < 1:
+            raise BadInput("%s:%d: %s %s is %d: nothing was measured" % (path, number, kind, name, count))
+
+
+def check_m4_complete(m4, path):
+    """ff-m4bench writes its calibration first and 'done' last."""
+    if m4["done"] is None:
+        raise BadInput("%s is incomplete (no done line): did the harness crash?" % path)
+    if m4["calibration"] is None:
+        raise BadInput("%s is incomplete (no calibration line)" % path)
+
+
+def check_m4_measured_every_closed_form(m4, path, host_cases, host_cases_path):
+    """ff-m4bench measures every closed form, a smoke run too: the rows the M4 goals are worked out from. One that
+    ff-bench measured and the harness did not is a line lost, or a harness of another build."""
+    missing = [h["id"] for h in host_cases if h["strategy"] == "closed-form" and h["id"] not in m4["cases"]]
+    if missing:
+        raise BadInput("%s is incomplete (no case line for %s, which %s has)" % (
+            path, ", ".join(missing), host_cases_path))
 
 
 # Singular spots of the built-in fields, to say where an error sits.
@@ -429,11 +504,35 @@ CYCLE_GOAL_PERCENT = 2.0  # of the 90,000-cycle budget, at a scene's worst model
 PREPARE_GOAL_MS = 2.0
 
 
-def read_plain_csv(path):
+def read_plain_csv(path, columns=(), whole_numbers=(), numbers=()):
+    """The rows after a CSV's '#' metadata lines, as dicts (None without a path). Refused with the file (and
+    line): a column the report reads missing, a row with more or fewer fields than the header, a count that is
+    no whole number or a figure the report adds up that is no number."""
     if not path:
         return None
-    with open(path) as f:
-        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+    numbered = [(number, line) for number, line in enumerate(text_lines(path), start=1) if not line.startswith("#")]
+    records = csv.reader(line for _, line in numbered)
+    header = next(records, [])
+    missing = [c for c in columns if c not in header]
+    if missing:
+        raise BadInput("%s: no column %s" % (path, ", ".join(missing)))
+    rows = []
+    for (number, _), fields in zip(numbered[1:], records):  # a row per line: none of these CSVs quotes a newline
+        if not fields:
+            continue  # a blank line
+        if len(fields) != len(header):
+            raise BadInput("%s:%d: %d fields, the header names %d" % (path, number, len(fields), len(header)))
+        row = dict(zip(header, fields))
+        for column in whole_numbers:
+            try:
+                int(row[column])
+            except ValueError:
+                raise BadInput("%s:%d: %s '%s' is not a whole number" % (path, number, column, row[column])) from None
+        for column in numbers:
+            if fnum(row[column]) is None:
+                raise BadInput("%s:%d: %s '%s' is not a number" % (path, number, column, row[column]))
+        rows.append(row)
+    return rows
 
 
 def pct_range(lo, hi):
@@ -531,8 +630,8 @@ def cycle_goal_rows(cycles):
 
 
 def report(rows, m4, host_trackers, args):
-    cycles = read_plain_csv(args.cycles)
-    accuracy = read_plain_csv(args.m4_accuracy)
+    cycles = read_plain_csv(args.cycles, CYCLE_COLUMNS, ("isr_best", "isr_worst"), CYCLE_NUMBERS)
+    accuracy = read_plain_csv(args.m4_accuracy, ACCURACY_COLUMNS)
     have_m4 = m4 is not None and bool(m4["cases"])
     by_id = {r["id"]: r for r in rows}
     defaults = [r for r in rows if r["default"] == "1" and r["builtin"] == "1"]
@@ -782,7 +881,8 @@ def main():
     args = parse_args()
     try:
         write_report(args)
-    except (OSError, ff_files.OutputIsInput) as e:  # an input that cannot be read, an output that cannot be written: docs/tools.md, exit 2
+    except (OSError, ff_files.OutputIsInput, BadInput) as e:
+        # an input that cannot be read or is malformed, an output that cannot be written: docs/tools.md, exit 2
         print("make_report: %s" % ff_files.error_text(e), file=sys.stderr)
         sys.exit(2)
 
@@ -795,10 +895,10 @@ def write_report(args):
     host_cases, host_trackers = read_host(args.host)
     m4 = read_m4(args.m4)
     if m4 is not None:
-        if m4["done"] is None:
-            sys.exit("make_report: %s is incomplete (no done line): did the harness crash?" % args.m4)
-        if m4["errors"]:
+        check_m4_complete(m4, args.m4)
+        if m4["errors"]:  # whole, but a case failed on the M4: a check that failed, exit 1
             sys.exit("make_report: the harness reported errors: " + "; ".join(m4["errors"]))
+        check_m4_measured_every_closed_form(m4, args.m4, host_cases, os.path.join(args.host, "host_cases.csv"))
     rows = merge(host_cases, m4)
     text = report(rows, m4, host_trackers, args)  # before any file is written: the three stay consistent
     inputs = ", ".join("%s %s" % (flag, value) for flag, value in

@@ -609,7 +609,7 @@ def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
                         args.csv, "--png", args.png], capture_output=True, text=True, env=env, cwd=str(tmp_path))
-    assert (r.returncode, r.stdout) == (1, "")
+    assert (r.returncode, r.stdout) == (2, "")  # docs/tools.md: an incomplete input is bad input
     assert r.stderr == f"make_report: {args.m4} is incomplete (no done line): did the harness crash?\n"
     (tmp_path / "whole").mkdir()
     write_run(tmp_path / "whole")
@@ -620,18 +620,105 @@ def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_
     assert r.returncode == 0 and r.stdout.startswith(f"make_report: wrote {args.md}"), r.stderr
 
 
-@pytest.mark.parametrize("done, errors, says", [
-    (False, (), "is incomplete (no done line): did the harness crash?"),
-    (True, ("prepare,heightmap-top", "tick,vortex"), "the harness reported errors: prepare,heightmap-top; tick,vortex"),
+@pytest.mark.parametrize("done, errors, status, says", [
+    # killed midway: an incomplete input, bad input (docs/tools.md)
+    (False, (), 2, "is incomplete (no done line): did the harness crash?"),
+    # whole, but cases failed on the M4: the tool ran and a check failed
+    (True, ("prepare,heightmap-top", "tick,vortex"), 1,
+     "the harness reported errors: prepare,heightmap-top; tick,vortex"),
 ])
-def test_a_harness_run_that_crashed_or_failed_writes_nothing(tmp_path, monkeypatch, done, errors, says):
+def test_a_harness_run_that_crashed_or_failed_writes_nothing(tmp_path, done, errors, status, says):
     write_run(tmp_path, m4_done=done, m4_errors=errors)
     args = args_for(tmp_path)
-    monkeypatch.setattr(sys, "argv", ["make_report.py", "--host", args.host, "--m4", args.m4, "--md", args.md,
-                                      "--csv", args.csv, "--png", args.png])
-    with pytest.raises(SystemExit) as stop:
-        make_report.main()
-    assert says in str(stop.value.code) and not os.path.exists(tmp_path / "out")
+    make_output_folders(args)
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png], capture_output=True, text=True)
+    assert (r.returncode, r.stdout) == (status, "")
+    assert says in r.stderr and len(r.stderr.splitlines()) == 1, r.stderr
+    assert os.listdir(tmp_path / "out") == ["img"] and os.listdir(tmp_path / "out" / "img") == []
+
+
+def cut(path, lines, fields=None):
+    """The file cut short after its first `lines` lines, and `fields` fields into the next one if given."""
+    kept = path.read_text().splitlines(keepends=True)
+    path.write_text("".join(kept[:lines]) + (",".join(kept[lines].split(",")[:fields]) if fields else ""))
+
+
+def drop_lines(path, *containing):
+    path.write_text("".join(line for line in path.read_text().splitlines(keepends=True)
+                            if not any(text in line for text in containing)))
+
+
+def rewrite_line(path, number, change):
+    """The file with its line `number` (from 1) replaced by change(line)."""
+    lines = path.read_text().splitlines(keepends=True)
+    lines[number - 1] = change(lines[number - 1])
+    path.write_text("".join(lines))
+
+
+def first_fields(line, fields):
+    return ",".join(line.split(",")[:fields]) + "\n"
+
+
+# m4bench.txt as write_run makes it: line 1 m4bench, 2 calibration, 3-13 the 11 cases in M4's order (3 neutral),
+# 14-15 the trackers, then the stopwatch, the components and done. host_cases.csv: two '#' lines, the header
+# (25 columns), then the rows in HOST's order (4 neutral, 5 heightmap-top/closed-form). cycles.csv: a '#' line,
+# the header, then neutral (3), heightmap-top (4), bump-map (5).
+@pytest.mark.parametrize("edit, says", [
+    # the harness's output cut in a line or at a line's end (killed, a full disk), or edited
+    (lambda f: cut(f / "m4bench.txt", 3, fields=9), "{m4}:4: a case line of 9 fields, ff-m4bench writes 15"),
+    (lambda f: cut(f / "m4bench.txt", 4), "{m4} is incomplete (no done line): did the harness crash?"),
+    (lambda f: cut(f / "m4bench.txt", 0), "{m4} is incomplete (no done line): did the harness crash?"),
+    (lambda f: drop_lines(f / "m4bench.txt", "calibration,"), "{m4} is incomplete (no calibration line)"),
+    (lambda f: drop_lines(f / "m4bench.txt", ",neutral/closed-form,", ",bump-map/closed-form,"),
+     "{m4} is incomplete (no case line for neutral/closed-form, bump-map/closed-form, which {host_cases} has)"),
+    (lambda f: rewrite_line(f / "m4bench.txt", 14, lambda line: first_fields(line, 4)),
+     "{m4}:14: a tracker line of 4 fields, ff-m4bench writes 5 to 7"),
+    (lambda f: rewrite_line(f / "m4bench.txt", 2, lambda line: "calibration,forty\n"),
+     "{m4}:2: calibration instructions_per_count 'forty' is not a whole number"),
+    (lambda f: rewrite_line(f / "m4bench.txt", 3, lambda line: line.replace(",69632,2048,", ",69632,0,")),
+     "{m4}:3: case evaluations is 0: nothing was measured"),
+    # ff-bench's CSVs, the cycle model's and ff-m4accuracy's
+    (lambda f: rewrite_line(f / "host" / "host_cases.csv", 3, lambda line: line.replace(",max_lsb,", ",max,")),
+     "{host_cases}: no column max_lsb"),
+    (lambda f: rewrite_line(f / "host" / "host_cases.csv", 4, lambda line: first_fields(line, 10)),
+     "{host_cases}:4: 10 fields, the header names 25"),
+    (lambda f: rewrite_line(f / "host" / "host_cases.csv", 5, lambda line: line.replace(",1,5000,", ",yes,5000,")),
+     "{host_cases}:5: fits_teensy 'yes' is not a whole number"),
+    (lambda f: rewrite_line(f / "host" / "host_trackers.csv", 2, lambda line: "config,ns\n"),
+     "{host_trackers}: no column host_update_ns"),
+    (lambda f: rewrite_line(f / "cycles.csv", 4, lambda line: line.replace(",8142,", ",,")),
+     "{cycles}:4: cycles_worst_max '' is not a number"),
+    (lambda f: rewrite_line(f / "cycles.csv", 3, lambda line: line.replace(",105,327", ",105,327.5")),
+     "{cycles}:3: isr_worst '327.5' is not a whole number"),
+    (lambda f: rewrite_line(f / "m4accuracy.csv", 2, lambda line: line.replace(",codes_off", ",off")),
+     "{accuracy}: no column codes_off"),
+])
+def test_an_incomplete_or_malformed_input_is_one_line_exit_2_and_writes_nothing(tmp_path, edit, says):
+    write_run(tmp_path)
+    edit(tmp_path)
+    args = args_for(tmp_path)
+    make_output_folders(args)
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png, "--cycles", args.cycles, "--m4-accuracy", args.m4_accuracy],
+                       capture_output=True, text=True)
+    said = says.format(m4=args.m4, host_cases=os.path.join(args.host, "host_cases.csv"),
+                       host_trackers=os.path.join(args.host, "host_trackers.csv"), cycles=args.cycles,
+                       accuracy=args.m4_accuracy)
+    assert (r.returncode, r.stdout, r.stderr) == (2, "", f"make_report: {said}\n")
+    assert os.listdir(tmp_path / "out") == ["img"] and os.listdir(tmp_path / "out" / "img") == []
+
+
+@pytest.mark.parametrize("name", ["m4bench.txt", "host/host_cases.csv", "cycles.csv"])
+def test_an_input_that_is_not_utf8_text_is_one_line_exit_2(tmp_path, name):
+    write_run(tmp_path)
+    (tmp_path / name).write_bytes((tmp_path / name).read_bytes().replace(b"neutral", b"neutr\xe9l"))
+    args = args_for(tmp_path)
+    make_output_folders(args)
+    r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
+                        args.csv, "--png", args.png, "--cycles", args.cycles], capture_output=True, text=True)
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr.startswith(f"make_report: {tmp_path / name}: not UTF-8 text (") and len(r.stderr.splitlines()) == 1
 
 
 def test_an_output_in_a_missing_folder_is_one_line_and_exit_2(tmp_path):

@@ -43,7 +43,19 @@ def best_direction(binary, words, step):
     return max(spread, key=lambda d: (spread[d], -d))
 
 
+def scene_files(words):
+    """The files among the words ff-scene-render reads: --scene-file F or --scene-file=F."""
+    files = []
+    for i, word in enumerate(words):
+        if word == "--scene-file" and i + 1 < len(words):
+            files.append(words[i + 1])
+        elif word.startswith("--scene-file="):
+            files.append(word.split("=", 1)[1])
+    return files
+
+
 def render(args, words):
+    ff_files.refuse_overwriting_inputs([args.output], scene_files(words))
     binary = find_binary(args.bin)
     direction = args.direction
     meta, _ = sample(binary, words, 100.0, 0.0)  # cheap: the scene's metadata

@@ -56,11 +56,6 @@ def parse_plot_args(argv, doc, what, default_output):
     return parser.parse_args(argv)
 
 
-def refuse_overwrite(args):
-    if os.path.abspath(args.output) == os.path.abspath(args.csv):
-        raise InputError("-o %s would overwrite the input" % args.output)
-
-
 def save_figure(fig, output, software, metadata, title, dpi, top):
     """Title the figure with the CSV's traces and tool, lay it out under the title (up to `top` of the
     height), write the PNG with the CSV's metadata in it, and close the figure."""
@@ -198,13 +193,13 @@ def plot(metadata, rows, output):
 def main(argv=None):
     args = parse_plot_args(argv, __doc__, "ff-track-bench --classes --csv", "classes.png")
     try:
+        ff_files.refuse_overwriting_inputs([args.output], [args.csv])
         metadata, rows = read_classes(args.csv)
         status = goal_status(rows)
         if not status:
             raise InputError("%s: no %s rows" % (args.csv, SHIPPING))
-        refuse_overwrite(args)
         plot(metadata, rows, args.output)
-    except InputError as e:
+    except (InputError, ff_files.OutputIsInput) as e:
         print("plot_classes.py: %s" % e, file=sys.stderr)
         return 2
     names = ("lag", "heightmap", "frictionmap", "chatter")

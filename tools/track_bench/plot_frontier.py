@@ -17,6 +17,7 @@ Example:
 Exit codes: 0 ok, 2 bad usage or input (one line on stderr, never a traceback).
 """
 import math
+import os
 import sys
 
 import matplotlib
@@ -24,7 +25,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from plot_classes import InputError, number, parse_plot_args, read_csv, refuse_overwrite, save_figure  # noqa: E402
+from plot_classes import InputError, number, parse_plot_args, read_csv, save_figure  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ff_files  # noqa: E402
 
 REQUIRED = ("class", "rest_sigmas", "moving_sigmas", "heightmap_vs_thesis", "rest_rms", "pareto", "shipping",
             "heightmap_goal", "rest_goal")
@@ -111,11 +115,11 @@ def plot(metadata, classes, output):
 def main(argv=None):
     args = parse_plot_args(argv, __doc__, "ff-track-bench --frontier --csv", "frontier.png")
     try:
+        ff_files.refuse_overwriting_inputs([args.output], [args.csv])
         metadata, classes = read_frontier(args.csv)
         check_pareto_column(args.csv, classes)
-        refuse_overwrite(args)
         plot(metadata, classes, args.output)
-    except InputError as e:
+    except (InputError, ff_files.OutputIsInput) as e:
         print("plot_frontier.py: %s" % e, file=sys.stderr)
         return 2
     print("%-18s %-34s %s" % ("class", "best heightmap at the chatter goal", "both goals"))

@@ -34,3 +34,22 @@ def assert_refused(main, csv_path, out_path, capsys, message):
     assert message in err
     assert err.count("\n") == 1
     assert not os.path.exists(out_path)
+
+
+def assert_never_writes_over_its_csv(main, tool, csv_path, capsys, monkeypatch):
+    """An output that is the CSV under any name (docs/tools.md: another relative path, a symbolic or a hard link,
+    a linked folder) is refused with ff_files' one line and exit 2, before anything is written."""
+    folder, name = os.path.split(str(csv_path))
+    os.symlink(name, os.path.join(folder, "soft.png"))
+    os.link(csv_path, os.path.join(folder, "hard.png"))
+    os.symlink(".", os.path.join(folder, "linked"))
+    with open(csv_path, "rb") as f:
+        before = f.read()
+    monkeypatch.chdir(folder)
+    for output in (str(csv_path), "./" + name, "soft.png", "hard.png", os.path.join("linked", name)):
+        assert main([str(csv_path), "-o", output]) == 2, output
+        assert capsys.readouterr().err == ("%s: output %s is the input %s: a tool never writes over its own input\n"
+                                           % (tool, output, csv_path))
+    with open(csv_path, "rb") as f:
+        assert f.read() == before
+    assert os.path.islink("soft.png") and sorted(os.listdir(folder)) == sorted([name, "hard.png", "linked", "soft.png"])

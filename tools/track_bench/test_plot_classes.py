@@ -80,11 +80,12 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, content, message):
     plot_test_support.assert_refused(plot_classes.main, path, tmp_path / "x.png", capsys, message)
 
 
-def test_missing_file_and_overwriting_the_input_exit_2(tmp_path, capsys):
+def test_a_missing_file_exits_2(tmp_path, capsys):
     assert plot_classes.main([str(tmp_path / "none.csv")]) == 2
     assert "cannot read" in capsys.readouterr().err
+
+
+def test_an_output_that_is_the_csv_under_any_name_is_refused(tmp_path, capsys, monkeypatch):
     path = tmp_path / "classes.csv"
     write_csv(path, ROWS)
-    assert plot_classes.main([str(path), "-o", str(path)]) == 2
-    assert "overwrite the input" in capsys.readouterr().err
-    assert path.read_text().startswith("# tool")
+    plot_test_support.assert_never_writes_over_its_csv(plot_classes.main, "plot_classes.py", path, capsys, monkeypatch)

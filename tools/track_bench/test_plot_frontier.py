@@ -65,12 +65,15 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, rows, message):
     plot_test_support.assert_refused(plot_frontier.main, path, tmp_path / "x.png", capsys, message)
 
 
-def test_a_classes_csv_and_overwriting_the_input_exit_2(tmp_path, capsys):
+def test_a_classes_csv_exits_2(tmp_path, capsys):
     path = tmp_path / "classes.csv"
     path.write_text("class,tracker,lag_ms\nwhite-200hz,thesis,6.7\n")
     assert plot_frontier.main([str(path)]) == 2
     assert "not the CSV of ff-track-bench --frontier" in capsys.readouterr().err
+
+
+def test_an_output_that_is_the_csv_under_any_name_is_refused(tmp_path, capsys, monkeypatch):
     path = tmp_path / "frontier.csv"
     write_csv(path, ROWS)
-    assert plot_frontier.main([str(path), "-o", str(path)]) == 2
-    assert "overwrite the input" in capsys.readouterr().err
+    plot_test_support.assert_never_writes_over_its_csv(plot_frontier.main, "plot_frontier.py", path, capsys,
+                                                       monkeypatch)

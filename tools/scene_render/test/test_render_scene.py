@@ -75,3 +75,22 @@ def test_bad_scene_words_are_one_line_exit_2(tmp_path, run_tool, ff_scene_render
         res = run_tool(SCRIPT, *words, "-o", tmp_path / "x.png", "--bin", ff_scene_render)
         assert res.returncode == 2, words
         assert "Traceback" not in res.stderr and len(res.stderr.strip().splitlines()) == 1, res.stderr
+
+
+def test_an_output_that_is_the_scene_file_under_any_name_is_refused(tmp_path, run_tool, ff_scene_render):
+    # docs/tools.md: a tool never writes over its own input, whatever its name
+    scene = tmp_path / "mine.txt"
+    scene.write_text("rendering constant\nconstant 0.3\n")
+    os.symlink("mine.txt", tmp_path / "soft.png")
+    os.link(scene, tmp_path / "hard.png")
+    os.symlink(".", tmp_path / "linked")
+    for words, output in ((["--scene-file", scene], scene), (["--scene-file", scene], "./mine.txt"),
+                          ([f"--scene-file={scene}"], scene), (["--scene-file", scene], "soft.png"),
+                          (["--scene-file", scene], "hard.png"), (["--scene-file", scene], "linked/mine.txt")):
+        res = run_tool(SCRIPT, *words, "-o", output, "--bin", ff_scene_render, cwd=tmp_path)
+        assert (res.returncode, res.stdout) == (2, ""), output
+        assert res.stderr == (f"render_scene: output {output} is the input {scene}: "
+                              "a tool never writes over its own input\n")
+    assert scene.read_text() == "rendering constant\nconstant 0.3\n"
+    assert os.path.islink(tmp_path / "soft.png")
+    assert sorted(os.listdir(tmp_path)) == ["hard.png", "linked", "mine.txt", "soft.png"]
