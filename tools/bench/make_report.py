@@ -898,6 +898,8 @@ def write_report(args):
         check_m4_complete(m4, args.m4)
         if m4["errors"]:  # whole, but a case failed on the M4: a check that failed, exit 1
             sys.exit("make_report: the harness reported errors: " + "; ".join(m4["errors"]))
+        if m4["done"] > 0:  # its own checks on the outputs (tools/m4bench/main.cpp g_failures)
+            sys.exit("make_report: the harness counted %d failed checks (its done line)" % m4["done"])
         check_m4_measured_every_closed_form(m4, args.m4, host_cases, os.path.join(args.host, "host_cases.csv"))
     rows = merge(host_cases, m4)
     text = report(rows, m4, host_trackers, args)  # before any file is written: the three stay consistent

@@ -85,7 +85,7 @@ CYCLES = [
 ]
 
 
-def write_run(folder, m4_done=True, m4_errors=(), grid_step=1):
+def write_run(folder, m4_done=True, m4_errors=(), grid_step=1, m4_failures=0):
     host = folder / "host"
     host.mkdir()
     lines = ["# tool: ff-bench (a test)", f"# run: full, error grid every {grid_step:g} px, not timed, 2 threads",
@@ -109,7 +109,7 @@ def write_run(folder, m4_done=True, m4_errors=(), grid_step=1):
             (per_tick or 0) * ticks, ticks, tick_max, 0, prepare + 500 if ticks else -1)))
     m4_text = "\n".join(m4) + "\n" + M4_TRAILER + "".join(f"error,{e}\n" for e in m4_errors)
     if m4_done:
-        m4_text += "done,0\n"
+        m4_text += "done,%d\n" % m4_failures
     (folder / "m4bench.txt").write_text(m4_text)
     (folder / "cycles.csv").write_text("# ff-cyclemodel (a test)\n" + CYCLES_HEADER + "\n" + "\n".join(CYCLES) + "\n")
     (folder / "m4accuracy.csv").write_text("# tool: ff-m4accuracy\nscene,points,raw_max_lsb,scaled_max_lsb,"
@@ -620,15 +620,17 @@ def test_run_as_a_script_it_finds_its_modules_and_says_a_crashed_harness_in_one_
     assert r.returncode == 0 and r.stdout.startswith(f"make_report: wrote {args.md}"), r.stderr
 
 
-@pytest.mark.parametrize("done, errors, status, says", [
+@pytest.mark.parametrize("done, errors, failures, status, says", [
     # killed midway: an incomplete input, bad input (docs/tools.md)
-    (False, (), 2, "is incomplete (no done line): did the harness crash?"),
+    (False, (), 0, 2, "is incomplete (no done line): did the harness crash?"),
     # whole, but cases failed on the M4: the tool ran and a check failed
-    (True, ("prepare,heightmap-top", "tick,vortex"), 1,
+    (True, ("prepare,heightmap-top", "tick,vortex"), 0, 1,
      "the harness reported errors: prepare,heightmap-top; tick,vortex"),
+    # whole, but its own checks (a DAC code out of range, a finger lost) failed 3 times
+    (True, (), 3, 1, "the harness counted 3 failed checks (its done line)"),
 ])
-def test_a_harness_run_that_crashed_or_failed_writes_nothing(tmp_path, done, errors, status, says):
-    write_run(tmp_path, m4_done=done, m4_errors=errors)
+def test_a_harness_run_that_crashed_or_failed_writes_nothing(tmp_path, done, errors, failures, status, says):
+    write_run(tmp_path, m4_done=done, m4_errors=errors, m4_failures=failures)
     args = args_for(tmp_path)
     make_output_folders(args)
     r = subprocess.run([sys.executable, TOOL, "--host", args.host, "--m4", args.m4, "--md", args.md, "--csv",
