@@ -162,6 +162,35 @@ TEST(SensorCalibration, SensorFaultsAreSkippedLikeTheTraceReaderDoes) {
   expect_white_only(calibrate(o), 1.0);
 }
 
+// A report from a second finger or a glitch (>= 150 px away) read as 19 px
+// of correlated noise with three of them in 10 s. They are left out of the
+// noise, counted (the generator's own labels say how many), and their stamps
+// still count for the timing; the duplicates and the off-screen rows the
+// trace reader would skip are counted too.
+TEST(SensorCalibration, GlitchesAreLeftOutOfTheNoiseAndEverySkipIsCounted) {
+  TraceOptions o = resting(10.0);
+  o.faults.jumps = 3;
+  o.faults.off_screen = 2;
+  o.faults.duplicates = 3;  // an exact copy, one at the same time, one earlier: the last two not after
+  const tracegen::GeneratedTrace trace = tracegen::generate_trace(o);
+  const int jumps = trace.events[static_cast<int>(tracegen::SampleEvent::Jump)];
+  ASSERT_GE(jumps, 3);
+  const Calibration c = calibrate(o);
+  EXPECT_EQ(c.glitches, static_cast<size_t>(jumps));
+  EXPECT_GT(c.glitch_threshold_px, 20.0);
+  EXPECT_LT(c.glitch_threshold_px, 150.0);
+  EXPECT_EQ(c.off_screen, 2u);
+  EXPECT_EQ(c.not_after, 3u);
+  expect_white_only(c, 1.0);
+  expect_within(c.profile.jitter_us, 150.0 * kSqrt2, 0.10, "jitter");
+  // Without glitches none is found: the threshold leaves a resting finger's
+  // wander and its noise alone, also a drift's.
+  TraceOptions drifting = resting(10.0);
+  drifting.sensor.drift_px = 3.0;
+  drifting.sensor.noise_px = 2.5;
+  EXPECT_EQ(calibrate(drifting).glitches, 0u);
+}
+
 TEST(SensorCalibration, RestsAtSeveralPlacesAreRunsOfTheirOwn) {
   // Two rests 200 px apart with a lift between: each run loses its own mean.
   std::vector<host::TraceRow> rows = rows_of(resting(5.0, 1));
@@ -207,6 +236,12 @@ TEST(SensorCalibration, RefusesTooShortAMovingFingerAndNothing) {
   noisy.sensor.noise_px = 60.0;  // beyond SensorProfileLimits::kMaxNoisePx; at 1 kHz its 1 s mean still rests
   noisy.sensor.rate_hz = 1000.0;
   EXPECT_NE(refusal(rows_of(noisy)).find("outside the profile's limits"), std::string::npos);
+}
+
+TEST(SensorCalibration, ReportsThatNeverVaryAreRefusedForWhatTheyAre) {
+  std::vector<host::TraceRow> rows;
+  for (uint64_t i = 0; i < 2000; ++i) rows.push_back({1'000'000 + 5000 * i, 400.0f, 240.0f, true});
+  EXPECT_EQ(refusal(rows).rfind("the reports do not vary at all (0 px of noise)", 0), 0u) << refusal(rows);
 }
 
 TEST(SensorCalibration, RefusalsSayWhatWasLeftOut) {

@@ -455,6 +455,19 @@ void print_calibration(std::ostream& out, const std::string& path, const Calibra
                 path.c_str(), c.reports, c.runs, c.duration_s, c.dropped_intervals, c.intervals + c.dropped_intervals,
                 2.0 - o.max_interval_factor, o.max_interval_factor, c.median_interval_us);
   out << line;
+  if (c.off_screen + c.not_after > 0) {
+    std::snprintf(line, sizeof line,
+                  "Left out: %zu touch row(s) off the screen or not finite, %zu stamped at or before the one before.\n\n",
+                  c.off_screen, c.not_after);
+    out << line;
+  }
+  if (c.glitches > 0) {
+    std::snprintf(line, sizeof line,
+                  "Left out of the noise: %zu report(s) more than %.0f px from where the finger rests (a glitch or "
+                  "a second finger); their stamps count for the timing.\n\n",
+                  c.glitches, c.glitch_threshold_px);
+    out << line;
+  }
   out << "| quantity | estimate | unit | how |\n|---|--:|---|---|\n";
   auto row = [&](const char* what, double value, int decimals, const char* unit, const std::string& how) {
     std::snprintf(line, sizeof line, "| %s | %.*f | %s | %s |\n", what, decimals, value, unit, how.c_str());

@@ -34,6 +34,32 @@ std::vector<double> moving_mean(const std::vector<double>& t, const std::vector<
   return out;
 }
 
+// Leaves out of `run` the reports far from where the finger rests (a
+// glitch, a second finger: hundreds of px away), which would read as a noise
+// of many px: further on either axis from the run's median than the wander a
+// resting finger may have plus 10 robust sigmas of its reports. Returns how
+// many; `threshold_px` is the largest distance kept.
+size_t drop_glitches(ReportRun& run, double max_range_px, double& threshold_px) {
+  const double mx = median_of(run.x), my = median_of(run.y);
+  std::vector<double> deviations;
+  for (size_t i = 0; i < run.t.size(); ++i) {
+    deviations.push_back(std::fabs(run.x[i] - mx));
+    deviations.push_back(std::fabs(run.y[i] - my));
+  }
+  const double sigma = 1.4826 * median_of(deviations);  // MAD of a normal distribution
+  threshold_px = max_range_px + 10.0 * sigma;
+  ReportRun kept;
+  for (size_t i = 0; i < run.t.size(); ++i) {
+    if (std::fabs(run.x[i] - mx) > threshold_px || std::fabs(run.y[i] - my) > threshold_px) continue;
+    kept.t.push_back(run.t[i]);
+    kept.x.push_back(run.x[i]);
+    kept.y.push_back(run.y[i]);
+  }
+  const size_t dropped = run.t.size() - kept.t.size();
+  run = std::move(kept);
+  return dropped;
+}
+
 // One run, detrended: the residual of each axis and the range of its slow part.
 struct Residual {
   std::vector<double> t, x, y;
@@ -204,6 +230,8 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
     for (size_t i = 1; i < r.t.size(); ++i) intervals_us.push_back(std::round((r.t[i] - r.t[i - 1]) * 1e6));
   }
   cal.runs = runs.size();
+  cal.off_screen = skipped.off_screen;
+  cal.not_after = skipped.not_after;
   char line[200];
   if (cal.reports < options.min_reports) {
     std::snprintf(line, sizeof line, "only %zu usable touch report%s (at least %zu needed: record a resting finger for ~10 s)",
@@ -265,9 +293,21 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   cal.profile.jitter_us =
       static_cast<float>(cal.intervals > 1 ? std::sqrt(sum2 / static_cast<double>(cal.intervals - 1)) : 0.0);
 
+  // The reports' stamps count for the timing above; the glitches' positions
+  // are left out of the noise below.
+  std::vector<ReportRun> resting = runs;
+  for (ReportRun& r : resting) {
+    double threshold_px = 0.0;
+    const size_t dropped = drop_glitches(r, options.max_range_px, threshold_px);
+    if (dropped > 0) cal.glitch_threshold_px = std::max(cal.glitch_threshold_px, threshold_px);
+    cal.glitches += dropped;
+  }
+  resting.erase(std::remove_if(resting.begin(), resting.end(), [](const ReportRun& r) { return r.t.empty(); }),
+                resting.end());
+
   // The residual of each run after its slow part.
   std::vector<Residual> residuals;
-  for (const ReportRun& r : runs) {
+  for (const ReportRun& r : resting) {
     Residual res{r.t, r.x, r.y};
     const std::vector<double> mx = moving_mean(r.t, r.x, options.detrend_window_s);
     const std::vector<double> my = moving_mean(r.t, r.y, options.detrend_window_s);
@@ -297,6 +337,11 @@ bool calibrate_from_rest(const std::vector<host::TraceRow>& rows, const Calibrat
   const auto bins = static_cast<size_t>(std::max(2.0, std::floor(options.max_lag_s / median_interval)));
   const LagBins lb = autocovariance(residuals, median_interval, bins);
   const double c0 = lb.zero_sum / lb.zero_count;
+  if (!(c0 > 0.0)) {
+    error = "the reports do not vary at all (0 px of noise): a sensor that repeats one position, or a file not "
+            "recorded from a finger; a profile needs noise above 0 (record a finger resting on the real sensor)";
+    return false;
+  }
   std::vector<double> lag, value;
   for (size_t k = 1; k <= bins; ++k) {
     if (lb.pairs[k] == 0.0) continue;

@@ -52,6 +52,10 @@ struct Calibration {
   SensorProfile profile;            // latency_us: as given (not measurable from a recording)
   size_t reports = 0;               // usable touch reports
   size_t runs = 0;                  // pieces between lifts and gaps
+  size_t off_screen = 0;            // touch rows left out: not finite or off the screen
+  size_t not_after = 0;             // ... stamped at or before the report before
+  size_t glitches = 0;              // reports far from the resting finger: out of the noise, not the timing
+  double glitch_threshold_px = 0.0; // how far from the run's median counts as far (0: none found)
   double duration_s = 0.0;          // summed over the runs
   size_t intervals = 0;             // used for rate and jitter
   size_t dropped_intervals = 0;     // outside 0.5-1.5 x the median (max_interval_factor)

@@ -136,6 +136,24 @@ class Calibrate(unittest.TestCase):
             self.assertEqual(sum(line.startswith("| " + tracker + " |") for line in out.splitlines()), 1, tracker)
         self.assertIn("1 judged against their x_true, y_true columns", out)
 
+    def test_what_was_left_out_is_said(self):
+        # Glitches, off-screen rows and repeated stamps are left out and said;
+        # how many glitches comes from the generator's event column.
+        faulty = os.path.join(self.tmp, "faulty.csv")
+        res = run(TRACEGEN, "--rest-only", "--duration", 10, "--jumps", 3, "--off-screen", 2, "--duplicates", 3,
+                  "--events", "-q", "-o", faulty)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        with open(faulty) as f:
+            events = [r["event"] for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+        out = run(BENCH, "--calibrate", faulty).stdout
+        self.assertIn("Left out: 2 touch row(s) off the screen or not finite, 3 stamped at or before the one "
+                      "before.", out)
+        self.assertIn("Left out of the noise: %d report(s) more than " % events.count("jump"), out)
+        line = next(l for l in out.splitlines() if l.strip().startswith("ffctl sensor-profile "))
+        self.assertEqual(parse_flags(line.strip()[len("ffctl sensor-profile "):])["--correlated-noise-px"], 0.0)
+        # A clean recording says neither.
+        self.assertNotIn("Left out", self.calibrate().stdout)
+
     def test_bad_input_exits_2_with_one_line(self):
         short = os.path.join(self.tmp, "short.csv")
         self.assertEqual(run(TRACEGEN, "--rest-only", "--duration", 0.5, "-q", "-o", short).returncode, 0)
