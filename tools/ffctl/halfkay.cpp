@@ -105,7 +105,15 @@ bool halfkay_flash(const std::vector<HalfKayWrite>& writes, const std::function<
            false;
   }
   libusb_set_auto_detach_kernel_driver(dev, 1);
+  // Unclaimed, every write would be refused for the whole of its 45 s budget.
   const int claimed = libusb_claim_interface(dev, 0);
+  if (claimed != 0) {
+    error = std::string("the Teensy bootloader is in use by another program (the Teensy Loader, a second ffctl?): "
+                        "close it and flash again (") + libusb_error_name(claimed) + ")";
+    libusb_close(dev);
+    libusb_exit(ctx);
+    return false;
+  }
   bool ok = true;
   for (size_t i = 0; i < writes.size() && ok; ++i) {
     const bool boot = i + 1 == writes.size();
@@ -121,7 +129,7 @@ bool halfkay_flash(const std::vector<HalfKayWrite>& writes, const std::function<
     }
     if (progress) progress(i + 1, writes.size());
   }
-  if (claimed == 0) libusb_release_interface(dev, 0);
+  libusb_release_interface(dev, 0);
   libusb_close(dev);
   libusb_exit(ctx);
   return ok;

@@ -448,6 +448,7 @@ int main(int argc, char** argv) {
         }
         std::fprintf(stderr, "asked the device to restart into its bootloader%s\n",
                      by_feature ? " (SEREMU feature report: the firmware did not answer)" : "");
+        if (flash_wait) wait_s = 0;  // a restart that does not come: the button, as --wait says
       } else if (!ff::ffctl::halfkay_present()) {
         if (!flash_wait) {
           return fail("no frictionfield device and no Teensy bootloader on USB: press the Teensy's button, or "

@@ -266,6 +266,17 @@ TEST(FfctlUsb, FlashWithoutABoardWaitsOnlyWhenAsked) {
   EXPECT_LE(count_of(bus.events(), "enumerate"), 60u);
 }
 
+// --wait after a restart: a bootloader slower than the 10 s a flash otherwise
+// allows (a hub, a firmware that restarts late) is still waited for.
+TEST(FfctlUsb, FlashWaitAlsoWaitsAfterARestart) {
+  const TestImage image = test_image("usb_flash_wait_restart");
+  Bus bus("flash_wait_restart", {{"device", "firmware"}, {"restart_ms", "10500"}, {"erase_ms", "10"}});
+  const UsbRun r = bus.ffctl("flash --wait " + image.hex_path);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "asked the device to restart into its bootloader\n")) << r.err;
+  EXPECT_TRUE(support::file_contents(bus.folder + "/flash.bin") == image.flash);
+}
+
 TEST(FfctlUsb, FlashFailuresSayWhatToDo) {
   const TestImage image = test_image("usb_flash_fail");
   Bus denied("flash_denied", {{"device", "bootloader"}, {"access", "denied"}});
@@ -273,6 +284,16 @@ TEST(FfctlUsb, FlashFailuresSayWhatToDo) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_TRUE(has(r.err, "found the Teensy bootloader (16c0:0478) but may not open it: install the udev rule"))
       << r.err;
+  // Another program holds the bootloader: said at once, not after 45 s of refused writes.
+  Bus busy("flash_busy", {{"device", "bootloader"}, {"claimed_by_another", "yes"}});
+  const auto busy_t0 = std::chrono::steady_clock::now();
+  r = busy.ffctl("flash " + image.hex_path);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "the Teensy bootloader is in use by another program (the Teensy Loader, a second "
+                         "ffctl?): close it and flash again (LIBUSB_ERROR_BUSY)"))
+      << r.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - busy_t0, std::chrono::seconds(5));
+  EXPECT_EQ(halfkay_requests(busy.events()), std::vector<std::string>{});
   // The cable comes out after two blocks: the third one's address is named.
   Bus unplugged("flash_unplugged", {{"device", "bootloader"}, {"unplug_after_writes", "2"}, {"erase_ms", "10"}});
   r = unplugged.ffctl("flash " + image.hex_path);

@@ -152,9 +152,10 @@ int LIBUSB_CALL libusb_set_auto_detach_kernel_driver(libusb_device_handle* handl
   return LIBUSB_SUCCESS;
 }
 // Linux binds usbhid to HalfKay's interface 0: only a handle that detaches it may claim it.
+// Another program that claimed it (the Teensy Loader, a second ffctl) keeps it from everyone else.
 int LIBUSB_CALL libusb_claim_interface(libusb_device_handle* handle, int interface_number) {
   if (interface_number != 0) return LIBUSB_ERROR_NOT_FOUND;
-  if (!handle->auto_detach) return LIBUSB_ERROR_BUSY;
+  if (!handle->auto_detach || UsbBus::load().get("claimed_by_another", "no") == "yes") return LIBUSB_ERROR_BUSY;
   handle->claimed = true;
   return LIBUSB_SUCCESS;
 }
@@ -169,7 +170,8 @@ int LIBUSB_CALL libusb_control_transfer(libusb_device_handle* handle, uint8_t re
   UsbBus bus = UsbBus::load();
   if (bus.device_now() != "bootloader") return LIBUSB_ERROR_NO_DEVICE;
   // usbfs claims the interface of a class request itself, which fails while usbhid holds it.
-  if (!handle->claimed && !handle->auto_detach) return LIBUSB_ERROR_BUSY;
+  if (!handle->claimed && (!handle->auto_detach || bus.get("claimed_by_another", "no") == "yes"))
+    return LIBUSB_ERROR_BUSY;
   const long writes = bus.get_long("writes", 0), unplug_after = bus.get_long("unplug_after_writes", 0);
   if (unplug_after > 0 && writes >= unplug_after) {
     bus.plug("absent", 0);
