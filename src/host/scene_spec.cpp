@@ -149,6 +149,17 @@ std::string scene_words(const SceneSpec& spec) {
   return w;
 }
 
+namespace {
+// What the core refuses as an invalid parameter in a height table (a vortex
+// that weighs something), to say why.
+bool vortex_in_a_height_table(const SceneDefinition& scene) {
+  if (scene.evaluation != Evaluation::Table || scene.table.source != TableSource::HeightCentralDifferences) return false;
+  for (uint8_t i = 0; i < scene.element_count; ++i)
+    if (scene.elements[i].kind == ElementKind::Vortex && scene.elements[i].weight != 0.0f) return true;
+  return false;
+}
+}  // namespace
+
 bool make_condition(const SceneSpec& spec, Condition& out, std::string& error) {
   const std::string s = resolved_scene(spec);
   if (!spec.scene_file.empty() && s != "file") {
@@ -208,13 +219,17 @@ bool make_condition(const SceneSpec& spec, Condition& out, std::string& error) {
   c.amplitude.idle_amplitude = spec.idle_amplitude;
   if (spec.inverted_dac) c.amplitude.calibration = DacCalibration::inverted();
   // What the core's preparation refuses (a table too large for its slot, a
-  // vortex in a height table, a field past float) the device would refuse
-  // too, after it was touched: prepared here as the device does, one slot.
+  // field past float) the device would refuse too, after it was touched:
+  // prepared here as the device does, one slot.
   auto plan = std::make_unique<ScenePlan>();
   std::vector<unsigned char> table(kTableSlotBytes);
   const PrepareStatus status = plan->prepare(c.scene, table.data(), table.size());
   if (status != PrepareStatus::Ok) {
     error = std::string("cannot prepare the scene: ") + to_string(status);
+    if (status == PrepareStatus::InvalidParameter && vortex_in_a_height_table(c.scene)) {
+      error = "cannot prepare the scene: a vortex has no height to tabulate (no potential makes its swirl): "
+              "use table source gradient, or closed evaluation";
+    }
     return false;
   }
   out = c;

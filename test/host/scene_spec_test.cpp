@@ -147,7 +147,9 @@ TEST(SceneSpec, WhatTheCorePreparationRefusesIsRefusedWithItsReason) {
   const std::string vortex = scene_file("evaluation table 8 float height\nelement vortex centre 400 240\n");
   const std::string saddles = support::scratch_path("scene_spec_two_saddles_at_3e38.txt");
   std::ofstream(saddles) << "element saddle centre 3e38 0\nelement saddle centre 3e38 0\n";
-  const std::string invalid = "cannot prepare the scene: invalid parameter (NaN, infinite or out of range)";
+  const std::string invalid =
+      "cannot prepare the scene: a vortex has no height to tabulate (no potential makes its swirl): use table "
+      "source gradient, or closed evaluation";
   const struct { std::vector<std::string> words; std::string error; } cases[] = {
       {{"--scene-file", vortex}, invalid},
       {{"--scene", "vortex", "--evaluation", "table", "--table-source", "height"}, invalid},
