@@ -478,7 +478,15 @@ void print_calibration(std::ostream& out, const std::string& path, const Calibra
   std::snprintf(how, sizeof how, "exponential term of the autocovariance fit%s",
                 p.correlated_noise_px > 0.0f ? "" : " (not significant: 0)");
   row("correlated noise, 1 sigma per axis", p.correlated_noise_px, 2, "px", how);
-  row("correlation time", p.correlation_time_ms, 1, "ms", "its time constant");
+  // A time constant at the longest tried: the wander is slower than the fit can tell (a drift).
+  std::snprintf(how, sizeof how, "its time constant");
+  if (p.correlated_noise_px > 0.0f && static_cast<double>(p.correlation_time_ms) >= 0.999 * o.max_tau_s * 1e3) {
+    std::snprintf(how, sizeof how,
+                  "its time constant, the longest the fit tries: a slower wander (a drift?) of which only what "
+                  "varies within %.0f ms is in the profile",
+                  o.max_tau_s * 1e3);
+  }
+  row("correlation time", p.correlation_time_ms, 1, "ms", how);
   if (c.tremor_hz > 0.0)
     std::snprintf(how, sizeof how, "cosine term at the spectral peak, %.2f Hz (%.0f x its neighbourhood)", c.tremor_hz,
                   c.tremor_peak_ratio);

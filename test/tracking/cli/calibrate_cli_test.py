@@ -154,6 +154,17 @@ class Calibrate(unittest.TestCase):
         # A clean recording says neither.
         self.assertNotIn("Left out", self.calibrate().stdout)
 
+    def test_a_drift_is_said_to_be_slower_than_the_fit_can_tell(self):
+        # A drift of tau 10 s, far beyond the 100 ms the fit tries: its time constant comes out at that
+        # limit, and the table says what that means. A plain rest says only "its time constant".
+        drift = os.path.join(self.tmp, "drift.csv")
+        res = run(TRACEGEN, "--rest-only", "--duration", 10, "--drift-px", 3, "--seed", 1, "-q", "-o", drift)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        out = run(BENCH, "--calibrate", drift).stdout
+        self.assertIn("| correlation time | 100.0 | ms | its time constant, the longest the fit tries: a slower "
+                      "wander (a drift?)", out)
+        self.assertNotIn("the longest the fit tries", self.calibrate().stdout)
+
     def test_bad_input_exits_2_with_one_line(self):
         short = os.path.join(self.tmp, "short.csv")
         self.assertEqual(run(TRACEGEN, "--rest-only", "--duration", 0.5, "-q", "-o", short).returncode, 0)
