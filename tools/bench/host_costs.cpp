@@ -125,7 +125,7 @@ HostCosts measure_host_costs(const std::vector<HostCase>& cases, const HostCostO
       Condition condition;
       condition.scene = def;
       if (pipeline->set_condition(condition) != PrepareStatus::Ok) {
-        state.SkipWithError("does not fit the pipeline's table slot");
+        state.SkipWithError("the pipeline refuses it (table slot or preparation budget)");
         return;
       }
       for (auto _ : state) {

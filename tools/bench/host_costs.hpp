@@ -23,7 +23,7 @@ struct HostCosts {
 
 struct HostCase {
   BenchCase bench_case;
-  bool fits_slot = true;  // its table fits FF_TABLE_SLOT_BYTES: the pipeline accepts it
+  bool fits_slot = true;  // the pipeline accepts it: its table fits the slot, its preparation the budget
 };
 
 // Registers and runs every benchmark for `cases`; prints Google Benchmark's

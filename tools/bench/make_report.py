@@ -667,7 +667,8 @@ def report(rows, m4, host_trackers, args):
       "instructions / 90,000, a lower bound, to be confirmed with the DWT cycle counter on the Teensy.")
     w("- **Whole tick**: `HapticPipeline::tick()` (static pipeline, two 96 KiB table slots, `recommended()` "
       "tracker) while a finger strokes along heightmap-top's path at 600 px/s with a ±30 px wave, reports "
-      "every 5 ms: mean over 2,000 ticks (`≈`: the table does not fit the slot, so the tick is estimated as "
+      "every 5 ms: mean over 2,000 ticks (`≈`: the Teensy refuses the table, too large for the slot or too "
+      "costly to prepare, so the tick is estimated as "
       "the closed-form tick minus its evaluation plus this strategy's evaluation).")
     w("- **Host**: Google Benchmark, ns per call on %s, a machine shared with other jobs: "
       "compare host numbers with each other only roughly." % host_cpu())
@@ -858,7 +859,8 @@ def report(rows, m4, host_trackers, args):
     # ------------------------------------------------------------ full table
     w("## Every strategy")
     w("")
-    w("`fits`: the table fits one 96 KiB slot (else the Teensy refuses it: `TableTooLarge`). "
+    w("`fits`: the Teensy accepts it: the table fits one 96 KiB slot (else `TableTooLarge`) and its preparation "
+      "is priced within the watchdog's budget (else `TooCostlyToPrepare`). "
       "`where`: the worst sample's place for errors ≥ 1 LSB. `M4 = host`: the M4 and the host give the "
       "same DAC codes on the 256 cost points (a difference means libm or rounding differences between "
       "newlib and glibc).")
