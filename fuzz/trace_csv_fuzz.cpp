@@ -1,7 +1,9 @@
 // libFuzzer target: the sensor trace reader (host/trace_csv) and, for every
-// trace it accepts, the 2 kHz pipeline replaying it (host/replay): whatever
-// the bytes, no crash, a located error for a rejected file, and every tick
-// finite, inside [0, 1] and [0, 4095], idle without a finger.
+// trace it accepts, the 2 kHz pipeline replaying it (host/replay, streamed
+// with ff-replay's clock-fault rules): whatever the bytes, no crash, a
+// located error for a rejected file, every tick finite, inside [0, 1] and
+// [0, 4095], idle without a finger, and every row delivered or counted as
+// left out after a clock fault.
 //
 // Build: clang++ -fsanitize=fuzzer,address,undefined with ff_host + ff_core.
 // Defining FF_FUZZ_NO_ENTRY leaves out LLVMFuzzerTestOneInput, so the
@@ -67,7 +69,14 @@ int trace_csv_one_input(const uint8_t* data, size_t size) {
   }
   condition.amplitude.strength = 0.66f;
   check(pipeline->set_condition(condition) == PrepareStatus::Ok, "a built-in scene was refused");
-  host::replay(rows, *pipeline, [](uint64_t, const TickOutput& t) {
+  // Streamed with ff-replay's clock-fault rules: every row is delivered or counted as left out.
+  size_t next = 0;
+  const host::RowSource source = [&](host::TraceRow& r) { return next < rows.size() ? (r = rows[next++], true) : false; };
+  host::ReplayOptions options;
+  options.extra_ticks = 600;
+  options.max_gap_us = 600'000'000;
+  options.max_step_back_us = host::kClockStepBackUs;
+  const host::ReplaySummary summary = host::replay(source, *pipeline, [](uint64_t, const TickOutput& t) {
     check(std::isfinite(t.amplitude), "amplitude not finite");
     check(t.dac <= kDacMax, "DAC code above 4095");
     check(is_finite(t.direction), "direction not finite");
@@ -77,7 +86,9 @@ int trace_csv_one_input(const uint8_t* data, size_t size) {
     } else {
       check(t.amplitude == 0.0f && t.dac == 0, "no finger but the plate is driven");
     }
-  }, 600);
+  }, options);
+  check(summary.samples + summary.rows_after_time_jump == rows.size(), "a row neither delivered nor left out");
+  check(summary.time_jump || summary.rows_after_time_jump == 0, "rows left out without a clock fault");
   return 0;
 }
 
