@@ -260,13 +260,16 @@ TEST(Replay, UpToEightStampsFarAheadInARowAreGlitchesNotAClockStep) {
 }
 
 TEST(Replay, OneRowFarBehindIsASampleTheTrackerDropsNotAClockStep) {
-  std::vector<TraceRow> rows;
-  for (uint64_t i = 0; i < 200; ++i) rows.push_back({1'000'000 + 5000 * i, 400, 240, true});
-  rows[100].t_us = 200'000;
-  const ReplaySummary s = replay_ending_at_a_step_back(rows);
-  EXPECT_FALSE(s.time_jump);
-  EXPECT_EQ(s.samples, 200u);
-  EXPECT_EQ(s.rejected_samples(), 1u);
+  // In the middle, and as the last row, with no row after it to make a step.
+  for (const size_t behind : {size_t{100}, size_t{199}}) {
+    std::vector<TraceRow> rows;
+    for (uint64_t i = 0; i < 200; ++i) rows.push_back({1'000'000 + 5000 * i, 400, 240, true});
+    rows[behind].t_us = 200'000;
+    const ReplaySummary s = replay_ending_at_a_step_back(rows);
+    EXPECT_FALSE(s.time_jump) << behind;
+    EXPECT_EQ(s.samples, 200u) << behind;
+    EXPECT_EQ(s.rejected_samples(), 1u) << behind;
+  }
 }
 
 TEST(Replay, ARowWithItsTakenTimeGoesToTheTickThatTookItWhateverItsStamp) {
