@@ -191,6 +191,24 @@ TEST(SensorCalibration, GlitchesAreLeftOutOfTheNoiseAndEverySkipIsCounted) {
   EXPECT_EQ(calibrate(drifting).glitches, 0u);
 }
 
+// A sensor far noisier along one axis: its reports are not glitches. (Pooled
+// over both axes, the robust sigma of a noiseless x and a y of 8 px sigma is
+// near 0, and the 2.5-sigma tail of y, ~1 % of the reports, was left out.)
+TEST(SensorCalibration, ANoisierAxisIsNotTakenForGlitches) {
+  std::vector<host::TraceRow> rows;
+  support::Random noise(11);
+  for (uint64_t i = 0; i < 2000; ++i)
+    rows.push_back({1'000'000 + 5000 * i, 400.0f, static_cast<float>(240.0 + 8.0 * noise.gaussian()), true});
+  Calibration c;
+  std::string error;
+  ASSERT_TRUE(calibrate_from_rest(rows, CalibrationOptions{}, 0, c, error)) << error;
+  EXPECT_EQ(c.glitches, 0u);
+  // A glitch on the quiet axis is still one: 150 px is far beyond x's wander.
+  rows[1000].x += 150.0f;
+  ASSERT_TRUE(calibrate_from_rest(rows, CalibrationOptions{}, 0, c, error)) << error;
+  EXPECT_EQ(c.glitches, 1u);
+}
+
 TEST(SensorCalibration, RestsAtSeveralPlacesAreRunsOfTheirOwn) {
   // Two rests 200 px apart with a lift between: each run loses its own mean.
   std::vector<host::TraceRow> rows = rows_of(resting(5.0, 1));

@@ -36,21 +36,25 @@ std::vector<double> moving_mean(const std::vector<double>& t, const std::vector<
 
 // Leaves out of `run` the reports far from where the finger rests (a
 // glitch, a second finger: hundreds of px away), which would read as a noise
-// of many px: further on either axis from the run's median than the wander a
-// resting finger may have plus 10 robust sigmas of its reports. Returns how
-// many; `threshold_px` is the largest distance kept.
+// of many px: further on an axis from the run's median than the wander a
+// resting finger may have plus 10 robust sigmas of that axis (a sensor may
+// be noisier along one). Returns how many; `threshold_px` is the larger
+// axis's largest distance kept.
 size_t drop_glitches(ReportRun& run, double max_range_px, double& threshold_px) {
-  const double mx = median_of(run.x), my = median_of(run.y);
-  std::vector<double> deviations;
-  for (size_t i = 0; i < run.t.size(); ++i) {
-    deviations.push_back(std::fabs(run.x[i] - mx));
-    deviations.push_back(std::fabs(run.y[i] - my));
-  }
-  const double sigma = 1.4826 * median_of(deviations);  // MAD of a normal distribution
-  threshold_px = max_range_px + 10.0 * sigma;
+  // The median and the distance beyond which a report is a glitch, on one axis.
+  const auto limits = [max_range_px](const std::vector<double>& v, double& median, double& threshold) {
+    median = median_of(v);
+    std::vector<double> deviations;
+    for (double value : v) deviations.push_back(std::fabs(value - median));
+    threshold = max_range_px + 10.0 * 1.4826 * median_of(deviations);  // 1.4826 MAD: sigma of a normal
+  };
+  double mx = 0.0, my = 0.0, tx = 0.0, ty = 0.0;
+  limits(run.x, mx, tx);
+  limits(run.y, my, ty);
+  threshold_px = std::max(tx, ty);
   ReportRun kept;
   for (size_t i = 0; i < run.t.size(); ++i) {
-    if (std::fabs(run.x[i] - mx) > threshold_px || std::fabs(run.y[i] - my) > threshold_px) continue;
+    if (std::fabs(run.x[i] - mx) > tx || std::fabs(run.y[i] - my) > ty) continue;
     kept.t.push_back(run.t[i]);
     kept.x.push_back(run.x[i]);
     kept.y.push_back(run.y[i]);
