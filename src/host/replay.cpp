@@ -130,6 +130,7 @@ ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const Ti
   // so a first row stamped far ahead cannot skip the rows behind it.
   const uint64_t t0 = row.taken_us >= 0 ? static_cast<uint64_t>(row.taken_us) : arrival;
   uint64_t last_due = t0;  // the latest arrival delivered so far
+  size_t last_due_line = row.line;  // its row's file line
   // The device ticks from power-on, so its tracker judges even the first
   // report's stamp by the tick clock: one silent tick before t0 gives the
   // replay's tracker that clock too (a first stamp 100 s ahead is then a
@@ -143,10 +144,12 @@ ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const Ti
   };
   // A clock fault: the replay ends at the last plausible report.
   bool more = true;
-  const auto end_at = [&](uint64_t next_arrival) {
+  const auto end_at = [&](uint64_t next_arrival, size_t next_line) {
     summary.time_jump = true;
     summary.time_jump_from_us = last_due;
     summary.time_jump_to_us = next_arrival;
+    summary.time_jump_from_line = last_due_line;
+    summary.time_jump_to_line = next_line;
     summary.rows_after_time_jump = queue.discard_rest();
     more = false;
   };
@@ -159,15 +162,18 @@ ReplaySummary replay(const RowSource& source, HapticPipeline& pipeline, const Ti
     // Samples due at or before this tick, in file order; the tracker judges their stamps.
     while (more && (more = queue.peek(row, arrival)) && arrival <= now) {
       if (steps_back(arrival)) {
-        end_at(arrival);
+        end_at(arrival, row.line);
         break;
       }
       pipeline.post_sample({static_cast<uint32_t>(row.t_us), row.x, row.y, row.touch});
       ++summary.samples;
-      last_due = std::max(last_due, arrival);
+      if (arrival >= last_due) {
+        last_due = arrival;
+        last_due_line = row.line;
+      }
       queue.pop();
     }
-    if (more && arrival > last_due && arrival - last_due > options.max_gap_us) end_at(arrival);
+    if (more && arrival > last_due && arrival - last_due > options.max_gap_us) end_at(arrival, row.line);
     const TickOutput out = pipeline.tick(static_cast<uint32_t>(now));
     ++summary.ticks;
     summary.ticks_with_finger += out.present ? 1 : 0;

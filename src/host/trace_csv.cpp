@@ -137,6 +137,7 @@ bool SensorTraceReader::parse_row(const std::string& line, TraceRow& row, TraceE
     return false;
   }
   row = TraceRow{};
+  row.line = line_no_;
   const std::string ts = trim(f[col_t_]), touchs = trim(f[col_touch_]);
   if (!parse_u64(ts, row.t_us)) {
     error = {line_no_, static_cast<size_t>(col_t_) + 1, "t_us must be a non-negative integer (got '" + ts + "')"};

@@ -238,6 +238,34 @@ TEST(Replay, AClockSteppingBackEndsTheReplayWhereverItFallsInTheStream) {
   }
 }
 
+TEST(Replay, AnEndNamesTheLinesOfTheLastReportAndOfTheRowThatEndedIt) {
+  // Rows numbered as a file's lines (header on line 1). A log of 12 rows, its
+  // last two out of order, then a restarted clock: the last report delivered
+  // is the one with the latest arrival (line 12), not the last read.
+  const auto numbered = [](std::vector<TraceRow> rows) {
+    for (size_t i = 0; i < rows.size(); ++i) rows[i].line = i + 2;
+    return rows;
+  };
+  std::vector<TraceRow> log;
+  for (uint64_t i = 0; i < 12; ++i) log.push_back({1'000'000 + 5000 * i, 400, 240, true});
+  std::swap(log[10].t_us, log[11].t_us);
+  log.push_back({200'000, 400, 240, true});
+  log.push_back({205'000, 400, 240, true});
+  const ReplaySummary back = replay_ending_at_a_step_back(numbered(log));
+  ASSERT_TRUE(back.time_jump);
+  EXPECT_EQ(back.time_jump_from_us, 1'055'000u);
+  EXPECT_EQ(back.time_jump_from_line, 12u);
+  EXPECT_EQ(back.time_jump_to_us, 200'000u);
+  EXPECT_EQ(back.time_jump_to_line, 14u);
+
+  const std::vector<TraceRow> gap = numbered({{0, 400, 240, true}, {5000, 400, 240, true}, {1'000'000'000, 400, 240, true}});
+  size_t read = 0;
+  const ReplaySummary ahead = replay_with_gap_limit(gap, read);
+  ASSERT_TRUE(ahead.time_jump);
+  EXPECT_EQ(ahead.time_jump_from_line, 3u);
+  EXPECT_EQ(ahead.time_jump_to_line, 4u);
+}
+
 TEST(Replay, UpToEightStampsFarAheadInARowAreGlitchesNotAClockStep) {
   // 8 rows in a row stamped 100 s ahead arrive with the row after them; a
   // ninth makes them a clock that stepped back, and the replay ends.

@@ -153,6 +153,7 @@ TEST(TraceCsv, SkipsMetadataLinesAndAByteOrderMark) {
       << err.message;
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].t_us, 5u);
+  EXPECT_EQ(rows[0].line, 5u);  // each row knows its own line, comments counted
   // Errors still name the file's own line numbers.
   EXPECT_FALSE(parse("# a\nt_us,x,y,touch\n# b\n5,z,2,1\n", rows, err));
   EXPECT_EQ(err.line, 4u);

@@ -278,18 +278,20 @@ int main(int argc, char** argv) {
   }
   if (summary.time_jump && summary.time_jump_to_us < summary.time_jump_from_us) {
     std::fprintf(stderr,
-                 "ff-replay: the clock steps back from t_us %llu to %llu (two rows in a row more than %llu ms "
-                 "behind: a log restarted or two joined): the replay ends at the last plausible report; "
-                 "%llu rows left out\n",
-                 static_cast<unsigned long long>(summary.time_jump_from_us),
+                 "ff-replay: %s:%zu: the clock steps back from t_us %llu (line %zu) to %llu (two rows in a row "
+                 "more than %llu ms behind: a log restarted or two joined): the replay ends at the last plausible "
+                 "report; %llu rows left out\n",
+                 input.c_str(), summary.time_jump_to_line,
+                 static_cast<unsigned long long>(summary.time_jump_from_us), summary.time_jump_from_line,
                  static_cast<unsigned long long>(summary.time_jump_to_us),
                  static_cast<unsigned long long>(ff::host::kClockStepBackUs / 1000),
                  static_cast<unsigned long long>(summary.rows_after_time_jump));
   } else if (summary.time_jump) {
     std::fprintf(stderr,
-                 "ff-replay: time jump from t_us %llu to %llu (more than --max-gap-s %g): the replay ends at the "
-                 "last plausible report; %llu rows left out\n",
-                 static_cast<unsigned long long>(summary.time_jump_from_us),
+                 "ff-replay: %s:%zu: time jump from t_us %llu (line %zu) to %llu (more than --max-gap-s %g): the "
+                 "replay ends at the last plausible report; %llu rows left out\n",
+                 input.c_str(), summary.time_jump_to_line,
+                 static_cast<unsigned long long>(summary.time_jump_from_us), summary.time_jump_from_line,
                  static_cast<unsigned long long>(summary.time_jump_to_us), max_gap_s,
                  static_cast<unsigned long long>(summary.rows_after_time_jump));
   }

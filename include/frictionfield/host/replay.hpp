@@ -36,6 +36,10 @@ struct ReplaySummary {
   uint64_t time_jump_from_us = 0;
   uint64_t time_jump_to_us = 0;
   uint64_t rows_after_time_jump = 0;
+  // The file lines of the last report delivered and of the row that ended the
+  // replay (TraceRow::line: 0 when the rows came from no file).
+  size_t time_jump_from_line = 0;
+  size_t time_jump_to_line = 0;
 
   // Samples the tracker dropped (non-finite, off-screen, time, jumps, overflow).
   uint64_t rejected_samples() const;

@@ -29,6 +29,7 @@ struct TraceRow {
   // The device tick that took the report, from an ffctl recording's taken_us
   // column: -1 where the file has no such column or the firmware did not say.
   int64_t taken_us = -1;
+  size_t line = 0;  // the file line it was read from (1-based); 0 when it came from no file
 };
 
 struct TraceError {
