@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "support/models/sensor_model.hpp"
+#include "support/models/trace_classes.hpp"
 
 namespace ff::tracegen {
 namespace {
@@ -173,6 +174,27 @@ TEST(ReportRate, MeanIntervalIsThePeriodAtEveryRateAndPeriodJitterIsItsSpread) {
     // Stamps are whole microseconds: rounding adds 1/6 us^2 to the variance of an interval.
     EXPECT_NEAR(std::sqrt(variance_of(intervals)), std::sqrt(sigma * sigma + 1.0 / 6.0), 0.05 * sigma + 0.1) << rate;
   }
+}
+
+TEST(ReportRate, TheNominalJitterIsTheSpreadOfTheClippedIntervals) {
+  // At 1 kHz the 150 us stamp jitter is clipped at 300 us = 2 sigma. By hand:
+  // a clamped N(0,1) at 2 has variance erf(√2) - 2 √(2/π) e^-2 + 4 erfc(√2)
+  // = 0.954500 - 0.215963 + 0.182001 = 0.920538; with 20 us of period jitter
+  // (not clipped at 15 sigma) an interval spreads sqrt(2 * 150² * 0.920538 + 20²)
+  // = 204.51 us, not the unclipped 213.07.
+  TraceOptions o = quiet(60.0, 1000.0);
+  o.sensor.jitter_us = 150.0;
+  o.sensor.period_jitter_us = 20.0;
+  const double nominal = nominal_profile(o).jitter_us;
+  EXPECT_NEAR(nominal, 204.51, 0.01);
+  // And the generator's own intervals (independently: measured, 1/6 us² of rounding aside).
+  const GeneratedTrace t = generate_trace(o);
+  std::vector<double> intervals;
+  for (size_t i = 1; i < t.samples.size(); ++i)
+    if (t.samples[i].touch && t.samples[i - 1].touch)
+      intervals.push_back(static_cast<double>(t.samples[i].t_us - t.samples[i - 1].t_us));
+  ASSERT_GT(intervals.size(), 50000u);
+  EXPECT_NEAR(std::sqrt(variance_of(intervals) - 1.0 / 6.0), nominal, 0.015 * nominal);
 }
 
 TEST(ReportRate, StampJitterAloneKeepsTheGrid) {

@@ -87,7 +87,7 @@ class SensorSimulator {
   std::vector<Report> scan() {
     std::vector<Report> out;
     const double period_us = 1e6 / o_.sensor.rate_hz;
-    const double max_jitter = 0.3 * period_us;
+    const double max_jitter = kJitterClipOfPeriod * period_us;
     const double end_us = motion_.duration_s() * 1e6;
     bool was_touching = false;
     Report last;

@@ -50,6 +50,10 @@ constexpr double kNoiseHighPx = 2.5;
 // zForce coordinates arrive in 0.1 mm units = 0.5 px.
 constexpr double kZForceQuantumPx = 0.5;
 
+// Stamp and period jitter are clipped to this share of the period either
+// way, so that reports never change order.
+constexpr double kJitterClipOfPeriod = 0.3;
+
 struct SensorOptions {
   double rate_hz = 200.0;
   double jitter_us = 150.0;   // 1 sigma, clipped to +-30 % of the period

@@ -78,15 +78,33 @@ const TraceClass* find_trace_class(const std::string& name) {
   return nullptr;
 }
 
+namespace {
+
+// The spread of N(0, sigma^2) clamped to [-c, c], as the sensor model clips
+// its stamp and period jitter: with a = c / sigma, the variance is
+// sigma^2 (erf(a/√2) - a √(2/π) e^(-a²/2)) inside plus c² erfc(a/√2) at the clip.
+double clamped_normal_sd(double sigma, double c) {
+  if (sigma <= 0.0) return 0.0;
+  const double a = c / sigma;
+  const double inside = std::erf(a / std::sqrt(2.0)) - a * std::sqrt(2.0 / M_PI) * std::exp(-0.5 * a * a);
+  return std::sqrt(sigma * sigma * inside + c * c * std::erfc(a / std::sqrt(2.0)));
+}
+
+}  // namespace
+
 SensorProfile nominal_profile(const TraceOptions& o) {
   const SensorOptions& s = o.sensor;
+  const double clip_us = kJitterClipOfPeriod * 1e6 / s.rate_hz;
+  const double stamp_jitter_us = clamped_normal_sd(s.jitter_us, clip_us);
+  const double period_jitter_us = clamped_normal_sd(s.period_jitter_us, clip_us);
   SensorProfile p;
   p.white_noise_px = static_cast<float>(std::sqrt(s.noise_px * s.noise_px + s.quantum_px * s.quantum_px / 12.0));
   p.correlated_noise_px = static_cast<float>(s.correlated_noise_px);
   p.correlation_time_ms = s.correlated_noise_px > 0.0 ? static_cast<float>(s.correlated_noise_tau_s * 1e3) : 0.0f;
   p.tremor_px = static_cast<float>(o.tremor.amplitude_px);
   p.report_rate_hz = static_cast<float>(s.rate_hz);
-  p.jitter_us = static_cast<float>(std::sqrt(2.0 * s.jitter_us * s.jitter_us + s.period_jitter_us * s.period_jitter_us));
+  p.jitter_us = static_cast<float>(
+      std::sqrt(2.0 * stamp_jitter_us * stamp_jitter_us + period_jitter_us * period_jitter_us));
   p.latency_us = static_cast<uint32_t>(std::lround(s.latency_us + 0.5 * s.latency_spread_us));
   return p;
 }
