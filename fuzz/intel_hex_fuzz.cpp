@@ -6,6 +6,7 @@
 // the model check never reads past what was written.
 //
 // Build: clang++ -fsanitize=fuzzer,address,undefined with intel_hex.cpp.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -43,11 +44,21 @@ std::string written_out(const ffctl::FlashImage& image) {
   return text + ffctl::hex_record(0, 0x01, {});
 }
 
+// A fresh image, as `ffctl flash` reads into: erased, nothing written. The
+// two images live across inputs: a new 1 MiB per input cost AddressSanitizer's
+// allocator an mmap and 256 page faults, 26 of the smoke run's 31 s in the kernel.
+ffctl::FlashImage& erased(ffctl::FlashImage& image) {
+  std::fill(image.bytes.begin(), image.bytes.end(), uint8_t{0xFF});
+  image.highest = 0;
+  return image;
+}
+
 }  // namespace
 
 int intel_hex_one_input(const uint8_t* data, size_t size) {
+  static ffctl::FlashImage read_image, read_again;
   const std::string text(reinterpret_cast<const char*>(data), size);
-  ffctl::FlashImage image;
+  ffctl::FlashImage& image = erased(read_image);
   std::string error;
   if (!ffctl::parse_intel_hex(text, image, error)) {
     check(!error.empty(), "a rejected file has no reason");
@@ -56,7 +67,7 @@ int intel_hex_one_input(const uint8_t* data, size_t size) {
   }
   check(image.highest >= 1 && image.highest <= ffctl::kMk66FlashBytes, "accepted data outside the 1 MiB flash");
   check(image.bytes.size() == ffctl::kMk66FlashBytes, "the image changed size");
-  ffctl::FlashImage again;
+  ffctl::FlashImage& again = erased(read_again);
   check(ffctl::parse_intel_hex(written_out(image), again, error), "the image written out does not read back");
   check(again.highest == image.highest && again.bytes == image.bytes, "the image written out reads back different");
   if (ffctl::check_mk66_image(image, error)) {
