@@ -35,6 +35,15 @@ std::vector<double> touch_errors_x(const GeneratedTrace& t) {
   return e;
 }
 
+// The stamp intervals between reports of the same touch (us).
+std::vector<double> touch_intervals(const GeneratedTrace& t) {
+  std::vector<double> intervals;
+  for (size_t i = 1; i < t.samples.size(); ++i)
+    if (t.samples[i].touch && t.samples[i - 1].touch)
+      intervals.push_back(static_cast<double>(t.samples[i].t_us - t.samples[i - 1].t_us));
+  return intervals;
+}
+
 double mean_of(const std::vector<double>& v) {
   double sum = 0.0;
   for (double x : v) sum += x;
@@ -160,11 +169,7 @@ TEST(ReportRate, MeanIntervalIsThePeriodAtEveryRateAndPeriodJitterIsItsSpread) {
     const double period_us = 1e6 / rate;
     TraceOptions o = quiet(60.0, rate);
     o.sensor.period_jitter_us = 0.02 * period_us;
-    const GeneratedTrace t = generate_trace(o);
-    std::vector<double> intervals;
-    for (size_t i = 1; i < t.samples.size(); ++i)
-      if (t.samples[i].touch && t.samples[i - 1].touch)
-        intervals.push_back(static_cast<double>(t.samples[i].t_us - t.samples[i - 1].t_us));
+    const std::vector<double> intervals = touch_intervals(generate_trace(o));
     ASSERT_GT(intervals.size(), static_cast<size_t>(50.0 * rate)) << rate;
     // Zero-mean, independent interval errors: the mean is the period within
     // sigma / sqrt(n) (4 of those, plus the rounding of the stamps to 1 us).
@@ -188,11 +193,7 @@ TEST(ReportRate, TheNominalJitterIsTheSpreadOfTheClippedIntervals) {
   const double nominal = nominal_profile(o).jitter_us;
   EXPECT_NEAR(nominal, 204.51, 0.01);
   // And the generator's own intervals (independently: measured, 1/6 us² of rounding aside).
-  const GeneratedTrace t = generate_trace(o);
-  std::vector<double> intervals;
-  for (size_t i = 1; i < t.samples.size(); ++i)
-    if (t.samples[i].touch && t.samples[i - 1].touch)
-      intervals.push_back(static_cast<double>(t.samples[i].t_us - t.samples[i - 1].t_us));
+  const std::vector<double> intervals = touch_intervals(generate_trace(o));
   ASSERT_GT(intervals.size(), 50000u);
   EXPECT_NEAR(std::sqrt(variance_of(intervals) - 1.0 / 6.0), nominal, 0.015 * nominal);
 }
